@@ -1,0 +1,26 @@
+#pragma once
+// The virtual camera flags shared by `render`, `oracle` and every later command that looks
+// through the paper's camera.
+#include <CLI/CLI.hpp>
+#include <string>
+
+#include "lfcam/core/slab.h"
+#include "lfcam/render/virtual_camera.h"
+
+namespace lfcam::cli {
+
+struct CameraFlags {
+  std::string size = "1024";
+  std::string eye, look_at, up;  // empty: from the array (its centre, looking along -n_ca)
+  double focal_length_mm = 500.0;
+  double focus_distance_mm = 4000.0;
+  double aperture_mm = 0.0;
+  double lens_rate = 4.0;
+  bool no_breathing = false;
+
+  void AddTo(CLI::App& command);
+  // The camera parameters; unset eye/look-at/up default from the array plane.
+  VirtualCameraParams Resolve(const ArrayPlane& array) const;
+};
+
+}  // namespace lfcam::cli

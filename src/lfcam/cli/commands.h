@@ -1,0 +1,14 @@
+#pragma once
+// Each subcommand registers its flags and its action on the root app.
+#include <CLI/CLI.hpp>
+
+namespace lfcam::cli {
+
+void AddSimulateCommand(CLI::App& app);
+void AddRenderCommand(CLI::App& app);
+void AddOracleCommand(CLI::App& app);
+void AddInfoCommand(CLI::App& app);
+void AddCompareCommand(CLI::App& app);
+void AddMontageCommand(CLI::App& app);
+
+}  // namespace lfcam::cli

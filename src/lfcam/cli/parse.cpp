@@ -1,0 +1,50 @@
+#include "lfcam/cli/parse.h"
+
+#include <fmt/format.h>
+
+#include <charconv>
+#include <cmath>
+#include <sstream>
+
+#include "lfcam/core/error.h"
+
+namespace lfcam::cli {
+
+std::vector<double> ParseNumbers(const std::string& flag, const std::string& text,
+                                 std::size_t count, char separator) {
+  std::vector<double> out;
+  std::stringstream stream(text);
+  std::string item;
+  while (std::getline(stream, item, separator)) {
+    std::size_t used = 0;
+    double value = 0;
+    try {
+      value = std::stod(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used == 0 || used != item.size() || !std::isfinite(value))
+      throw Error(fmt::format("{}: '{}' is not a number (in '{}')", flag, item, text));
+    out.push_back(value);
+  }
+  if (out.size() != count)
+    throw Error(fmt::format("{}: expected {} numbers separated by '{}', got '{}'", flag, count,
+                            separator, text));
+  return out;
+}
+
+Vec3 ParseVec3(const std::string& flag, const std::string& text) {
+  const auto v = ParseNumbers(flag, text, 3);
+  return {v[0], v[1], v[2]};
+}
+
+std::pair<int, int> ParseSize(const std::string& flag, const std::string& text) {
+  const bool has_x = text.find('x') != std::string::npos;
+  const auto v = has_x ? ParseNumbers(flag, text, 2, 'x') : ParseNumbers(flag, text, 1);
+  const double w = v[0], h = has_x ? v[1] : v[0];
+  if (w != std::floor(w) || h != std::floor(h) || w < 1 || h < 1 || w > 65536 || h > 65536)
+    throw Error(fmt::format("{}: '{}' must be N or WxH with whole numbers 1..65536", flag, text));
+  return {int(w), int(h)};
+}
+
+}  // namespace lfcam::cli

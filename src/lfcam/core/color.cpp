@@ -1,0 +1,32 @@
+#include "lfcam/core/color.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace lfcam {
+
+float SrgbToLinear(float encoded) {
+  if (encoded <= 0.04045f) return encoded / 12.92f;
+  return std::pow((encoded + 0.055f) / 1.055f, 2.4f);
+}
+
+float LinearToSrgb(float linear) {
+  const float x = std::clamp(linear, 0.0f, 1.0f);
+  if (x <= 0.0031308f) return 12.92f * x;
+  return 1.055f * std::pow(x, 1.0f / 2.4f) - 0.055f;
+}
+
+std::uint8_t LinearToSrgb8(float linear) {
+  return static_cast<std::uint8_t>(std::lround(LinearToSrgb(linear) * 255.0f));
+}
+
+const std::array<float, 256>& SrgbDecodeTable() {
+  static const std::array<float, 256> table = [] {
+    std::array<float, 256> t{};
+    for (int v = 0; v < 256; ++v) t[v] = SrgbToLinear(static_cast<float>(v) / 255.0f);
+    return t;
+  }();
+  return table;
+}
+
+}  // namespace lfcam

@@ -1,0 +1,16 @@
+#pragma once
+// sRGB <-> linear light. Every average lfcam takes (supersampling, resampling, the lens
+// integral) is taken in linear light; 8-bit values are sRGB-encoded.
+#include <array>
+#include <cstdint>
+
+namespace lfcam {
+
+float SrgbToLinear(float encoded);  // both in [0, 1]
+float LinearToSrgb(float linear);   // clamps to [0, 1]
+std::uint8_t LinearToSrgb8(float linear);
+
+// Decoding table for 8-bit sRGB: SrgbDecodeTable()[v] == SrgbToLinear(v / 255).
+const std::array<float, 256>& SrgbDecodeTable();
+
+}  // namespace lfcam

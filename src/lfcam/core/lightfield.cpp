@@ -1,0 +1,109 @@
+#include "lfcam/core/lightfield.h"
+
+#include <fmt/format.h>
+
+#include <Eigen/Core>
+#include <cstring>
+
+#include "lfcam/core/color.h"
+#include "lfcam/core/error.h"
+
+namespace lfcam {
+
+std::string ToString(SampleType type) {
+  return type == SampleType::kSrgb8 ? "srgb8" : "linear_f16";
+}
+
+SampleType SampleTypeFromString(const std::string& name) {
+  if (name == "srgb8") return SampleType::kSrgb8;
+  if (name == "linear_f16") return SampleType::kLinearF16;
+  throw Error(fmt::format("unknown sample type '{}' (expected srgb8 or linear_f16)", name));
+}
+
+std::size_t BytesPerChannel(SampleType type) { return type == SampleType::kSrgb8 ? 1 : 2; }
+
+SampleBuffer SampleBuffer::Allocate(std::size_t size) {
+  std::shared_ptr<std::uint8_t[]> owned(new std::uint8_t[size]);
+  SampleBuffer b;
+  b.data_ = owned.get();
+  b.keep_alive_ = std::move(owned);
+  b.size_ = size;
+  b.writable_ = true;
+  return b;
+}
+
+SampleBuffer SampleBuffer::Wrap(std::shared_ptr<void> keep_alive, std::uint8_t* data,
+                                std::size_t size, bool writable) {
+  SampleBuffer b;
+  b.keep_alive_ = std::move(keep_alive);
+  b.data_ = data;
+  b.size_ = size;
+  b.writable_ = writable;
+  return b;
+}
+
+std::uint8_t* SampleBuffer::mutable_data() {
+  if (!writable_) throw Error("light field samples are a read-only file mapping");
+  return data_;
+}
+
+LightField::LightField(const LightFieldDims& dims, SampleType type, const Slab& slab)
+    : dims_(dims), type_(type), slab_(slab) {
+  CheckShape();
+  samples_ = SampleBuffer::Allocate(total_bytes());
+  std::memset(samples_.mutable_data(), 0, total_bytes());
+}
+
+LightField::LightField(const LightFieldDims& dims, SampleType type, const Slab& slab,
+                       SampleBuffer samples)
+    : dims_(dims), type_(type), slab_(slab), samples_(std::move(samples)) {
+  CheckShape();
+  if (samples_.size() != total_bytes())
+    throw Error(fmt::format("light field buffer holds {} bytes, dims need {}", samples_.size(),
+                            total_bytes()));
+}
+
+void LightField::CheckShape() const {
+  if (dims_.rows < 1 || dims_.cols < 1 || dims_.n_s < 1 || dims_.n_t < 1)
+    throw Error(fmt::format("light field dims {}x{}x{}x{} must be positive", dims_.rows,
+                            dims_.cols, dims_.n_s, dims_.n_t));
+  if (dims_.rows != slab_.uv.rows || dims_.cols != slab_.uv.cols)
+    throw Error(fmt::format("light field has {}x{} views but its array has {}x{} cameras",
+                            dims_.rows, dims_.cols, slab_.uv.rows, slab_.uv.cols));
+}
+
+std::size_t LightField::view_offset(int row, int col) const {
+  return (std::size_t(row) * std::size_t(dims_.cols) + std::size_t(col)) * view_bytes();
+}
+
+const std::uint8_t* LightField::view_data(int row, int col) const {
+  return samples_.data() + view_offset(row, col);
+}
+
+std::uint8_t* LightField::mutable_view_data(int row, int col) {
+  return samples_.mutable_data() + view_offset(row, col);
+}
+
+Eigen::Vector3f LightField::linear_rgb(int row, int col, int k, int l) const {
+  const std::size_t index = (std::size_t(l) * dims_.n_s + k) * 3;
+  if (type_ == SampleType::kSrgb8) {
+    const auto& lut = SrgbDecodeTable();
+    const std::uint8_t* p = view_data(row, col) + index;
+    return {lut[p[0]], lut[p[1]], lut[p[2]]};
+  }
+  const auto* p = reinterpret_cast<const Eigen::half*>(view_data(row, col)) + index;
+  return {static_cast<float>(p[0]), static_cast<float>(p[1]), static_cast<float>(p[2])};
+}
+
+void LightField::set_linear_rgb(int row, int col, int k, int l, const Eigen::Vector3f& rgb) {
+  const std::size_t index = (std::size_t(l) * dims_.n_s + k) * 3;
+  if (type_ == SampleType::kSrgb8) {
+    std::uint8_t* p = mutable_view_data(row, col) + index;
+    for (int c = 0; c < 3; ++c) p[c] = LinearToSrgb8(rgb[c]);
+    return;
+  }
+  auto* p = reinterpret_cast<Eigen::half*>(mutable_view_data(row, col)) + index;
+  for (int c = 0; c < 3; ++c) p[c] = Eigen::half(rgb[c]);
+}
+
+}  // namespace lfcam

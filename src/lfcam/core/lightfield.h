@@ -1,0 +1,97 @@
+#pragma once
+// The discrete light field L(u_i, v_j, s_k, t_l) (§5.2.1) with its slab geometry and metadata.
+//
+// Layout (also the file layout, docs/format.md): views in row-major (row, col) order; inside a
+// view, st rows l = 0 .. n_t-1 from the bottom of the view window up, each holding n_s samples
+// k = 0 .. n_s-1 along s, each sample R, G, B. View (row, col) is what camera (row, col) sees
+// through st sample ((k + 0.5) / n_s, (l + 0.5) / n_t) of the st domain.
+#include <Eigen/Core>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "lfcam/core/slab.h"
+
+namespace lfcam {
+
+enum class SampleType {
+  kSrgb8,      // 8-bit sRGB-encoded RGB (the default, as captured)
+  kLinearF16,  // IEEE half floats, linear light RGB
+};
+std::string ToString(SampleType type);
+SampleType SampleTypeFromString(const std::string& name);  // throws lfcam::Error
+std::size_t BytesPerChannel(SampleType type);
+
+struct LightFieldDims {
+  int rows = 0, cols = 0;  // views (the camera grid)
+  int n_s = 0, n_t = 0;    // st samples per view
+  static constexpr int kChannels = 3;
+
+  std::size_t view_count() const { return std::size_t(rows) * std::size_t(cols); }
+  std::size_t samples_per_view() const { return std::size_t(n_s) * std::size_t(n_t); }
+  bool operator==(const LightFieldDims&) const = default;
+};
+
+// A contiguous byte block that either owns its memory or keeps a file mapping alive.
+class SampleBuffer {
+ public:
+  SampleBuffer() = default;
+  static SampleBuffer Allocate(std::size_t size);  // uninitialised
+  static SampleBuffer Wrap(std::shared_ptr<void> keep_alive, std::uint8_t* data, std::size_t size,
+                           bool writable);
+  const std::uint8_t* data() const { return data_; }
+  std::uint8_t* mutable_data();  // throws if the buffer is a read-only mapping
+  std::size_t size() const { return size_; }
+
+ private:
+  std::shared_ptr<void> keep_alive_;
+  std::uint8_t* data_ = nullptr;
+  std::size_t size_ = 0;
+  bool writable_ = false;
+};
+
+class LightField {
+ public:
+  LightField() = default;
+  // A zero-filled light field of the given shape.
+  LightField(const LightFieldDims& dims, SampleType type, const Slab& slab);
+  LightField(const LightFieldDims& dims, SampleType type, const Slab& slab, SampleBuffer samples);
+
+  const LightFieldDims& dims() const { return dims_; }
+  SampleType sample_type() const { return type_; }
+  const Slab& slab() const { return slab_; }
+  Slab& mutable_slab() { return slab_; }
+  nlohmann::json& metadata() { return metadata_; }
+  const nlohmann::json& metadata() const { return metadata_; }
+
+  std::size_t view_bytes() const { return dims_.samples_per_view() * 3 * BytesPerChannel(type_); }
+  std::size_t total_bytes() const { return view_bytes() * dims_.view_count(); }
+  const std::uint8_t* view_data(int row, int col) const;
+  std::uint8_t* mutable_view_data(int row, int col);
+  const std::uint8_t* data() const { return samples_.data(); }
+
+  // The st-plane position of sample (k, l), in view-window units.
+  double s_of(double k) const {
+    return slab_.st_domain.s0 + (k + 0.5) / dims_.n_s * slab_.st_domain.s_extent();
+  }
+  double t_of(double l) const {
+    return slab_.st_domain.t0 + (l + 0.5) / dims_.n_t * slab_.st_domain.t_extent();
+  }
+  // Linear-light RGB of sample (row, col, k, l), whatever the sample type.
+  Eigen::Vector3f linear_rgb(int row, int col, int k, int l) const;
+  void set_linear_rgb(int row, int col, int k, int l, const Eigen::Vector3f& rgb);
+
+ private:
+  std::size_t view_offset(int row, int col) const;
+  void CheckShape() const;
+
+  LightFieldDims dims_;
+  SampleType type_ = SampleType::kSrgb8;
+  Slab slab_;
+  nlohmann::json metadata_ = nlohmann::json::object();
+  SampleBuffer samples_;
+};
+
+}  // namespace lfcam

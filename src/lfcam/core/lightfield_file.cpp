@@ -1,0 +1,393 @@
+#include "lfcam/core/lightfield_file.h"
+
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <tbb/parallel_for.h>
+#include <unistd.h>
+#include <xxhash.h>
+#include <zstd.h>
+
+#include <array>
+#include <bit>
+#include <cerrno>
+#include <cstring>
+#include <vector>
+
+#include "lfcam/core/atomic_file.h"
+#include "lfcam/core/error.h"
+
+namespace lfcam {
+namespace {
+
+static_assert(std::endian::native == std::endian::little,
+              "the .lf format is little-endian; big-endian hosts are not supported");
+
+constexpr std::array<std::uint8_t, 8> kMagic = {0x89, 'L', 'F', 'C', 0x0D, 0x0A, 0x1A, 0x0A};
+constexpr std::size_t kPreambleBytes = 40;
+constexpr std::uint64_t kMaxHeaderBytes = 16u << 20;
+constexpr int kMaxViewsPerSide = 4096;
+constexpr int kMaxSamplesPerSide = 65536;
+constexpr std::uint64_t kMaxDecodedBytes = std::uint64_t(1) << 36;  // 64 GiB
+
+struct ViewRecord {
+  std::uint64_t offset = 0;  // from the start of the data section
+  std::uint64_t stored_bytes = 0;
+  std::uint64_t xxh3 = 0;
+};
+
+std::uint64_t Checksum(const void* data, std::size_t size) { return XXH3_64bits(data, size); }
+
+std::string Hex(std::uint64_t v) { return fmt::format("{:016x}", v); }
+
+template <typename T>
+void PutLe(std::uint8_t* out, T value) {
+  for (std::size_t i = 0; i < sizeof(T); ++i) out[i] = std::uint8_t(value >> (8 * i));
+}
+template <typename T>
+T GetLe(const std::uint8_t* in) {
+  T value = 0;
+  for (std::size_t i = 0; i < sizeof(T); ++i) value |= T(in[i]) << (8 * i);
+  return value;
+}
+
+std::uint64_t ParseHex64(const std::string& text, const std::string& where) {
+  std::uint64_t value = 0;
+  if (text.empty() || text.size() > 16)
+    throw Error(fmt::format("{}: checksum '{}' is not 1-16 hex digits", where, text));
+  for (const char c : text) {
+    int digit = -1;
+    if (c >= '0' && c <= '9') digit = c - '0';
+    if (c >= 'a' && c <= 'f') digit = c - 'a' + 10;
+    if (c >= 'A' && c <= 'F') digit = c - 'A' + 10;
+    if (digit < 0) throw Error(fmt::format("{}: checksum '{}' is not hex", where, text));
+    value = value << 4 | std::uint64_t(digit);
+  }
+  return value;
+}
+
+std::uint64_t RoundUp(std::uint64_t x, std::uint64_t a) { return (x + a - 1) / a * a; }
+
+std::string ViewName(const LightFieldDims& dims, std::size_t index) {
+  return fmt::format("view (row {}, col {})", index / dims.cols, index % dims.cols);
+}
+
+// An open file descriptor that closes itself.
+class Fd {
+ public:
+  explicit Fd(const std::filesystem::path& path) : path_(path.string()) {
+    fd_ = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd_ < 0) throw Error(fmt::format("{}: cannot open: {}", path_, std::strerror(errno)));
+    struct stat st{};
+    if (::fstat(fd_, &st) != 0 || !S_ISREG(st.st_mode)) {
+      ::close(fd_);
+      throw Error(fmt::format("{}: not a regular file", path_));
+    }
+    size_ = std::uint64_t(st.st_size);
+  }
+  ~Fd() { ::close(fd_); }
+  Fd(const Fd&) = delete;
+  Fd& operator=(const Fd&) = delete;
+  int get() const { return fd_; }
+  std::uint64_t size() const { return size_; }
+  const std::string& name() const { return path_; }
+
+  void read_exactly(void* out, std::size_t size, std::uint64_t offset) const {
+    auto* p = static_cast<std::uint8_t*>(out);
+    std::size_t done = 0;
+    while (done < size) {
+      const ssize_t n = ::pread(fd_, p + done, size - done, off_t(offset + done));
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0)
+        throw Error(fmt::format("{}: read failed at byte {}: {}", path_, offset + done,
+                                n == 0 ? "unexpected end of file" : std::strerror(errno)));
+      done += std::size_t(n);
+    }
+  }
+
+ private:
+  std::string path_;
+  int fd_ = -1;
+  std::uint64_t size_ = 0;
+};
+
+struct ParsedFile {
+  LightFieldHeader header;
+  std::uint64_t data_offset = 0;
+  std::vector<ViewRecord> views;
+};
+
+template <typename F>
+auto WithContext(const std::string& file, F&& f) {
+  try {
+    return f();
+  } catch (const nlohmann::json::exception& e) {
+    throw Error(fmt::format("{}: malformed header: {}", file, e.what()));
+  } catch (const Error& e) {
+    if (std::string_view(e.what()).starts_with(file)) throw;
+    throw Error(fmt::format("{}: {}", file, e.what()));
+  }
+}
+
+ParsedFile ParseHeader(const Fd& fd) {
+  const std::string& name = fd.name();
+  if (fd.size() < kPreambleBytes)
+    throw Error(fmt::format("{}: too short to be a light field ({} bytes)", name, fd.size()));
+  std::array<std::uint8_t, kPreambleBytes> pre{};
+  fd.read_exactly(pre.data(), pre.size(), 0);
+  if (!std::equal(kMagic.begin(), kMagic.end(), pre.begin()))
+    throw Error(fmt::format("{}: not an lfcam light field (bad magic bytes)", name));
+  ParsedFile parsed;
+  parsed.header.file_bytes = fd.size();
+  parsed.header.version = GetLe<std::uint32_t>(&pre[8]);
+  if (parsed.header.version != kLightFieldFormatVersion)
+    throw Error(fmt::format("{}: format version {} is not supported (this build reads {})", name,
+                            parsed.header.version, kLightFieldFormatVersion));
+  const auto header_bytes = GetLe<std::uint64_t>(&pre[16]);
+  const auto header_xxh3 = GetLe<std::uint64_t>(&pre[24]);
+  parsed.data_offset = GetLe<std::uint64_t>(&pre[32]);
+  if (header_bytes == 0 || header_bytes > kMaxHeaderBytes)
+    throw Error(fmt::format("{}: header size {} is absurd", name, header_bytes));
+  if (kPreambleBytes + header_bytes > fd.size())
+    throw Error(fmt::format("{}: truncated: header needs {} bytes, file has {}", name,
+                            kPreambleBytes + header_bytes, fd.size()));
+  if (parsed.data_offset < kPreambleBytes + header_bytes ||
+      parsed.data_offset % kLightFieldAlignment != 0 || parsed.data_offset > fd.size())
+    throw Error(fmt::format("{}: data offset {} does not fit the file ({} bytes)", name,
+                            parsed.data_offset, fd.size()));
+  std::string text(header_bytes, '\0');
+  fd.read_exactly(text.data(), text.size(), kPreambleBytes);
+  if (Checksum(text.data(), text.size()) != header_xxh3)
+    throw Error(fmt::format("{}: header checksum mismatch (the header is corrupt)", name));
+
+  return WithContext(name, [&] {
+    const auto j = nlohmann::json::parse(text);
+    if (j.at("format").get<std::string>() != "lfcam-lightfield")
+      throw Error("header format is not lfcam-lightfield");
+    auto& h = parsed.header;
+    const auto& d = j.at("dims");
+    h.dims = {d.at("rows").get<int>(), d.at("cols").get<int>(), d.at("n_s").get<int>(),
+              d.at("n_t").get<int>()};
+    if (d.at("channels").get<int>() != LightFieldDims::kChannels)
+      throw Error("only 3-channel (RGB) light fields are supported");
+    if (h.dims.rows < 1 || h.dims.cols < 1 || h.dims.rows > kMaxViewsPerSide ||
+        h.dims.cols > kMaxViewsPerSide || h.dims.n_s < 1 || h.dims.n_t < 1 ||
+        h.dims.n_s > kMaxSamplesPerSide || h.dims.n_t > kMaxSamplesPerSide)
+      throw Error(fmt::format("absurd dimensions {}x{} views of {}x{} samples", h.dims.rows,
+                              h.dims.cols, h.dims.n_s, h.dims.n_t));
+    h.sample_type = SampleTypeFromString(j.at("sample_type").get<std::string>());
+    const std::uint64_t view_bytes =
+        std::uint64_t(h.dims.samples_per_view()) * 3 * BytesPerChannel(h.sample_type);
+    if (view_bytes * h.dims.view_count() > kMaxDecodedBytes)
+      throw Error(fmt::format("absurd dimensions: {} bytes of samples",
+                              view_bytes * h.dims.view_count()));
+    const auto compression = j.at("compression").get<std::string>();
+    if (compression == "none")
+      h.compression = Compression::kNone;
+    else if (compression == "zstd")
+      h.compression = Compression::kZstd;
+    else
+      throw Error(fmt::format("unknown compression '{}'", compression));
+    if (j.at("checksum").get<std::string>() != "xxh3-64")
+      throw Error("unknown checksum algorithm (expected xxh3-64)");
+    h.slab = j.at("slab").get<Slab>();
+    if (h.slab.uv.rows != h.dims.rows || h.slab.uv.cols != h.dims.cols)
+      throw Error("slab grid does not match the view grid");
+    h.metadata = j.value("metadata", nlohmann::json::object());
+
+    const auto& views = j.at("views");
+    if (!views.is_array() || views.size() != h.dims.view_count())
+      throw Error(fmt::format("view table has {} entries, dims need {}", views.size(),
+                              h.dims.view_count()));
+    const std::uint64_t data_bytes = fd.size() - parsed.data_offset;
+    std::uint64_t next_free = 0;
+    for (std::size_t i = 0; i < views.size(); ++i) {
+      const auto& v = views[i];
+      ViewRecord r;
+      r.offset = v.at("offset").get<std::uint64_t>();
+      r.stored_bytes = v.at("stored_bytes").get<std::uint64_t>();
+      const std::string where = ViewName(h.dims, i);
+      r.xxh3 = ParseHex64(v.at("xxh3").get<std::string>(), where);
+      if (h.compression == Compression::kNone &&
+          (r.stored_bytes != view_bytes || r.offset != i * view_bytes))
+        throw Error(fmt::format("{}: stored at {} with {} bytes, expected {} with {}", where,
+                                r.offset, r.stored_bytes, i * view_bytes, view_bytes));
+      if (r.stored_bytes == 0 || r.offset < next_free || r.offset > data_bytes ||
+          r.stored_bytes > data_bytes - r.offset)
+        throw Error(fmt::format("{}: record (offset {}, {} bytes) does not fit the {} data bytes "
+                                "of the file (truncated?)",
+                                where, r.offset, r.stored_bytes, data_bytes));
+      next_free = r.offset + r.stored_bytes;
+      h.stored_sample_bytes += r.stored_bytes;
+      parsed.views.push_back(r);
+    }
+    return parsed;
+  });
+}
+
+struct Mapping {
+  void* address = MAP_FAILED;
+  std::size_t size = 0;
+  ~Mapping() {
+    if (address != MAP_FAILED) ::munmap(address, size);
+  }
+};
+
+std::shared_ptr<Mapping> MapFile(const Fd& fd) {
+  auto m = std::make_shared<Mapping>();
+  m->size = fd.size();
+  m->address = ::mmap(nullptr, m->size, PROT_READ, MAP_PRIVATE, fd.get(), 0);
+  if (m->address == MAP_FAILED)
+    throw Error(fmt::format("{}: cannot map: {}", fd.name(), std::strerror(errno)));
+  ::madvise(m->address, m->size, MADV_WILLNEED);
+  return m;
+}
+
+}  // namespace
+
+void WriteLightField(const LightField& lf, const std::filesystem::path& path,
+                     const LightFieldWriteOptions& options) {
+  const auto& dims = lf.dims();
+  const std::size_t n_views = dims.view_count();
+  const std::size_t view_bytes = lf.view_bytes();
+  std::vector<ViewRecord> records(n_views);
+  std::vector<std::vector<std::uint8_t>> compressed(
+      options.compression == Compression::kZstd ? n_views : 0);
+
+  tbb::parallel_for(std::size_t(0), n_views, [&](std::size_t i) {
+    const std::uint8_t* view = lf.data() + i * view_bytes;
+    if (options.compression == Compression::kNone) {
+      records[i] = {i * view_bytes, view_bytes, Checksum(view, view_bytes)};
+      return;
+    }
+    auto& out = compressed[i];
+    out.resize(ZSTD_compressBound(view_bytes));
+    const std::size_t n = ZSTD_compress(out.data(), out.size(), view, view_bytes,
+                                        options.zstd_level);
+    if (ZSTD_isError(n))
+      throw Error(fmt::format("{}: zstd failed on {}: {}", path.string(), ViewName(dims, i),
+                              ZSTD_getErrorName(n)));
+    out.resize(n);
+    records[i] = {0, n, Checksum(out.data(), n)};
+  });
+  if (options.compression == Compression::kZstd) {
+    std::uint64_t offset = 0;
+    for (auto& r : records) {
+      r.offset = offset;
+      offset += r.stored_bytes;
+    }
+  }
+
+  nlohmann::json views = nlohmann::json::array();
+  for (std::size_t i = 0; i < n_views; ++i)
+    views.push_back({{"row", i / dims.cols},
+                     {"col", i % dims.cols},
+                     {"offset", records[i].offset},
+                     {"stored_bytes", records[i].stored_bytes},
+                     {"xxh3", Hex(records[i].xxh3)}});
+  const nlohmann::json header = {
+      {"format", "lfcam-lightfield"},
+      {"version", kLightFieldFormatVersion},
+      {"dims",
+       {{"rows", dims.rows},
+        {"cols", dims.cols},
+        {"n_s", dims.n_s},
+        {"n_t", dims.n_t},
+        {"channels", LightFieldDims::kChannels}}},
+      {"sample_type", ToString(lf.sample_type())},
+      {"layout", "views row-major by (row, col); in a view, st rows l bottom-up, samples k along "
+                 "s, RGB interleaved"},
+      {"compression", options.compression == Compression::kNone ? "none" : "zstd"},
+      {"checksum", "xxh3-64"},
+      {"slab", lf.slab()},
+      {"metadata", lf.metadata()},
+      {"views", views},
+  };
+  const std::string text = header.dump(1);
+  const std::uint64_t data_offset = RoundUp(kPreambleBytes + text.size(), kLightFieldAlignment);
+
+  std::array<std::uint8_t, kPreambleBytes> pre{};
+  std::copy(kMagic.begin(), kMagic.end(), pre.begin());
+  PutLe<std::uint32_t>(&pre[8], kLightFieldFormatVersion);
+  PutLe<std::uint32_t>(&pre[12], 0);
+  PutLe<std::uint64_t>(&pre[16], text.size());
+  PutLe<std::uint64_t>(&pre[24], Checksum(text.data(), text.size()));
+  PutLe<std::uint64_t>(&pre[32], data_offset);
+
+  AtomicFileWriter out(path);
+  out.write(pre.data(), pre.size());
+  out.write(text.data(), text.size());
+  out.pad_to(data_offset);
+  if (options.compression == Compression::kNone)
+    out.write(lf.data(), lf.total_bytes());
+  else
+    for (const auto& c : compressed) out.write(c.data(), c.size());
+  out.commit();
+}
+
+LightFieldHeader ReadLightFieldHeader(const std::filesystem::path& path) {
+  const Fd fd(path);
+  return ParseHeader(fd).header;
+}
+
+LightField ReadLightField(const std::filesystem::path& path, const LightFieldReadOptions& options) {
+  const Fd fd(path);
+  const ParsedFile parsed = ParseHeader(fd);
+  const auto& h = parsed.header;
+  const std::size_t view_bytes = h.dims.samples_per_view() * 3 * BytesPerChannel(h.sample_type);
+  const std::size_t total = view_bytes * h.dims.view_count();
+
+  // The stored bytes, in place (mapped) or read into memory.
+  std::shared_ptr<Mapping> mapping;
+  std::vector<std::uint8_t> read_copy;
+  const std::uint8_t* data = nullptr;
+  SampleBuffer samples;
+  if (options.memory_map) {
+    mapping = MapFile(fd);
+    data = static_cast<const std::uint8_t*>(mapping->address) + parsed.data_offset;
+  } else if (h.compression == Compression::kNone) {
+    samples = SampleBuffer::Allocate(total);
+    fd.read_exactly(samples.mutable_data(), total, parsed.data_offset);
+    data = samples.data();
+  } else {
+    read_copy.resize(fd.size() - parsed.data_offset);
+    fd.read_exactly(read_copy.data(), read_copy.size(), parsed.data_offset);
+    data = read_copy.data();
+  }
+
+  const auto check_view = [&](std::size_t i) {
+    const ViewRecord& r = parsed.views[i];
+    if (options.verify_checksums && Checksum(data + r.offset, r.stored_bytes) != r.xxh3)
+      throw Error(fmt::format("{}: {} is corrupt (checksum mismatch)", fd.name(),
+                              ViewName(h.dims, i)));
+    if (h.compression == Compression::kZstd) {
+      const auto content = ZSTD_getFrameContentSize(data + r.offset, r.stored_bytes);
+      if (content != view_bytes)
+        throw Error(fmt::format("{}: {} does not hold a zstd frame of {} bytes", fd.name(),
+                                ViewName(h.dims, i), view_bytes));
+    }
+  };
+  tbb::parallel_for(std::size_t(0), parsed.views.size(), check_view);
+
+  if (h.compression == Compression::kNone) {
+    if (options.memory_map)
+      samples = SampleBuffer::Wrap(mapping, const_cast<std::uint8_t*>(data), total, false);
+  } else {
+    samples = SampleBuffer::Allocate(total);
+    std::uint8_t* out = samples.mutable_data();
+    tbb::parallel_for(std::size_t(0), parsed.views.size(), [&](std::size_t i) {
+      const ViewRecord& r = parsed.views[i];
+      const std::size_t n =
+          ZSTD_decompress(out + i * view_bytes, view_bytes, data + r.offset, r.stored_bytes);
+      if (ZSTD_isError(n) || n != view_bytes)
+        throw Error(fmt::format("{}: {} does not decompress: {}", fd.name(), ViewName(h.dims, i),
+                                ZSTD_isError(n) ? ZSTD_getErrorName(n) : "wrong size"));
+    });
+  }
+  LightField lf(h.dims, h.sample_type, h.slab, std::move(samples));
+  lf.metadata() = h.metadata;
+  return lf;
+}
+
+}  // namespace lfcam

@@ -1,0 +1,49 @@
+#pragma once
+// The .lf light field file (docs/format.md): a fixed 40-byte preamble, a JSON header, then one
+// record per view, each with its own XXH3-64 checksum. Uncompressed views start on 4096-byte
+// boundaries so the file can be memory-mapped and used in place.
+#include <cstdint>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "lfcam/core/lightfield.h"
+
+namespace lfcam {
+
+inline constexpr std::uint32_t kLightFieldFormatVersion = 1;
+inline constexpr std::size_t kLightFieldAlignment = 4096;
+
+enum class Compression { kNone, kZstd };
+
+struct LightFieldWriteOptions {
+  Compression compression = Compression::kNone;
+  int zstd_level = 3;
+};
+
+// Writes atomically (temporary name, then rename). Throws lfcam::Error.
+void WriteLightField(const LightField& lf, const std::filesystem::path& path,
+                     const LightFieldWriteOptions& options = {});
+
+struct LightFieldReadOptions {
+  bool verify_checksums = true;
+  bool memory_map = true;  // uncompressed files are used in place when true
+};
+
+// Reads and verifies a light field. Any inconsistency (truncation, bad checksum, sizes that do
+// not add up, absurd dimensions) throws lfcam::Error naming the file and the view.
+LightField ReadLightField(const std::filesystem::path& path, const LightFieldReadOptions& options = {});
+
+// The header alone (cheap: does not touch the samples), for `lfcam info`.
+struct LightFieldHeader {
+  std::uint32_t version = 0;
+  LightFieldDims dims;
+  SampleType sample_type = SampleType::kSrgb8;
+  Compression compression = Compression::kNone;
+  Slab slab;
+  nlohmann::json metadata;
+  std::uint64_t file_bytes = 0;
+  std::uint64_t stored_sample_bytes = 0;
+};
+LightFieldHeader ReadLightFieldHeader(const std::filesystem::path& path);
+
+}  // namespace lfcam

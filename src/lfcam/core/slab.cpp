@@ -1,0 +1,114 @@
+#include "lfcam/core/slab.h"
+
+#include <fmt/format.h>
+
+#include <nlohmann/json.hpp>
+
+#include "lfcam/core/error.h"
+
+namespace lfcam {
+
+std::optional<SlabCoords> Slab::intersect(const Ray& ray) const {
+  const auto t_uv = Plane{uv.p_ca, uv.n_ca}.intersect(ray);
+  const auto t_st = Plane{st.origin, st.normal()}.intersect(ray);
+  if (!t_uv || !t_st) return std::nullopt;
+  const Vec3 x_uv = ray.at(*t_uv) - uv.p_ca;
+  const Vec3 x_st = ray.at(*t_st) - st.origin;
+  return SlabCoords{x_uv.dot(uv.u_ca) / uv.width_mm(), x_uv.dot(uv.v_ca) / uv.height_mm(),
+                    x_st.dot(st.x_axis) / st.width_mm, x_st.dot(st.y_axis) / st.height_mm};
+}
+
+namespace {
+
+void RequireUnit(const Vec3& v, const char* name) {
+  if (!v.allFinite() || std::abs(v.norm() - 1.0) > 1e-6)
+    throw Error(fmt::format("slab: {} must be a finite unit vector (norm {})", name, v.norm()));
+}
+
+void RequireOrthogonal(const Vec3& a, const Vec3& b, const char* names) {
+  if (std::abs(a.dot(b)) > 1e-6) throw Error(fmt::format("slab: {} must be orthogonal", names));
+}
+
+Vec3 ReadVec3(const nlohmann::json& j, const char* name) {
+  const auto& a = j.at(name);
+  if (!a.is_array() || a.size() != 3) throw Error(fmt::format("slab: {} must be [x, y, z]", name));
+  return {a[0].get<double>(), a[1].get<double>(), a[2].get<double>()};
+}
+
+}  // namespace
+
+void Slab::validate() const {
+  RequireUnit(uv.u_ca, "u_ca");
+  RequireUnit(uv.v_ca, "v_ca");
+  RequireUnit(uv.n_ca, "n_ca");
+  RequireOrthogonal(uv.u_ca, uv.v_ca, "u_ca and v_ca");
+  RequireOrthogonal(uv.u_ca, uv.n_ca, "u_ca and n_ca");
+  RequireOrthogonal(uv.v_ca, uv.n_ca, "v_ca and n_ca");
+  if (uv.u_ca.cross(uv.v_ca).dot(uv.n_ca) < 0)
+    throw Error("slab: (u_ca, v_ca, n_ca) must be right-handed");
+  if (!uv.p_ca.allFinite()) throw Error("slab: p_ca must be finite");
+  if (uv.rows < 1 || uv.cols < 1 || uv.rows > 4096 || uv.cols > 4096)
+    throw Error(fmt::format("slab: array grid {}x{} is out of range", uv.rows, uv.cols));
+  if (!(uv.pitch_mm > 0) || !std::isfinite(uv.pitch_mm))
+    throw Error("slab: pitch_mm must be positive");
+  RequireUnit(st.x_axis, "view window x axis");
+  RequireUnit(st.y_axis, "view window y axis");
+  RequireOrthogonal(st.x_axis, st.y_axis, "view window axes");
+  if (!st.origin.allFinite()) throw Error("slab: view window origin must be finite");
+  if (!(st.width_mm > 0) || !(st.height_mm > 0) || !std::isfinite(st.width_mm) ||
+      !std::isfinite(st.height_mm))
+    throw Error("slab: view window size must be positive");
+  if (!(st_domain.s1 > st_domain.s0) || !(st_domain.t1 > st_domain.t0) ||
+      !std::isfinite(st_domain.s0 + st_domain.s1 + st_domain.t0 + st_domain.t1))
+    throw Error("slab: st domain must have s1 > s0 and t1 > t0");
+  if (std::abs(separation_mm()) < 1e-6) throw Error("slab: uv- and st-planes coincide");
+}
+
+void to_json(nlohmann::json& j, const Slab& slab) {
+  auto v3 = [](const Vec3& v) { return nlohmann::json::array({v.x(), v.y(), v.z()}); };
+  j = nlohmann::json{
+      {"p_ca", v3(slab.uv.p_ca)},
+      {"u_ca", v3(slab.uv.u_ca)},
+      {"v_ca", v3(slab.uv.v_ca)},
+      {"n_ca", v3(slab.uv.n_ca)},
+      {"rows", slab.uv.rows},
+      {"cols", slab.uv.cols},
+      {"pitch_mm", slab.uv.pitch_mm},
+      {"view_window",
+       {{"origin", v3(slab.st.origin)},
+        {"x_axis", v3(slab.st.x_axis)},
+        {"y_axis", v3(slab.st.y_axis)},
+        {"width_mm", slab.st.width_mm},
+        {"height_mm", slab.st.height_mm}}},
+      {"st_domain",
+       nlohmann::json::array(
+           {slab.st_domain.s0, slab.st_domain.t0, slab.st_domain.s1, slab.st_domain.t1})},
+  };
+}
+
+void from_json(const nlohmann::json& j, Slab& slab) {
+  try {
+    slab.uv.p_ca = ReadVec3(j, "p_ca");
+    slab.uv.u_ca = ReadVec3(j, "u_ca");
+    slab.uv.v_ca = ReadVec3(j, "v_ca");
+    slab.uv.n_ca = ReadVec3(j, "n_ca");
+    slab.uv.rows = j.at("rows").get<int>();
+    slab.uv.cols = j.at("cols").get<int>();
+    slab.uv.pitch_mm = j.at("pitch_mm").get<double>();
+    const auto& w = j.at("view_window");
+    slab.st.origin = ReadVec3(w, "origin");
+    slab.st.x_axis = ReadVec3(w, "x_axis");
+    slab.st.y_axis = ReadVec3(w, "y_axis");
+    slab.st.width_mm = w.at("width_mm").get<double>();
+    slab.st.height_mm = w.at("height_mm").get<double>();
+    const auto& d = j.at("st_domain");
+    if (!d.is_array() || d.size() != 4) throw Error("slab: st_domain must be [s0, t0, s1, t1]");
+    slab.st_domain = {d[0].get<double>(), d[1].get<double>(), d[2].get<double>(),
+                      d[3].get<double>()};
+  } catch (const nlohmann::json::exception& e) {
+    throw Error(fmt::format("slab: {}", e.what()));
+  }
+  slab.validate();
+}
+
+}  // namespace lfcam

@@ -1,0 +1,25 @@
+#pragma once
+// The CPU light field renderer: the paper's virtual camera (§6) over a light field,
+// multithreaded with oneTBB. It is the readable reference the GPU path is checked against.
+#include <opencv2/core.hpp>
+
+#include "lfcam/core/lightfield.h"
+#include "lfcam/render/virtual_camera.h"
+
+namespace lfcam {
+
+struct CpuRenderOptions {
+  int threads = 0;  // 0: all cores; 1: the paper's single-threaded CPU column
+};
+
+struct RenderResult {
+  cv::Mat image;      // linear RGB, CV_32FC3, row 0 at the top
+  cv::Mat hit_mask;   // CV_8UC1: 255 where at least one ray hit the slab
+  long long rays = 0;       // rays cast
+  long long rays_hit = 0;   // rays that met both windows
+};
+
+RenderResult RenderLightFieldCpu(const LightField& lf, const VirtualCamera& camera,
+                                 const CpuRenderOptions& options = {});
+
+}  // namespace lfcam

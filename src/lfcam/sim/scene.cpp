@@ -1,0 +1,44 @@
+#include "lfcam/sim/scene.h"
+
+#include <fmt/format.h>
+
+#include <limits>
+
+#include "lfcam/core/error.h"
+
+namespace lfcam {
+
+double Scene::FirstHitDistance(const Ray& ray) const {
+  double nearest = std::numeric_limits<double>::infinity();
+  SurfaceHit hit;
+  for (const auto& object : objects)
+    if (object.shape->Intersect(ray, 1e-9, nearest, &hit)) nearest = hit.t;
+  return nearest;
+}
+
+Vec3 Scene::Radiance(const Ray& ray) const {
+  double nearest = std::numeric_limits<double>::infinity();
+  const SceneObject* found = nullptr;
+  SurfaceHit best, hit;
+  for (const auto& object : objects) {
+    if (object.shape->Intersect(ray, 1e-9, nearest, &hit)) {
+      nearest = hit.t;
+      best = hit;
+      found = &object;
+    }
+  }
+  if (!found) return background;
+  Vec3 n = best.normal;
+  if (n.dot(ray.direction) > 0) n = -n;  // two-sided surfaces
+  const double diffuse = std::max(0.0, n.dot(light_direction));
+  return found->texture.Evaluate(best.uv_mm) * (ambient + (1.0 - ambient) * diffuse);
+}
+
+std::vector<std::string> SceneNames() { return {"paper"}; }
+
+Scene MakeScene(const std::string& name) {
+  if (name == "paper") return MakePaperScene();
+  throw Error(fmt::format("unknown scene '{}' (built-in scenes: paper)", name));
+}
+
+}  // namespace lfcam

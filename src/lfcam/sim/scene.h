@@ -1,0 +1,60 @@
+#pragma once
+// A scene for the simulator: analytic shapes with procedural textures under a simple light,
+// plus the ideal camera array and world board that go with it.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "lfcam/core/slab.h"
+#include "lfcam/sim/shapes.h"
+#include "lfcam/sim/texture.h"
+
+namespace lfcam {
+
+struct SceneObject {
+  std::string name;
+  std::shared_ptr<const Shape> shape;
+  Texture texture;
+};
+
+// The ideal rig a scene is laid out for: the camera array (uv-plane) and the world board
+// whose squared area is the view window (st-plane, world z = 0).
+struct SceneRig {
+  ArrayPlane array;
+  ViewWindow board;
+  int board_inner_corners_x = 11;  // OpenCV's convention: inner corners
+  int board_inner_corners_y = 10;
+  double board_square_mm = 50.0;
+};
+
+class Scene {
+ public:
+  std::string name;
+  SceneRig rig;
+  std::vector<SceneObject> objects;
+  Vec3 background = Vec3(0.02, 0.02, 0.03);        // linear radiance of rays that miss
+  Vec3 light_direction = Vec3(-0.4, 0.7, 0.6).normalized();  // toward the light
+  double ambient = 0.35;
+
+  void Add(std::string object_name, std::shared_ptr<const Shape> shape, const Texture& texture) {
+    objects.push_back({std::move(object_name), std::move(shape), texture});
+  }
+  // Linear RGB radiance arriving along `ray` (from its origin, t > 0).
+  Vec3 Radiance(const Ray& ray) const;
+  // Distance t of the first surface along `ray`, or +inf.
+  double FirstHitDistance(const Ray& ray) const;
+
+  // The slab of the scene's ideal rig, with the given st domain.
+  Slab IdealSlab(const StDomain& domain = {}) const { return {rig.array, rig.board, domain}; }
+};
+
+// The built-in scenes, by name ("paper"); throws lfcam::Error for an unknown name.
+Scene MakeScene(const std::string& name);
+std::vector<std::string> SceneNames();
+
+// The paper's Fig. 11 layout: a 10x10, 28 mm array 3.6 m in front of the world board, with a
+// coffee maker at 3.4 m, a marker cone at 3.7 m, a globe at 3.9 m, a fan at 4.7 m and a
+// checkerboard at 5.2 m from the array, on a table, before a back wall.
+Scene MakePaperScene();
+
+}  // namespace lfcam
