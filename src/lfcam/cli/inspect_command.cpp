@@ -14,11 +14,13 @@
 namespace lfcam::cli {
 namespace {
 
-std::string Vec(const Vec3& v) { return fmt::format("({:.3f}, {:.3f}, {:.3f})", v.x(), v.y(), v.z()); }
+std::string Vec(const Vec3& v) {
+  return fmt::format("({:.3f}, {:.3f}, {:.3f})", v.x(), v.y(), v.z());
+}
 
 nlohmann::json InfoJson(const LightFieldHeader& h) {
-  const std::size_t bytes = h.dims.samples_per_view() * h.dims.view_count() * 3 *
-                            BytesPerChannel(h.sample_type);
+  const std::size_t bytes =
+      h.dims.samples_per_view() * h.dims.view_count() * 3 * BytesPerChannel(h.sample_type);
   nlohmann::json geometry = h.slab;
   geometry["view_window"]["origin_mm"] = geometry["view_window"]["origin"];
   return {{"format_version", h.version},
@@ -56,7 +58,8 @@ void AddInfoCommand(CLI::App& app) {
       const auto start = std::chrono::steady_clock::now();
       const LightField lf = ReadLightField(flags->input);
       verify_ms =
-          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+              .count();
     }
     auto j = InfoJson(h);
     if (flags->verify) j["verified_read_ms"] = verify_ms;
@@ -71,8 +74,8 @@ void AddInfoCommand(CLI::App& app) {
     fmt::print("  size          {:.1f} MB of samples, {:.1f} MB on disk ({})\n",
                j["sample_bytes"].get<double>() / 1e6, h.file_bytes / 1e6,
                j["compression"].get<std::string>());
-    fmt::print("  uv (array)    p_ca {}  rows {}  cols {}  pitch_mm {}\n", Vec(s.uv.p_ca), s.uv.rows,
-               s.uv.cols, s.uv.pitch_mm);
+    fmt::print("  uv (array)    p_ca {}  rows {}  cols {}  pitch_mm {}\n", Vec(s.uv.p_ca),
+               s.uv.rows, s.uv.cols, s.uv.pitch_mm);
     fmt::print("                u_ca {}  v_ca {}  n_ca {}\n", Vec(s.uv.u_ca), Vec(s.uv.v_ca),
                Vec(s.uv.n_ca));
     fmt::print("  st (view window) origin {}  x {}  y {}  {} x {} mm\n", Vec(s.st.origin),
@@ -81,7 +84,8 @@ void AddInfoCommand(CLI::App& app) {
                s.st_domain.t0, s.st_domain.t1);
     fmt::print("  plane gap     {:.1f} mm\n", s.separation_mm());
     fmt::print("  metadata      {}\n", h.metadata.dump());
-    if (flags->verify) fmt::print("  verified      all views read and checked in {:.0f} ms\n", verify_ms);
+    if (flags->verify)
+      fmt::print("  verified      all views read and checked in {:.0f} ms\n", verify_ms);
   });
 }
 
@@ -101,8 +105,8 @@ void AddCompareCommand(CLI::App& app) {
     const cv::Mat mask = flags->mask.empty() ? cv::Mat() : ReadMask(flags->mask);
     const ImageComparison r = CompareImages(a, b, mask);
     if (flags->json) {
-      nlohmann::json j = {{"ssim", r.ssim}, {"mean_abs_error", r.mean_abs_error},
-                          {"pixels", r.pixels}};
+      nlohmann::json j = {
+          {"ssim", r.ssim}, {"mean_abs_error", r.mean_abs_error}, {"pixels", r.pixels}};
       j["psnr_db"] = std::isinf(r.psnr_db) ? nlohmann::json("inf") : nlohmann::json(r.psnr_db);
       fmt::print("{}\n", j.dump(2));
       return;

@@ -31,8 +31,8 @@ void AddMontageCommand(CLI::App& app) {
     std::vector<std::string> labels;
     std::stringstream stream(flags->labels);
     for (std::string label; std::getline(stream, label, ';');) labels.push_back(label);
-    WriteImage(flags->out, MakeContactSheet(images, labels,
-                                            {flags->columns, flags->tile_width, flags->title}));
+    WriteImage(flags->out,
+               MakeContactSheet(images, labels, {flags->columns, flags->tile_width, flags->title}));
     fmt::print("wrote {}: {} images\n", flags->out, images.size());
   });
 }

@@ -67,8 +67,8 @@ void AddRenderCommand(CLI::App& app) {
       cv::merge(std::vector<cv::Mat>{result.hit_mask, result.hit_mask, result.hit_mask}, rgb);
       WriteImage(flags->hit_mask, rgb);
     }
-    fmt::print("wrote {}: {}; {:.1f} ms (median of {}), {:.1f}% of rays hit the slab\n",
-               flags->out, DescribeCamera(camera), times_ms[times_ms.size() / 2], flags->repeat,
+    fmt::print("wrote {}: {}; {:.1f} ms (median of {}), {:.1f}% of rays hit the slab\n", flags->out,
+               DescribeCamera(camera), times_ms[times_ms.size() / 2], flags->repeat,
                100.0 * double(result.rays_hit) / double(std::max(1LL, result.rays)));
   });
 }

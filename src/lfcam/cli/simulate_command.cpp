@@ -15,23 +15,29 @@ namespace lfcam::cli {
 void AddSimulateCommand(CLI::App& app) {
   auto* simulate = app.add_subcommand("simulate", "Play the camera array without hardware");
   simulate->require_subcommand(1);
-  auto* command = simulate->add_subcommand("lightfield", "Write the light field an ideal array captures");
+  auto* command =
+      simulate->add_subcommand("lightfield", "Write the light field an ideal array captures");
   struct Flags {
-    std::string scene = "paper", out, grid = "10x10", st_res = "1248x1152",
-                st_domain = "0,0,1,1", sample_type = "srgb8", compression = "none";
+    std::string scene = "paper", out, grid = "10x10", st_res = "1248x1152", st_domain = "0,0,1,1",
+                sample_type = "srgb8", compression = "none";
     int supersampling = 2;
     bool quiet = false;
   };
   auto flags = std::make_shared<Flags>();
   command->add_option("--scene", flags->scene, "Built-in scene (paper)")->capture_default_str();
   command->add_option("--out", flags->out, "Light field file to write (.lf)")->required();
-  command->add_option("--grid", flags->grid, "Camera grid ROWSxCOLS (28 mm pitch)")->capture_default_str();
-  command->add_option("--st-res", flags->st_res, "st samples per view, N_SxN_T")->capture_default_str();
-  command->add_option("--st-domain", flags->st_domain, "Sampled st domain S0,T0,S1,T1 (view-window units)")
+  command->add_option("--grid", flags->grid, "Camera grid ROWSxCOLS (28 mm pitch)")
+      ->capture_default_str();
+  command->add_option("--st-res", flags->st_res, "st samples per view, N_SxN_T")
+      ->capture_default_str();
+  command
+      ->add_option("--st-domain", flags->st_domain,
+                   "Sampled st domain S0,T0,S1,T1 (view-window units)")
       ->capture_default_str();
   command->add_option("--supersampling", flags->supersampling, "Rays per st cell, per axis")
       ->capture_default_str();
-  command->add_option("--sample-type", flags->sample_type, "srgb8 or linear_f16")->capture_default_str();
+  command->add_option("--sample-type", flags->sample_type, "srgb8 or linear_f16")
+      ->capture_default_str();
   command->add_option("--compress", flags->compression, "none or zstd")->capture_default_str();
   command->add_flag("--quiet", flags->quiet, "No progress on stderr");
   command->callback([flags] {

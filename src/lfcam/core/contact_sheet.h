@@ -7,8 +7,8 @@
 namespace lfcam {
 
 struct ContactSheetOptions {
-  int columns = 0;          // 0: all in one row, up to 6 a row
-  int tile_width = 256;     // each image is scaled to this width
+  int columns = 0;       // 0: all in one row, up to 6 a row
+  int tile_width = 256;  // each image is scaled to this width
   std::string title;
 };
 

@@ -23,10 +23,17 @@ cv::Mat ReadRaw(const std::filesystem::path& path) {
 cv::Mat ToRgb(const cv::Mat& m) {
   cv::Mat rgb;
   switch (m.channels()) {
-    case 1: cv::cvtColor(m, rgb, cv::COLOR_GRAY2RGB); break;
-    case 3: cv::cvtColor(m, rgb, cv::COLOR_BGR2RGB); break;
-    case 4: cv::cvtColor(m, rgb, cv::COLOR_BGRA2RGB); break;
-    default: throw Error(fmt::format("images with {} channels are not supported", m.channels()));
+    case 1:
+      cv::cvtColor(m, rgb, cv::COLOR_GRAY2RGB);
+      break;
+    case 3:
+      cv::cvtColor(m, rgb, cv::COLOR_BGR2RGB);
+      break;
+    case 4:
+      cv::cvtColor(m, rgb, cv::COLOR_BGRA2RGB);
+      break;
+    default:
+      throw Error(fmt::format("images with {} channels are not supported", m.channels()));
   }
   return rgb;
 }
@@ -86,7 +93,8 @@ cv::Mat Srgb8ToLinearImage(const cv::Mat& srgb8_rgb) {
 
 void WriteImage(const std::filesystem::path& path, const cv::Mat& rgb) {
   cv::Mat srgb = rgb.type() == CV_32FC3 ? LinearToSrgb8Image(rgb) : rgb;
-  if (srgb.type() != CV_8UC3) throw Error(fmt::format("{}: internal: bad image type", path.string()));
+  if (srgb.type() != CV_8UC3)
+    throw Error(fmt::format("{}: internal: bad image type", path.string()));
   cv::Mat bgr;
   cv::cvtColor(srgb, bgr, cv::COLOR_RGB2BGR);
   std::vector<std::uint8_t> bytes;

@@ -41,16 +41,15 @@ cv::Mat SsimMap(const cv::Mat& a, const cv::Mat& b) {
 
 }  // namespace
 
-ImageComparison CompareImages(const cv::Mat& a_srgb8, const cv::Mat& b_srgb8,
-                              const cv::Mat& mask) {
+ImageComparison CompareImages(const cv::Mat& a_srgb8, const cv::Mat& b_srgb8, const cv::Mat& mask) {
   if (a_srgb8.size() != b_srgb8.size())
     throw Error(fmt::format("images differ in size: {}x{} vs {}x{}", a_srgb8.cols, a_srgb8.rows,
                             b_srgb8.cols, b_srgb8.rows));
   CV_Assert(a_srgb8.type() == CV_8UC3 && b_srgb8.type() == CV_8UC3);
   cv::Mat used = mask.empty() ? cv::Mat(a_srgb8.size(), CV_8UC1, cv::Scalar(255)) : mask;
   if (used.size() != a_srgb8.size())
-    throw Error(fmt::format("mask is {}x{}, images are {}x{}", used.cols, used.rows,
-                            a_srgb8.cols, a_srgb8.rows));
+    throw Error(fmt::format("mask is {}x{}, images are {}x{}", used.cols, used.rows, a_srgb8.cols,
+                            a_srgb8.rows));
   ImageComparison r;
   r.pixels = cv::countNonZero(used);
   if (r.pixels == 0) throw Error("mask selects no pixels");
@@ -71,8 +70,8 @@ ImageComparison CompareImages(const cv::Mat& a_srgb8, const cv::Mat& b_srgb8,
   }
   const double mse = sq / (3.0 * double(r.pixels));
   r.mean_abs_error = abs_sum / (3.0 * double(r.pixels));
-  r.psnr_db = mse == 0 ? std::numeric_limits<double>::infinity()
-                       : 10.0 * std::log10(255.0 * 255.0 / mse);
+  r.psnr_db =
+      mse == 0 ? std::numeric_limits<double>::infinity() : 10.0 * std::log10(255.0 * 255.0 / mse);
   r.ssim = cv::mean(SsimMap(Luma(a_srgb8), Luma(b_srgb8)), used)[0];
   return r;
 }

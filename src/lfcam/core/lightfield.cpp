@@ -65,8 +65,8 @@ LightField::LightField(const LightFieldDims& dims, SampleType type, const Slab& 
 
 void LightField::CheckShape() const {
   if (dims_.rows < 1 || dims_.cols < 1 || dims_.n_s < 1 || dims_.n_t < 1)
-    throw Error(fmt::format("light field dims {}x{}x{}x{} must be positive", dims_.rows,
-                            dims_.cols, dims_.n_s, dims_.n_t));
+    throw Error(fmt::format("light field dims {}x{}x{}x{} must be positive", dims_.rows, dims_.cols,
+                            dims_.n_s, dims_.n_t));
   if (dims_.rows != slab_.uv.rows || dims_.cols != slab_.uv.cols)
     throw Error(fmt::format("light field has {}x{} views but its array has {}x{} cameras",
                             dims_.rows, dims_.cols, slab_.uv.rows, slab_.uv.cols));

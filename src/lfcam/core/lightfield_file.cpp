@@ -79,7 +79,7 @@ class Fd {
   explicit Fd(const std::filesystem::path& path) : path_(path.string()) {
     fd_ = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
     if (fd_ < 0) throw Error(fmt::format("{}: cannot open: {}", path_, std::strerror(errno)));
-    struct stat st{};
+    struct stat st {};
     if (::fstat(fd_, &st) != 0 || !S_ISREG(st.st_mode)) {
       ::close(fd_);
       throw Error(fmt::format("{}: not a regular file", path_));
@@ -180,8 +180,8 @@ ParsedFile ParseHeader(const Fd& fd) {
     const std::uint64_t view_bytes =
         std::uint64_t(h.dims.samples_per_view()) * 3 * BytesPerChannel(h.sample_type);
     if (view_bytes * h.dims.view_count() > kMaxDecodedBytes)
-      throw Error(fmt::format("absurd dimensions: {} bytes of samples",
-                              view_bytes * h.dims.view_count()));
+      throw Error(
+          fmt::format("absurd dimensions: {} bytes of samples", view_bytes * h.dims.view_count()));
     const auto compression = j.at("compression").get<std::string>();
     if (compression == "none")
       h.compression = Compression::kNone;
@@ -215,9 +215,10 @@ ParsedFile ParseHeader(const Fd& fd) {
                                 r.offset, r.stored_bytes, i * view_bytes, view_bytes));
       if (r.stored_bytes == 0 || r.offset < next_free || r.offset > data_bytes ||
           r.stored_bytes > data_bytes - r.offset)
-        throw Error(fmt::format("{}: record (offset {}, {} bytes) does not fit the {} data bytes "
-                                "of the file (truncated?)",
-                                where, r.offset, r.stored_bytes, data_bytes));
+        throw Error(
+            fmt::format("{}: record (offset {}, {} bytes) does not fit the {} data bytes "
+                        "of the file (truncated?)",
+                        where, r.offset, r.stored_bytes, data_bytes));
       next_free = r.offset + r.stored_bytes;
       h.stored_sample_bytes += r.stored_bytes;
       parsed.views.push_back(r);
@@ -263,8 +264,8 @@ void WriteLightField(const LightField& lf, const std::filesystem::path& path,
     }
     auto& out = compressed[i];
     out.resize(ZSTD_compressBound(view_bytes));
-    const std::size_t n = ZSTD_compress(out.data(), out.size(), view, view_bytes,
-                                        options.zstd_level);
+    const std::size_t n =
+        ZSTD_compress(out.data(), out.size(), view, view_bytes, options.zstd_level);
     if (ZSTD_isError(n))
       throw Error(fmt::format("{}: zstd failed on {}: {}", path.string(), ViewName(dims, i),
                               ZSTD_getErrorName(n)));
@@ -296,8 +297,9 @@ void WriteLightField(const LightField& lf, const std::filesystem::path& path,
         {"n_t", dims.n_t},
         {"channels", LightFieldDims::kChannels}}},
       {"sample_type", ToString(lf.sample_type())},
-      {"layout", "views row-major by (row, col); in a view, st rows l bottom-up, samples k along "
-                 "s, RGB interleaved"},
+      {"layout",
+       "views row-major by (row, col); in a view, st rows l bottom-up, samples k along "
+       "s, RGB interleaved"},
       {"compression", options.compression == Compression::kNone ? "none" : "zstd"},
       {"checksum", "xxh3-64"},
       {"slab", lf.slab()},
@@ -359,8 +361,8 @@ LightField ReadLightField(const std::filesystem::path& path, const LightFieldRea
   const auto check_view = [&](std::size_t i) {
     const ViewRecord& r = parsed.views[i];
     if (options.verify_checksums && Checksum(data + r.offset, r.stored_bytes) != r.xxh3)
-      throw Error(fmt::format("{}: {} is corrupt (checksum mismatch)", fd.name(),
-                              ViewName(h.dims, i)));
+      throw Error(
+          fmt::format("{}: {} is corrupt (checksum mismatch)", fd.name(), ViewName(h.dims, i)));
     if (h.compression == Compression::kZstd) {
       const auto content = ZSTD_getFrameContentSize(data + r.offset, r.stored_bytes);
       if (content != view_bytes)

@@ -31,7 +31,8 @@ struct LightFieldReadOptions {
 
 // Reads and verifies a light field. Any inconsistency (truncation, bad checksum, sizes that do
 // not add up, absurd dimensions) throws lfcam::Error naming the file and the view.
-LightField ReadLightField(const std::filesystem::path& path, const LightFieldReadOptions& options = {});
+LightField ReadLightField(const std::filesystem::path& path,
+                          const LightFieldReadOptions& options = {});
 
 // The header alone (cheap: does not touch the samples), for `lfcam info`.
 struct LightFieldHeader {

@@ -80,9 +80,8 @@ void to_json(nlohmann::json& j, const Slab& slab) {
         {"y_axis", v3(slab.st.y_axis)},
         {"width_mm", slab.st.width_mm},
         {"height_mm", slab.st.height_mm}}},
-      {"st_domain",
-       nlohmann::json::array(
-           {slab.st_domain.s0, slab.st_domain.t0, slab.st_domain.s1, slab.st_domain.t1})},
+      {"st_domain", nlohmann::json::array({slab.st_domain.s0, slab.st_domain.t0, slab.st_domain.s1,
+                                           slab.st_domain.t1})},
   };
 }
 

@@ -15,10 +15,10 @@ namespace lfcam {
 
 // The PRP window: the camera array's plane, with its grid.
 struct ArrayPlane {
-  Vec3 p_ca = Vec3::Zero();        // world position of the window's (u, v) = (0, 0) corner
-  Vec3 u_ca = Vec3::UnitX();       // unit, along columns
-  Vec3 v_ca = Vec3::UnitY();       // unit, along rows
-  Vec3 n_ca = Vec3::UnitZ();       // unit, away from the scene
+  Vec3 p_ca = Vec3::Zero();   // world position of the window's (u, v) = (0, 0) corner
+  Vec3 u_ca = Vec3::UnitX();  // unit, along columns
+  Vec3 v_ca = Vec3::UnitY();  // unit, along rows
+  Vec3 n_ca = Vec3::UnitZ();  // unit, away from the scene
   int rows = 10;
   int cols = 10;
   double pitch_mm = 28.0;
@@ -37,9 +37,9 @@ struct ArrayPlane {
 
 // The view window: the squared area of the world board; (s, t) in [0, 1]^2 covers it.
 struct ViewWindow {
-  Vec3 origin = Vec3::Zero();      // world position of (s, t) = (0, 0): the board's bottom-left
-  Vec3 x_axis = Vec3::UnitX();     // unit, along s
-  Vec3 y_axis = Vec3::UnitY();     // unit, along t
+  Vec3 origin = Vec3::Zero();   // world position of (s, t) = (0, 0): the board's bottom-left
+  Vec3 x_axis = Vec3::UnitX();  // unit, along s
+  Vec3 y_axis = Vec3::UnitY();  // unit, along t
   double width_mm = 600.0;
   double height_mm = 550.0;
 

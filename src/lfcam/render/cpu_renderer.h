@@ -13,10 +13,10 @@ struct CpuRenderOptions {
 };
 
 struct RenderResult {
-  cv::Mat image;      // linear RGB, CV_32FC3, row 0 at the top
-  cv::Mat hit_mask;   // CV_8UC1: 255 where at least one ray hit the slab
-  long long rays = 0;       // rays cast
-  long long rays_hit = 0;   // rays that met both windows
+  cv::Mat image;           // linear RGB, CV_32FC3, row 0 at the top
+  cv::Mat hit_mask;        // CV_8UC1: 255 where at least one ray hit the slab
+  long long rays = 0;      // rays cast
+  long long rays_hit = 0;  // rays that met both windows
 };
 
 RenderResult RenderLightFieldCpu(const LightField& lf, const VirtualCamera& camera,

@@ -16,13 +16,13 @@ namespace lfcam {
 struct VirtualCameraParams {
   int width = 1024;
   int height = 1024;
-  Vec3 eye = Vec3::Zero();             // e_c, world mm
-  Vec3 look_at = -Vec3::UnitZ();       // world mm
+  Vec3 eye = Vec3::Zero();        // e_c, world mm
+  Vec3 look_at = -Vec3::UnitZ();  // world mm
   Vec3 up = Vec3::UnitY();
-  double focal_length_mm = 500.0;      // f
-  double focus_distance_mm = 4000.0;   // d_o, from the lens along -n_c
-  double aperture_mm = 0.0;            // d_l; 0 = pinhole
-  double lens_rate = 4.0;              // gamma_ls
+  double focal_length_mm = 500.0;     // f
+  double focus_distance_mm = 4000.0;  // d_o, from the lens along -n_c
+  double aperture_mm = 0.0;           // d_l; 0 = pinhole
+  double lens_rate = 4.0;             // gamma_ls
   bool breathing = true;
 };
 
@@ -44,8 +44,8 @@ class VirtualCamera {
   const Vec3& u_c() const { return u_c_; }
   const Vec3& v_c() const { return v_c_; }
   const Vec3& n_c() const { return n_c_; }
-  double film_distance_mm() const { return film_distance_; }     // d_i or f
-  double lens_focal_length_mm() const { return lens_focal_; }    // f or f_e
+  double film_distance_mm() const { return film_distance_; }                 // d_i or f
+  double lens_focal_length_mm() const { return lens_focal_; }                // f or f_e
   double field_of_view_rad() const { return 2.0 * std::atan(tan_half_x_); }  // across the width
   bool is_pinhole() const { return params_.aperture_mm <= 0.0; }
 

@@ -36,12 +36,13 @@ Scene MakePaperScene() {
   array.v_ca = Vec3::UnitY();
   array.n_ca = Vec3::UnitZ();
   const Vec3 array_center(300.0, 275.0, kArrayDistanceMm);
-  array.p_ca = array_center - 0.5 * array.width_mm() * array.u_ca -
-               0.5 * array.height_mm() * array.v_ca;
+  array.p_ca =
+      array_center - 0.5 * array.width_mm() * array.u_ca - 0.5 * array.height_mm() * array.v_ca;
 
   // Table top and back wall.
-  scene.Add("table", std::make_shared<RectangleShape>(Vec3(300, kFloorY, -1150), Vec3::UnitX(),
-                                                      -Vec3::UnitZ(), 1800, 1750),
+  scene.Add("table",
+            std::make_shared<RectangleShape>(Vec3(300, kFloorY, -1150), Vec3::UnitX(),
+                                             -Vec3::UnitZ(), 1800, 1750),
             Make(Pattern::kNoise, {0.30, 0.18, 0.09}, {0.62, 0.43, 0.24}, 30, 7));
   scene.Add("back wall",
             std::make_shared<RectangleShape>(Vec3(300, 1000, ZAtDistance(6.5)), Vec3::UnitX(),
@@ -68,9 +69,10 @@ Scene MakePaperScene() {
   const double z_fan = ZAtDistance(4.7);
   scene.Add("fan", std::make_shared<DiscShape>(Vec3(420, kFloorY + 250, z_fan), Vec3::UnitZ(), 120),
             Make(Pattern::kRadial, {0.75, 0.75, 0.80}, {0.12, 0.16, 0.30}, 12));
-  scene.Add("fan stand",
-            std::make_shared<BoxShape>(Vec3(410, kFloorY, z_fan - 20), Vec3(430, kFloorY + 130, z_fan)),
-            Make(Pattern::kConstant, {0.25, 0.25, 0.27}, {0, 0, 0}, 1));
+  scene.Add(
+      "fan stand",
+      std::make_shared<BoxShape>(Vec3(410, kFloorY, z_fan - 20), Vec3(430, kFloorY + 130, z_fan)),
+      Make(Pattern::kConstant, {0.25, 0.25, 0.27}, {0, 0, 0}, 1));
 
   // Checkerboard at 5.2 m: 25 mm squares.
   scene.Add("checkerboard",

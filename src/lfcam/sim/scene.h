@@ -32,7 +32,7 @@ class Scene {
   std::string name;
   SceneRig rig;
   std::vector<SceneObject> objects;
-  Vec3 background = Vec3(0.02, 0.02, 0.03);        // linear radiance of rays that miss
+  Vec3 background = Vec3(0.02, 0.02, 0.03);                  // linear radiance of rays that miss
   Vec3 light_direction = Vec3(-0.4, 0.7, 0.6).normalized();  // toward the light
   double ambient = 0.35;
 

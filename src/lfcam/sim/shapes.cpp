@@ -15,8 +15,7 @@ RectangleShape::RectangleShape(const Vec3& center, const Vec3& axis_u, const Vec
       half_u_(half_u),
       half_v_(half_v) {}
 
-bool RectangleShape::Intersect(const Ray& ray, double t_min, double t_max,
-                               SurfaceHit* hit) const {
+bool RectangleShape::Intersect(const Ray& ray, double t_min, double t_max, SurfaceHit* hit) const {
   const double denom = normal_.dot(ray.direction);
   if (std::abs(denom) < 1e-12) return false;
   const double t = normal_.dot(center_ - ray.origin) / denom;

@@ -31,9 +31,8 @@ LightField SimulateLightField(const Scene& scene, const SimulateLightFieldOption
   slab.uv = ResizeArray(slab.uv, o.rows, o.cols);
   slab.validate();
   LightField lf({o.rows, o.cols, o.n_s, o.n_t}, o.sample_type, slab);
-  lf.metadata() = {{"source", "simulated"},
-                   {"scene", scene.name},
-                   {"supersampling", o.supersampling}};
+  lf.metadata() = {
+      {"source", "simulated"}, {"scene", scene.name}, {"supersampling", o.supersampling}};
 
   const int ss = o.supersampling;
   const double inv_ss2 = 1.0 / (ss * ss);

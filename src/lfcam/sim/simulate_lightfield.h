@@ -13,7 +13,7 @@ struct SimulateLightFieldOptions {
   int rows = 10, cols = 10;  // the camera grid (pitch and array centre from the scene)
   int n_s = 1248, n_t = 1152;
   StDomain st_domain;
-  int supersampling = 2;     // per axis, per st cell
+  int supersampling = 2;  // per axis, per st cell
   SampleType sample_type = SampleType::kSrgb8;
   std::function<void(int views_done, int views_total)> progress;
 };

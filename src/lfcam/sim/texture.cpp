@@ -8,8 +8,8 @@ namespace lfcam {
 namespace {
 
 std::uint32_t Hash(std::int64_t x, std::int64_t y, std::uint32_t seed) {
-  std::uint64_t h = std::uint64_t(x) * 0x9E3779B97F4A7C15ull ^ std::uint64_t(y) * 0xC2B2AE3D27D4EB4Full ^
-                    (std::uint64_t(seed) << 32);
+  std::uint64_t h = std::uint64_t(x) * 0x9E3779B97F4A7C15ull ^
+                    std::uint64_t(y) * 0xC2B2AE3D27D4EB4Full ^ (std::uint64_t(seed) << 32);
   h ^= h >> 33;
   h *= 0xFF51AFD7ED558CCDull;
   h ^= h >> 33;
@@ -43,7 +43,7 @@ bool TextInk(const Vec2& uv, double glyph_h, unsigned seed) {
   const double in_y = (uv.y() - line * line_h) / glyph_h * 7.0;
   if (in_x >= 5.0 || in_y >= 7.0) return false;
   if (Hash(col / 7, line, seed) % 5 == 0) return false;  // a short empty stretch
-  if (FloorMod(col, 7) == 6) return false;                // the space between words
+  if (FloorMod(col, 7) == 6) return false;               // the space between words
   const std::uint64_t bits =
       std::uint64_t(Hash(col, line, seed + 17)) << 32 | Hash(col, line, seed + 29);
   const int dot = int(in_y) * 5 + int(in_x);  // 0..34

@@ -1,0 +1,72 @@
+#include "lfcam/render/lightfield_sampler.h"
+
+#include <gtest/gtest.h>
+
+namespace lfcam {
+namespace {
+
+// A multilinear function of (col, row, k, l): quadrilinear interpolation must be exact on it.
+Eigen::Vector3f Multilinear(double c, double r, double k, double l) {
+  const double a = 0.1 + 0.05 * c + 0.02 * r + 0.001 * k + 0.0007 * l;
+  const double b = 0.2 + 0.01 * c * r + 0.0001 * k * l;
+  const double d = 0.3 + 0.0001 * c * k + 0.00005 * r * l * c;
+  return Eigen::Vector3f(float(a), float(b), float(d));
+}
+
+LightField MakeMultilinearLightField() {
+  Slab slab;
+  slab.uv.rows = 4;
+  slab.uv.cols = 5;
+  slab.uv.p_ca = Vec3(0, 0, 1000);
+  slab.st = ViewWindow{Vec3::Zero(), Vec3::UnitX(), Vec3::UnitY(), 200, 100};
+  LightField lf({4, 5, 40, 30}, SampleType::kLinearF16, slab);
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 5; ++c)
+      for (int l = 0; l < 30; ++l)
+        for (int k = 0; k < 40; ++k) lf.set_linear_rgb(r, c, k, l, Multilinear(c, r, k, l));
+  return lf;
+}
+
+TEST(LightFieldSampler, QuadrilinearIsExactOnMultilinearData) {
+  const LightField lf = MakeMultilinearLightField();
+  const LightFieldSampler sampler(lf);
+  for (double c : {0.0, 0.3, 1.5, 3.99})
+    for (double r : {0.0, 1.25, 2.7})
+      for (double k : {0.0, 7.5, 38.2})
+        for (double l : {0.0, 11.1, 28.9}) {
+          // Sample centres sit at (i + 0.5) / n in window coordinates.
+          const double u = (c + 0.5) / 5, v = (r + 0.5) / 4;
+          const double s = (k + 0.5) / 40, t = (l + 0.5) / 30;
+          float rgb[3];
+          sampler.Fetch(u, v, s, t, rgb);
+          const Eigen::Vector3f expected = Multilinear(c, r, k, l);
+          for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(rgb[ch], expected[ch], 2e-3);  // f16 storage
+        }
+}
+
+TEST(LightFieldSampler, LinesThroughTheSlabFetchTheRightSample) {
+  const LightField lf = MakeMultilinearLightField();
+  const LightFieldSampler sampler(lf);
+  // The line from camera (2, 3)'s centre through st sample (k, l) = (10, 20)'s centre.
+  const Vec3 from = lf.slab().uv.camera_center(2, 3);
+  const Vec3 to = lf.slab().st.point_at(lf.s_of(10), lf.t_of(20));
+  float rgb[3];
+  ASSERT_TRUE(sampler.Sample(from, to - from, rgb));
+  const Eigen::Vector3f expected = lf.linear_rgb(2, 3, 10, 20);
+  for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(rgb[ch], expected[ch], 1e-6);
+  // Misses outside the PRP window and outside the st domain.
+  EXPECT_FALSE(sampler.Sample(Vec3(-10, 50, 1000), Vec3(0, 0, -1), rgb));
+  EXPECT_FALSE(sampler.Sample(Vec3(100, 50, 1000), Vec3(0.5, 0, -1), rgb));
+}
+
+TEST(LightFieldSampler, ClampsToTheOutermostSamplesInsideTheWindows) {
+  const LightField lf = MakeMultilinearLightField();
+  const LightFieldSampler sampler(lf);
+  float edge[3], corner[3];
+  sampler.Fetch(0.0, 0.0, 0.0, 0.0, edge);  // window corner, half a sample outside the centres
+  sampler.Fetch(0.1, 0.125, 0.5 / 40, 0.5 / 30, corner);
+  for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(edge[ch], corner[ch], 1e-6);
+}
+
+}  // namespace
+}  // namespace lfcam
