@@ -1,0 +1,90 @@
+#!/usr/bin/env bash
+# The main job: build lfcam, simulate the paper's 10x10 array looking at the Fig. 11 scene, and
+# render Fig. 11 (a)-(e) with the paper's parameters into out/demo/ (one PNG per frame and one
+# contact sheet per sequence).
+# Usage: scripts/demo.sh [--quick]   (--quick: a 624x576 light field and 512x512 frames)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+quick=0
+for arg in "$@"; do
+  case "$arg" in
+    --quick) quick=1 ;;
+    -h|--help) sed -n '2,6p' "$0"; exit 0 ;;
+    *) echo "demo.sh: unknown argument '$arg' (try --quick)" >&2; exit 2 ;;
+  esac
+done
+
+start=$(date +%s)
+scripts/install-deps.sh
+cmake --preset release -DLFCAM_BUILD_TESTS=OFF >/dev/null
+cmake --build --preset release --target lfcam
+lfcam=build/release/lfcam
+
+out=out/demo
+mkdir -p "$out"
+if [ $quick -eq 1 ]; then st_res=624x576; size=512; else st_res=1248x1152; size=1024; fi
+lf="$out/paper.lf"
+echo "== simulating the paper's array: 10x10 views of $st_res st samples"
+$lfcam simulate lightfield --scene paper --grid 10x10 --st-res "$st_res" --out "$lf"
+$lfcam info "$lf"
+
+# render NAME FLAGS...: one frame of a sequence.
+render() {
+  local name=$1; shift
+  $lfcam render "$lf" --out "$out/$name.png" --size "$size" --lens-rate 4 "$@"
+}
+# sheet SEQ TITLE LABELS FILES...: the contact sheet of a sequence.
+sheet() {
+  local seq=$1 title=$2 labels=$3; shift 3
+  $lfcam montage "$@" --out "$out/fig11${seq}_sheet.png" --title "$title" --labels "$labels" \
+    --tile-width 256 >/dev/null
+  echo "   sheet: $out/fig11${seq}_sheet.png"
+}
+
+focus=(3400 3700 3900 4300 4700 5200)
+echo "== Fig. 11 (a): refocus with breathing, f = 500, d_l = 192, d_o = 3400 -> 5200"
+files=(); labels=""
+for d in "${focus[@]}"; do
+  render "fig11a_do$d" --focal-length 500 --aperture 192 --focus-distance "$d"
+  files+=("$out/fig11a_do$d.png"); labels+="d_o $d;"
+done
+sheet a "(a) refocus with focus breathing, f 500, d_l 192" "$labels" "${files[@]}"
+
+echo "== Fig. 11 (b): refocus without breathing"
+files=(); labels=""
+for d in "${focus[@]}"; do
+  render "fig11b_do$d" --focal-length 500 --aperture 192 --focus-distance "$d" --no-breathing
+  files+=("$out/fig11b_do$d.png"); labels+="d_o $d;"
+done
+sheet b "(b) refocus without breathing, f 500, d_l 192" "$labels" "${files[@]}"
+
+echo "== Fig. 11 (c): depth of field, f = 444, d_o = 3900, d_l = 64 -> 512"
+files=(); labels=""
+for a in 64 96 128 256 512; do
+  render "fig11c_dl$a" --focal-length 444 --focus-distance 3900 --aperture "$a"
+  files+=("$out/fig11c_dl$a.png"); labels+="d_l $a;"
+done
+sheet c "(c) depth of field, f 444, d_o 3900" "$labels" "${files[@]}"
+
+echo "== Fig. 11 (d): zoom, d_o = 3900, d_l = 192, f = 500 -> 1000"
+files=(); labels=""
+for f in 500 600 700 800 900 1000; do
+  render "fig11d_f$f" --focal-length "$f" --focus-distance 3900 --aperture 192
+  files+=("$out/fig11d_f$f.png"); labels+="f $f;"
+done
+sheet d "(d) zoom, d_o 3900, d_l 192" "$labels" "${files[@]}"
+
+echo "== Fig. 11 (e): moving camera, d_o = 4300, f = 700, d_l = 64"
+files=(); labels=""
+for x in -100 -60 -20 20 60 100; do
+  eye_x=$((300 + x))
+  render "fig11e_x$x" --focal-length 700 --focus-distance 4300 --aperture 64 \
+    --eye "$eye_x,275,3600" --look-at "$eye_x,275,0"
+  files+=("$out/fig11e_x$x.png"); labels+="eye x $x mm;"
+done
+sheet e "(e) moving camera, f 700, d_o 4300, d_l 64" "$labels" "${files[@]}"
+
+echo
+echo "Done in $(( $(date +%s) - start )) s. Frames and contact sheets are in $out/:"
+ls "$out"/*_sheet.png
