@@ -17,7 +17,7 @@ done
 
 start=$(date +%s)
 scripts/install-deps.sh
-cmake --preset release -DLFCAM_BUILD_TESTS=OFF >/dev/null
+cmake --preset release >/dev/null
 cmake --build --preset release --target lfcam
 lfcam=build/release/lfcam
 

@@ -1,6 +1,7 @@
 // `lfcam simulate lightfield`: the light field an ideal array would capture of a built-in scene.
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <chrono>
 #include <memory>
 
@@ -57,8 +58,8 @@ void AddSimulateCommand(CLI::App& app) {
       throw Error(fmt::format("--compress: '{}' is not none or zstd", flags->compression));
     if (!flags->quiet)
       o.progress = [](int done, int total) {
-        fmt::print(stderr, "\rsimulating views: {}/{}", done, total);
-        if (done == total) fmt::print(stderr, "\n");
+        if (done % std::max(1, total / 10) == 0 || done == total)
+          fmt::print(stderr, "simulating views: {}/{}\n", done, total);
       };
     const Scene scene = MakeScene(flags->scene);
     const auto start = std::chrono::steady_clock::now();
