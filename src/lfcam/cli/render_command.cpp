@@ -67,6 +67,11 @@ void AddRenderCommand(CLI::App& app) {
       cv::merge(std::vector<cv::Mat>{result.hit_mask, result.hit_mask, result.hit_mask}, rgb);
       WriteImage(flags->hit_mask, rgb);
     }
+    if (result.rays_hit == 0)
+      fmt::print(stderr,
+                 "lfcam: warning: no ray met the slab (the PRP window and the st domain): the "
+                 "image is black; check --eye and --look-at against `lfcam info {}`\n",
+                 flags->input);
     fmt::print("wrote {}: {}; {:.1f} ms (median of {}), {:.1f}% of rays hit the slab\n", flags->out,
                DescribeCamera(camera), times_ms[times_ms.size() / 2], flags->repeat,
                100.0 * double(result.rays_hit) / double(std::max(1LL, result.rays)));
@@ -86,7 +91,7 @@ void AddOracleCommand(CLI::App& app) {
   oracle->add_option("--out", flags->out, "PNG to write")->required();
   flags->camera.AddTo(*oracle);
   oracle->add_option("--samples", flags->samples,
-                     "Samples per pixel (0 = 16 for a pinhole, 256 with an aperture)");
+                     "Samples per pixel (0 = 256 for a pinhole, 1024 with an aperture)");
   oracle->add_option("--threads", flags->threads, "Worker threads (0 = all cores)");
   oracle->callback([flags] {
     const Scene scene = MakeScene(flags->scene);

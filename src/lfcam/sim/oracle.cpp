@@ -35,7 +35,7 @@ int CoprimeNear(int n) {
 cv::Mat RenderSceneOracle(const Scene& scene, const VirtualCamera& camera,
                           const OracleOptions& options) {
   int n = options.samples_per_pixel;
-  if (n <= 0) n = camera.is_pinhole() ? 16 : 256;
+  if (n <= 0) n = camera.is_pinhole() ? 256 : 1024;
   const int strata = std::max(1, int(std::lround(std::sqrt(double(n)))));
   const double d_o = camera.params().focus_distance_mm;
   const int permute = CoprimeNear(n);
