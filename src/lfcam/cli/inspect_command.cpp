@@ -21,8 +21,6 @@ std::string Vec(const Vec3& v) {
 nlohmann::json InfoJson(const LightFieldHeader& h) {
   const std::size_t bytes =
       h.dims.samples_per_view() * h.dims.view_count() * 3 * BytesPerChannel(h.sample_type);
-  nlohmann::json geometry = h.slab;
-  geometry["view_window"]["origin_mm"] = geometry["view_window"]["origin"];
   return {{"format_version", h.version},
           {"rows", h.dims.rows},
           {"cols", h.dims.cols},

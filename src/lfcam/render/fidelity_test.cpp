@@ -24,6 +24,20 @@ namespace {
 
 constexpr int kImageSize = 128;
 
+// The paper's virtual camera at the test size, looking at the board centre.
+VirtualCameraParams PaperCamera(double f, double d_o, double d_l, bool breathing, const Vec3& eye) {
+  VirtualCameraParams p;
+  p.width = p.height = kImageSize;
+  p.eye = eye;
+  p.look_at = Vec3(300, 275, 0);
+  p.focal_length_mm = f;
+  p.focus_distance_mm = d_o;
+  p.aperture_mm = d_l;
+  p.lens_rate = 4;
+  p.breathing = breathing;
+  return p;
+}
+
 class Fidelity : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
@@ -38,17 +52,9 @@ class Fidelity : public ::testing::Test {
     delete scene_;
   }
 
+  // From the array centre.
   static VirtualCameraParams Camera(double f, double d_o, double d_l, bool breathing = true) {
-    VirtualCameraParams p;
-    p.width = p.height = kImageSize;
-    p.eye = scene_->rig.array.center();
-    p.look_at = p.eye - Vec3(0, 0, 1000);
-    p.focal_length_mm = f;
-    p.focus_distance_mm = d_o;
-    p.aperture_mm = d_l;
-    p.lens_rate = 4;
-    p.breathing = breathing;
-    return p;
+    return PaperCamera(f, d_o, d_l, breathing, scene_->rig.array.center());
   }
   static cv::Mat Oracle(const VirtualCameraParams& p) {
     return LinearToSrgb8Image(RenderSceneOracle(*scene_, VirtualCamera(p)));
@@ -87,18 +93,7 @@ struct FidelityCase {
 };
 
 std::vector<FidelityCase> PaperCases(const Vec3& array_center, const ArrayPlane& array) {
-  auto camera = [&](double f, double d_o, double d_l, bool breathing, const Vec3& eye) {
-    VirtualCameraParams p;
-    p.width = p.height = kImageSize;
-    p.eye = eye;
-    p.look_at = Vec3(300, 275, 0);  // the board centre
-    p.focal_length_mm = f;
-    p.focus_distance_mm = d_o;
-    p.aperture_mm = d_l;
-    p.lens_rate = 4;
-    p.breathing = breathing;
-    return p;
-  };
+  const auto& camera = PaperCamera;
   const Vec3 c = array_center;
   return {
       // (i) Pinhole views from inside the array: at camera centres the renderer reads one view

@@ -1,10 +1,12 @@
 #include "lfcam/sim/simulate_lightfield.h"
 
+#include <fmt/chrono.h>
 #include <fmt/format.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <atomic>
+#include <chrono>
 #include <mutex>
 
 #include "lfcam/core/error.h"
@@ -31,8 +33,11 @@ LightField SimulateLightField(const Scene& scene, const SimulateLightFieldOption
   slab.uv = ResizeArray(slab.uv, o.rows, o.cols);
   slab.validate();
   LightField lf({o.rows, o.cols, o.n_s, o.n_t}, o.sample_type, slab);
-  lf.metadata() = {
-      {"source", "simulated"}, {"scene", scene.name}, {"supersampling", o.supersampling}};
+  const auto now = std::chrono::floor<std::chrono::seconds>(std::chrono::system_clock::now());
+  lf.metadata() = {{"source", "simulated"},
+                   {"scene", scene.name},
+                   {"supersampling", o.supersampling},
+                   {"created", fmt::format("{:%Y-%m-%dT%H:%M:%SZ}", now)}};
 
   const int ss = o.supersampling;
   const double inv_ss2 = 1.0 / (ss * ss);
