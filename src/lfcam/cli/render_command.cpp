@@ -20,11 +20,12 @@ namespace {
 
 double Degrees(double radians) { return radians * 180.0 / std::numbers::pi; }
 
-std::string DescribeCamera(const VirtualCamera& camera) {
+// `samples`: what each pixel averages (the renderer's n_ls lens rays, the oracle's samples).
+std::string DescribeCamera(const VirtualCamera& camera, const std::string& samples) {
   const auto& p = camera.params();
-  return fmt::format("{}x{}, f {} mm, d_o {} mm, d_l {} mm, {} lens samples, fov {:.3f} deg ({})",
-                     p.width, p.height, p.focal_length_mm, p.focus_distance_mm, p.aperture_mm,
-                     camera.lens_samples().size(), Degrees(camera.field_of_view_rad()),
+  return fmt::format("{}x{}, f {} mm, d_o {} mm, d_l {} mm, {}, fov {:.3f} deg ({})", p.width,
+                     p.height, p.focal_length_mm, p.focus_distance_mm, p.aperture_mm, samples,
+                     Degrees(camera.field_of_view_rad()),
                      p.breathing ? "breathing" : "no breathing");
 }
 
@@ -73,7 +74,8 @@ void AddRenderCommand(CLI::App& app) {
                  "image is black; check --eye and --look-at against `lfcam info {}`\n",
                  flags->input);
     fmt::print("wrote {}: {}; {:.1f} ms (median of {}), {:.1f}% of rays hit the slab\n", flags->out,
-               DescribeCamera(camera), times_ms[times_ms.size() / 2], flags->repeat,
+               DescribeCamera(camera, fmt::format("{} lens samples", camera.lens_samples().size())),
+               times_ms[times_ms.size() / 2], flags->repeat,
                100.0 * double(result.rays_hit) / double(std::max(1LL, result.rays)));
   });
 }
@@ -97,10 +99,13 @@ void AddOracleCommand(CLI::App& app) {
     const Scene scene = MakeScene(flags->scene);
     const VirtualCamera camera(flags->camera.Resolve(scene.rig.array));
     const auto start = std::chrono::steady_clock::now();
-    const cv::Mat image = RenderSceneOracle(scene, camera, {flags->samples, flags->threads});
+    const OracleOptions options{flags->samples, flags->threads};
+    const cv::Mat image = RenderSceneOracle(scene, camera, options);
     WriteImage(flags->out, image);
     fmt::print("wrote {}: oracle of scene '{}', {}; {:.1f} s\n", flags->out, scene.name,
-               DescribeCamera(camera), SecondsSince(start));
+               DescribeCamera(camera, fmt::format("{} samples a pixel",
+                                                  OracleSamplesPerPixel(camera, options))),
+               SecondsSince(start));
   });
 }
 

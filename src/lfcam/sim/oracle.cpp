@@ -32,10 +32,14 @@ int CoprimeNear(int n) {
 
 }  // namespace
 
+int OracleSamplesPerPixel(const VirtualCamera& camera, const OracleOptions& options) {
+  if (options.samples_per_pixel > 0) return options.samples_per_pixel;
+  return camera.is_pinhole() ? 256 : 1024;
+}
+
 cv::Mat RenderSceneOracle(const Scene& scene, const VirtualCamera& camera,
                           const OracleOptions& options) {
-  int n = options.samples_per_pixel;
-  if (n <= 0) n = camera.is_pinhole() ? 256 : 1024;
+  const int n = OracleSamplesPerPixel(camera, options);
   const int strata = std::max(1, int(std::lround(std::sqrt(double(n)))));
   const double d_o = camera.params().focus_distance_mm;
   const int permute = CoprimeNear(n);

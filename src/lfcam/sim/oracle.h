@@ -15,6 +15,9 @@ struct OracleOptions {
   int threads = 0;            // 0: all cores
 };
 
+// The samples a pixel the oracle takes with these options.
+int OracleSamplesPerPixel(const VirtualCamera& camera, const OracleOptions& options);
+
 // Linear RGB (CV_32FC3, row 0 at the top).
 cv::Mat RenderSceneOracle(const Scene& scene, const VirtualCamera& camera,
                           const OracleOptions& options = {});

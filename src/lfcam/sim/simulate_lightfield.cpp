@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <unistd.h>
 
 #include <atomic>
 #include <chrono>
@@ -29,6 +30,14 @@ LightField SimulateLightField(const Scene& scene, const SimulateLightFieldOption
     throw Error(fmt::format("st resolution {}x{} is out of range", o.n_s, o.n_t));
   if (o.supersampling < 1 || o.supersampling > 16)
     throw Error(fmt::format("supersampling {} must be 1..16", o.supersampling));
+  const double bytes =
+      double(o.rows) * o.cols * o.n_s * o.n_t * 3 * double(BytesPerChannel(o.sample_type));
+  const double memory = double(::sysconf(_SC_PHYS_PAGES)) * double(::sysconf(_SC_PAGE_SIZE));
+  if (bytes > 0.8 * memory)
+    throw Error(
+        fmt::format("a {}x{} light field of {}x{} samples needs {:.1f} GB, more than this "
+                    "machine's memory ({:.1f} GB) allows",
+                    o.rows, o.cols, o.n_s, o.n_t, bytes / 1e9, memory / 1e9));
   Slab slab = scene.IdealSlab(o.st_domain);
   slab.uv = ResizeArray(slab.uv, o.rows, o.cols);
   slab.validate();
