@@ -41,6 +41,7 @@ void AddRenderCommand(CLI::App& app) {
     std::string input, out, hit_mask;
     CameraFlags camera;
     int threads = 0, repeat = 1;
+    std::string interpolation = "quadrilinear";
   };
   auto flags = std::make_shared<Flags>();
   render->add_option("lightfield", flags->input, "Light field file (.lf)")->required();
@@ -51,14 +52,20 @@ void AddRenderCommand(CLI::App& app) {
   render->add_option("--repeat", flags->repeat, "Render this many times and report the median")
       ->check(CLI::Range(1, 1000));
   render->add_option("--hit-mask", flags->hit_mask, "Also write where rays hit the slab (PNG)");
+  render
+      ->add_option("--interpolation", flags->interpolation,
+                   "quadrilinear (the paper's) or focal-plane (each camera read along its own ray "
+                   "through the point in focus; Isaksen et al. 2000)")
+      ->capture_default_str();
   render->callback([flags] {
+    const CpuRenderOptions options{flags->threads, InterpolationFromString(flags->interpolation)};
     const LightField lf = ReadLightField(flags->input);
     const VirtualCamera camera(flags->camera.Resolve(lf.slab().uv));
     std::vector<double> times_ms;
     RenderResult result;
     for (int i = 0; i < flags->repeat; ++i) {
       const auto start = std::chrono::steady_clock::now();
-      result = RenderLightFieldCpu(lf, camera, {flags->threads});
+      result = RenderLightFieldCpu(lf, camera, options);
       times_ms.push_back(SecondsSince(start) * 1e3);
     }
     std::sort(times_ms.begin(), times_ms.end());

@@ -4,12 +4,14 @@
 #include <opencv2/core.hpp>
 
 #include "lfcam/core/lightfield.h"
+#include "lfcam/render/lightfield_sampler.h"
 #include "lfcam/render/virtual_camera.h"
 
 namespace lfcam {
 
 struct CpuRenderOptions {
   int threads = 0;  // 0: all cores; 1: the paper's single-threaded CPU column
+  Interpolation interpolation = Interpolation::kQuadrilinear;  // the paper's
 };
 
 struct RenderResult {

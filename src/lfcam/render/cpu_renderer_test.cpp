@@ -2,8 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <iostream>
 #include <opencv2/core.hpp>
 
+#include "lfcam/core/image_io.h"
+#include "lfcam/core/image_metrics.h"
+#include "lfcam/sim/oracle.h"
 #include "lfcam/sim/simulate_lightfield.h"
 
 namespace lfcam {
@@ -76,6 +80,51 @@ TEST(CpuRenderer, RaysMissingTheSlabAreLeftOutOfTheAverage) {
   EXPECT_GT(wide.rays_hit, 0);
   const auto pinhole = RenderLightFieldCpu(lf, VirtualCamera(Camera(Vec3(300, 275, 3600), 0)));
   EXPECT_LT(cv::norm(wide.image, pinhole.image, cv::NORM_INF), 2e-3);
+}
+
+}  // namespace
+}  // namespace lfcam
+
+namespace lfcam {
+namespace {
+
+// A single textured wall 8 m from the array (4.4 m behind the st-plane), simulated.
+struct WallLightField {
+  Scene scene;
+  LightField lf;
+};
+WallLightField MakeWallLightField() {
+  Scene scene = MakePaperScene();
+  scene.objects.clear();
+  scene.Add("wall",
+            std::make_shared<RectangleShape>(Vec3(300, 275, -4400), Vec3::UnitX(), Vec3::UnitY(),
+                                             2000, 2000),
+            Texture{Pattern::kNoise, Vec3(0.9, 0.7, 0.5), Vec3(0.02, 0.05, 0.2), 25.0, 1});
+  SimulateLightFieldOptions o;
+  o.n_s = 300;
+  o.n_t = 275;
+  LightField lf = SimulateLightField(scene, o);
+  return {std::move(scene), std::move(lf)};
+}
+
+TEST(CpuRenderer, FocalPlaneLookupRemovesGhostsOnThePlaneOfFocus) {
+  const auto [scene, lf] = MakeWallLightField();
+  VirtualCameraParams p;
+  p.width = p.height = 128;
+  p.eye = scene.rig.array.center() + Vec3(-9, 5, 0);  // between cameras
+  p.look_at = Vec3(300, 275, -4400);
+  p.focus_distance_mm = 8000;  // on the wall
+  const VirtualCamera camera(p);
+  const cv::Mat truth = LinearToSrgb8Image(RenderSceneOracle(scene, camera));
+  const cv::Mat paper = LinearToSrgb8Image(RenderLightFieldCpu(lf, camera).image);
+  const cv::Mat focal =
+      LinearToSrgb8Image(RenderLightFieldCpu(lf, camera, {0, Interpolation::kFocalPlane}).image);
+  const double paper_psnr = CompareImages(paper, truth).psnr_db;
+  const double focal_psnr = CompareImages(focal, truth).psnr_db;
+  std::cout << "[wall] quadrilinear " << paper_psnr << " dB, focal-plane " << focal_psnr << " dB\n";
+  // Measured: quadrilinear 26.8 dB (four ghosts), focal-plane 52.3 dB.
+  EXPECT_GT(focal_psnr, 45.0);
+  EXPECT_GT(focal_psnr, paper_psnr + 15.0);
 }
 
 }  // namespace

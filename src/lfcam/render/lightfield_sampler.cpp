@@ -1,5 +1,9 @@
 #include "lfcam/render/lightfield_sampler.h"
 
+#include <fmt/format.h>
+
+#include "lfcam/core/error.h"
+
 namespace lfcam {
 
 LightFieldSampler::LightFieldSampler(const LightField& lf)
@@ -26,6 +30,19 @@ LightFieldSampler::LightFieldSampler(const LightField& lf)
   t1_ = slab.st_domain.t1;
   s_to_k_ = n_s_ / slab.st_domain.s_extent();
   t_to_l_ = n_t_ / slab.st_domain.t_extent();
+  for (int r = 0; r < rows_; ++r)
+    for (int c = 0; c < cols_; ++c) camera_centers_.push_back(slab.uv.camera_center(r, c));
+}
+
+std::string ToString(Interpolation interpolation) {
+  return interpolation == Interpolation::kQuadrilinear ? "quadrilinear" : "focal-plane";
+}
+
+Interpolation InterpolationFromString(const std::string& name) {
+  if (name == "quadrilinear") return Interpolation::kQuadrilinear;
+  if (name == "focal-plane") return Interpolation::kFocalPlane;
+  throw Error(
+      fmt::format("unknown interpolation '{}' (expected quadrilinear or focal-plane)", name));
 }
 
 }  // namespace lfcam

@@ -3,14 +3,28 @@
 // radiance is the quadrilinear blend of the 16 nearest samples, taken in linear light.
 // Coordinates clamp to the outermost samples inside the windows; lines outside the PRP window
 // or the sampled st domain miss.
+//
+// Besides the paper's lookup there is the focal-plane lookup of Isaksen, McMillan and Gortler
+// (Dynamically reparameterized light fields, 2000): the four nearest cameras are blended as
+// before, but each is read where its own ray toward the point in focus p_o meets the st-plane,
+// so that whatever lies on the plane of focus is reconstructed without ghosting.
 #include <Eigen/Core>
 #include <array>
 #include <cmath>
+#include <string>
+#include <vector>
 
 #include "lfcam/core/color.h"
 #include "lfcam/core/lightfield.h"
 
 namespace lfcam {
+
+enum class Interpolation {
+  kQuadrilinear,  // the paper's: (u, v, s, t) of the ray itself
+  kFocalPlane,    // Isaksen et al.: each camera's own ray through p_o
+};
+std::string ToString(Interpolation interpolation);
+Interpolation InterpolationFromString(const std::string& name);  // throws lfcam::Error
 
 // Continuous sample coordinate along one axis: position x in sample units (sample i's centre at
 // i), clamped, split into two indices and the weight of the second.
@@ -29,8 +43,11 @@ class LightFieldSampler {
  public:
   explicit LightFieldSampler(const LightField& lf);
 
-  // Radiance along the line (origin, direction); false when it misses the slab.
-  bool Sample(const Vec3& origin, const Vec3& direction, float rgb[3]) const {
+  // Radiance along the line (origin, direction); false when it misses the slab. With
+  // kFocalPlane, `p_o` is the point in focus on the line.
+  bool Sample(const Vec3& origin, const Vec3& direction, float rgb[3],
+              Interpolation interpolation = Interpolation::kQuadrilinear,
+              const Vec3& p_o = Vec3::Zero()) const {
     const double n_uv = n_ca_.dot(direction), n_st = n_st_.dot(direction);
     if (n_uv == 0.0 || n_st == 0.0) return false;
     const Vec3 at_uv = origin + (n_ca_.dot(p_ca_ - origin) / n_uv) * direction - p_ca_;
@@ -39,7 +56,10 @@ class LightFieldSampler {
     const Vec3 at_st = origin + (n_st_.dot(st_origin_ - origin) / n_st) * direction - st_origin_;
     const double s = at_st.dot(s_scaled_), t = at_st.dot(t_scaled_);
     if (!(s >= s0_ && s <= s1_ && t >= t0_ && t <= t1_)) return false;
-    Fetch(u, v, s, t, rgb);
+    if (interpolation == Interpolation::kQuadrilinear)
+      Fetch(u, v, s, t, rgb);
+    else
+      FetchFocused(u, v, p_o, rgb);
     return true;
   }
 
@@ -49,42 +69,73 @@ class LightFieldSampler {
     const AxisLerp r = AxisLerp::At(v * rows_ - 0.5, rows_);
     const AxisLerp k = AxisLerp::At((s - s0_) * s_to_k_ - 0.5, n_s_);
     const AxisLerp l = AxisLerp::At((t - t0_) * t_to_l_ - 0.5, n_t_);
-    if (srgb8_)
-      FetchTyped<std::uint8_t>(c, r, k, l, rgb);
-    else
-      FetchTyped<Eigen::half>(c, r, k, l, rgb);
+    float acc[3] = {0, 0, 0};
+    ForNearestCameras(c, r,
+                      [&](int row, int col, float w) { AccumulateView(row, col, k, l, w, acc); });
+    rgb[0] = acc[0];
+    rgb[1] = acc[1];
+    rgb[2] = acc[2];
+  }
+
+  // Focal-plane fetch: the cameras around (u, v), each read where its ray to p_o meets the
+  // st-plane.
+  void FetchFocused(double u, double v, const Vec3& p_o, float rgb[3]) const {
+    const AxisLerp c = AxisLerp::At(u * cols_ - 0.5, cols_);
+    const AxisLerp r = AxisLerp::At(v * rows_ - 0.5, rows_);
+    float acc[3] = {0, 0, 0};
+    ForNearestCameras(c, r, [&](int row, int col, float w) {
+      const Vec3& center = camera_centers_[std::size_t(row) * cols_ + col];
+      const Vec3 d = p_o - center;
+      const double n_st = n_st_.dot(d);
+      if (n_st == 0.0) return;
+      const Vec3 at_st = center + (n_st_.dot(st_origin_ - center) / n_st) * d - st_origin_;
+      const AxisLerp k = AxisLerp::At((at_st.dot(s_scaled_) - s0_) * s_to_k_ - 0.5, n_s_);
+      const AxisLerp l = AxisLerp::At((at_st.dot(t_scaled_) - t0_) * t_to_l_ - 0.5, n_t_);
+      AccumulateView(row, col, k, l, w, acc);
+    });
+    rgb[0] = acc[0];
+    rgb[1] = acc[1];
+    rgb[2] = acc[2];
   }
 
  private:
+  template <typename F>
+  static void ForNearestCameras(const AxisLerp& c, const AxisLerp& r, F&& visit) {
+    const int view_r[2] = {r.i0, r.i1}, view_c[2] = {c.i0, c.i1};
+    const float wr[2] = {1.0f - r.w1, r.w1}, wc[2] = {1.0f - c.w1, c.w1};
+    for (int a = 0; a < 2; ++a)
+      for (int b = 0; b < 2; ++b) {
+        const float w = wr[a] * wc[b];
+        if (w != 0.0f) visit(view_r[a], view_c[b], w);
+      }
+  }
+
+  // acc += w * (bilinear st lookup in view (row, col)).
+  void AccumulateView(int row, int col, const AxisLerp& k, const AxisLerp& l, float w,
+                      float acc[3]) const {
+    if (srgb8_)
+      AccumulateTyped<std::uint8_t>(row, col, k, l, w, acc);
+    else
+      AccumulateTyped<Eigen::half>(row, col, k, l, w, acc);
+  }
+
   static float Decode(std::uint8_t v, const float* lut) { return lut[v]; }
   static float Decode(Eigen::half v, const float*) { return static_cast<float>(v); }
 
   template <typename T>
-  void FetchTyped(const AxisLerp& c, const AxisLerp& r, const AxisLerp& k, const AxisLerp& l,
-                  float rgb[3]) const {
-    const auto* base = reinterpret_cast<const T*>(data_);
+  void AccumulateTyped(int row, int col, const AxisLerp& k, const AxisLerp& l, float w,
+                       float acc[3]) const {
+    const T* view = reinterpret_cast<const T*>(data_) +
+                    (std::size_t(row) * cols_ + std::size_t(col)) * view_samples_;
     const std::size_t o00 = (std::size_t(l.i0) * n_s_ + k.i0) * 3;
     const std::size_t o10 = (std::size_t(l.i0) * n_s_ + k.i1) * 3;
     const std::size_t o01 = (std::size_t(l.i1) * n_s_ + k.i0) * 3;
     const std::size_t o11 = (std::size_t(l.i1) * n_s_ + k.i1) * 3;
     const float wk1 = k.w1, wk0 = 1.0f - k.w1, wl1 = l.w1, wl0 = 1.0f - l.w1;
-    const float w00 = wk0 * wl0, w10 = wk1 * wl0, w01 = wk0 * wl1, w11 = wk1 * wl1;
-    float acc[3] = {0, 0, 0};
-    const int view_r[2] = {r.i0, r.i1}, view_c[2] = {c.i0, c.i1};
-    const float wr[2] = {1.0f - r.w1, r.w1}, wc[2] = {1.0f - c.w1, c.w1};
-    for (int a = 0; a < 2; ++a) {
-      for (int b = 0; b < 2; ++b) {
-        const float w = wr[a] * wc[b];
-        if (w == 0.0f) continue;
-        const T* view = base + (std::size_t(view_r[a]) * cols_ + view_c[b]) * view_samples_;
-        for (int ch = 0; ch < 3; ++ch)
-          acc[ch] += w * (w00 * Decode(view[o00 + ch], lut_) + w10 * Decode(view[o10 + ch], lut_) +
-                          w01 * Decode(view[o01 + ch], lut_) + w11 * Decode(view[o11 + ch], lut_));
-      }
-    }
-    rgb[0] = acc[0];
-    rgb[1] = acc[1];
-    rgb[2] = acc[2];
+    const float w00 = w * wk0 * wl0, w10 = w * wk1 * wl0, w01 = w * wk0 * wl1, w11 = w * wk1 * wl1;
+    for (int ch = 0; ch < 3; ++ch)
+      acc[ch] += w00 * Decode(view[o00 + ch], lut_) + w10 * Decode(view[o10 + ch], lut_) +
+                 w01 * Decode(view[o01 + ch], lut_) + w11 * Decode(view[o11 + ch], lut_);
   }
 
   const std::uint8_t* data_;
@@ -95,6 +146,7 @@ class LightFieldSampler {
   Vec3 p_ca_, n_ca_, u_scaled_, v_scaled_;
   Vec3 st_origin_, n_st_, s_scaled_, t_scaled_;
   double s0_, s1_, t0_, t1_, s_to_k_, t_to_l_;
+  std::vector<Vec3> camera_centers_;  // row-major
 };
 
 }  // namespace lfcam
