@@ -48,9 +48,15 @@ void AddSimulateCommand(CLI::App& app) {
     o.cols = cols;
     std::tie(o.n_s, o.n_t) = ParseSize("--st-res", flags->st_res);
     const auto d = ParseNumbers("--st-domain", flags->st_domain, 4);
+    if (!(d[2] > d[0]) || !(d[3] > d[1]))
+      throw Error(fmt::format("--st-domain: '{}' needs S1 > S0 and T1 > T0", flags->st_domain));
     o.st_domain = {d[0], d[1], d[2], d[3]};
     o.supersampling = flags->supersampling;
-    o.sample_type = SampleTypeFromString(flags->sample_type);
+    try {
+      o.sample_type = SampleTypeFromString(flags->sample_type);
+    } catch (const Error& e) {
+      throw Error(fmt::format("--sample-type: {}", e.what()));
+    }
     LightFieldWriteOptions w;
     if (flags->compression == "zstd")
       w.compression = Compression::kZstd;
