@@ -76,11 +76,12 @@ done
 sheet d "(d) zoom, d_o 3900, d_l 192" "$labels" "${files[@]}"
 
 echo "== Fig. 11 (e): moving camera, d_o = 4300, f = 700, d_l = 64"
+# The eye slides across the array, always looking at the centre of the plane of focus (4.3 m
+# away): what lies on it stays put, nearer objects move against the eye, farther ones with it.
 files=(); labels=""
 for x in -100 -60 -20 20 60 100; do
-  eye_x=$((300 + x))
   render "fig11e_x$x" --focal-length 700 --focus-distance 4300 --aperture 64 \
-    --eye "$eye_x,275,3600" --look-at "$eye_x,275,0"
+    --eye "$((300 + x)),275,3600" --look-at "300,275,-700"
   files+=("$out/fig11e_x$x.png"); labels+="eye x $x mm;"
 done
 sheet e "(e) moving camera, f 700, d_o 4300, d_l 64" "$labels" "${files[@]}"
