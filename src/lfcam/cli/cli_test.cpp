@@ -85,6 +85,27 @@ TEST_F(Cli, RenderAndOracleAgreeAndCompareReportsIt) {
   EXPECT_EQ(j["pixels"], 48 * 48);
 }
 
+TEST_F(Cli, MontageLaysImagesOutOnASheet) {
+  const std::string camera = " --size 40x30 ";
+  ASSERT_EQ(Lfcam("render " + Path("small.lf") + camera + "--out " + Path("m1.png")).status, 0);
+  ASSERT_EQ(
+      Lfcam("render " + Path("small.lf") + camera + "--focal-length 800 --out " + Path("m2.png"))
+          .status,
+      0);
+  const CommandResult run =
+      Lfcam("montage " + Path("m1.png") + " " + Path("m2.png") +
+            " --tile-width 100 --labels 'a;b' --title T --out " + Path("sheet.png"));
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("2 images"), std::string::npos);
+  // Two 100-pixel tiles side by side with 8-pixel gaps.
+  const CommandResult info = Lfcam("compare " + Path("sheet.png") + " " + Path("sheet.png"));
+  EXPECT_EQ(info.status, 0);
+  EXPECT_NE(info.output.find("over " + std::to_string((2 * 100 + 3 * 8) * (36 + 75 + 24 + 16)) +
+                             " pixels"),
+            std::string::npos)
+      << info.output;
+}
+
 TEST_F(Cli, BadInputFailsClearlyAndWritesNothing) {
   struct Case {
     std::string args;
