@@ -43,7 +43,8 @@ class LightFieldSampler {
  public:
   explicit LightFieldSampler(const LightField& lf);
 
-  // Radiance along the line (origin, direction); false when it misses the slab. With
+  // Radiance along the line (origin, direction); false when it misses the slab (the hot-path
+  // twin of Slab::intersect + Slab::contains, with the plane constants precomputed). With
   // kFocalPlane, `p_o` is the point in focus on the line.
   bool Sample(const Vec3& origin, const Vec3& direction, float rgb[3],
               Interpolation interpolation = Interpolation::kQuadrilinear,
