@@ -65,15 +65,22 @@ class Fidelity : public ::testing::Test {
         // Damaged or half-replaced: simulate again below.
       }
     }
+    // Remove caches of earlier builds (never this build's, nor another process's temporary).
     std::error_code ec;
-    for (const auto& entry : fs::directory_iterator(fs::temp_directory_path(), ec))
-      if (entry.path().filename().string().starts_with(prefix) && entry.path() != cache)
-        fs::remove(entry.path(), ec);  // left by earlier builds
+    const std::string own = cache.filename().string();
+    for (const auto& entry : fs::directory_iterator(fs::temp_directory_path(), ec)) {
+      const std::string name = entry.path().filename().string();
+      if (name.starts_with(prefix) && !name.starts_with(own)) fs::remove(entry.path(), ec);
+    }
     SimulateLightFieldOptions o;
     o.n_s = 416;
     o.n_t = 384;
     LightField lf = SimulateLightField(scene, o);
-    WriteLightField(lf, cache);
+    try {
+      WriteLightField(lf, cache);
+    } catch (const Error&) {
+      // Only a cache: the next process simulates again.
+    }
     return lf;
   }
   static void TearDownTestSuite() {
