@@ -41,7 +41,6 @@ cv::Mat RenderSceneOracle(const Scene& scene, const VirtualCamera& camera,
                           const OracleOptions& options) {
   const int n = OracleSamplesPerPixel(camera, options);
   const int strata = std::max(1, int(std::lround(std::sqrt(double(n)))));
-  const double d_o = camera.params().focus_distance_mm;
   const int permute = CoprimeNear(n);
   cv::Mat image(camera.height(), camera.width(), CV_32FC3);
 
@@ -67,7 +66,7 @@ cv::Mat RenderSceneOracle(const Scene& scene, const VirtualCamera& camera,
                               Vec2 u = Hammersley(m, n) + rotation;
                               u = u.array() - u.array().floor();
                               const Vec3 lens = camera.lens_point(SampleUniformDiskConcentric(u));
-                              const Vec3 p_o = camera.e_c() + d_o * direction;
+                              const Vec3 p_o = camera.focus_point(direction);
                               sum += scene.Radiance({lens, p_o - lens});
                             }
                             sum /= n;
