@@ -19,7 +19,13 @@ struct CameraFlags {
   bool no_breathing = false;
 
   void AddTo(CLI::App& command);
-  // The camera parameters; unset eye/look-at/up default from the array plane.
+  // Checks every flag that does not depend on the array (size, vectors, lens, the lens sample
+  // count) before anything large is read; throws lfcam::UsageError naming the flag.
+  void Validate() const;
+  // The camera; unset eye/look-at/up default from the array plane. Throws lfcam::UsageError.
+  VirtualCamera MakeCamera(const ArrayPlane& array) const;
+
+ private:
   VirtualCameraParams Resolve(const ArrayPlane& array) const;
 };
 

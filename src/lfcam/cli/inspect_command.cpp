@@ -47,8 +47,9 @@ void AddInfoCommand(CLI::App& app) {
   };
   auto flags = std::make_shared<Flags>();
   info->add_option("lightfield", flags->input, "Light field file (.lf)")->required();
-  info->add_flag("--json", flags->json, "Machine-readable output");
-  info->add_flag("--verify", flags->verify, "Also read every view and check its checksum");
+  info->add_flag("--json", flags->json, "Machine-readable output (JSON on stdout)");
+  info->add_flag("--verify", flags->verify,
+                 "Also read every view and check its checksum (exit 1 if any is corrupt)");
   info->callback([flags] {
     const LightFieldHeader h = ReadLightFieldHeader(flags->input);
     double verify_ms = -1;
@@ -60,7 +61,12 @@ void AddInfoCommand(CLI::App& app) {
               .count();
     }
     auto j = InfoJson(h);
-    if (flags->verify) j["verified_read_ms"] = verify_ms;
+    // Reaching here with --verify means every view was read and its checksum matched: a failed
+    // check throws, and the command exits 1 (with {"error": ...} under --json).
+    if (flags->verify) {
+      j["verified"] = true;
+      j["verified_read_ms"] = verify_ms;
+    }
     if (flags->json) {
       fmt::print("{}\n", j.dump(2));
       return;
@@ -97,15 +103,21 @@ void AddCompareCommand(CLI::App& app) {
   compare->add_option("a", flags->a, "First image")->required();
   compare->add_option("b", flags->b, "Second image")->required();
   compare->add_option("--mask", flags->mask, "Compare only where this image is nonzero");
-  compare->add_flag("--json", flags->json, "Machine-readable output");
+  compare->add_flag("--json", flags->json,
+                    "Machine-readable output (JSON on stdout; psnr_db is null for identical "
+                    "images)");
   compare->callback([flags] {
     const cv::Mat a = ReadImageSrgb8(flags->a), b = ReadImageSrgb8(flags->b);
     const cv::Mat mask = flags->mask.empty() ? cv::Mat() : ReadMask(flags->mask);
     const ImageComparison r = CompareImages(a, b, mask);
     if (flags->json) {
-      nlohmann::json j = {
-          {"ssim", r.ssim}, {"mean_abs_error", r.mean_abs_error}, {"pixels", r.pixels}};
-      j["psnr_db"] = std::isinf(r.psnr_db) ? nlohmann::json("inf") : nlohmann::json(r.psnr_db);
+      // JSON has no infinity: identical images have "psnr_db": null and "identical": true.
+      const bool identical = std::isinf(r.psnr_db);
+      nlohmann::json j = {{"ssim", r.ssim},
+                          {"mean_abs_error", r.mean_abs_error},
+                          {"pixels", r.pixels},
+                          {"identical", identical},
+                          {"psnr_db", identical ? nlohmann::json(nullptr) : nlohmann::json(r.psnr_db)}};
       fmt::print("{}\n", j.dump(2));
       return;
     }

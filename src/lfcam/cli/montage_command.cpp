@@ -1,12 +1,15 @@
 // `lfcam montage`: a labelled contact sheet of images (the demo's sequences).
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <memory>
 #include <sstream>
 
 #include "lfcam/cli/commands.h"
 #include "lfcam/core/contact_sheet.h"
+#include "lfcam/core/error.h"
 #include "lfcam/core/image_io.h"
+#include "lfcam/core/limits.h"
 
 namespace lfcam::cli {
 
@@ -19,13 +22,27 @@ void AddMontageCommand(CLI::App& app) {
   };
   auto flags = std::make_shared<Flags>();
   montage->add_option("images", flags->images, "Images, in order")->required();
-  montage->add_option("--out", flags->out, "PNG to write")->required();
+  montage->add_option("--out", flags->out, "Image to write (.png or .jpg)")->required();
   montage->add_option("--labels", flags->labels, "Labels separated by ';'");
   montage->add_option("--title", flags->title, "Title above the sheet");
-  montage->add_option("--columns", flags->columns, "Images per row (0 = up to 6)");
-  montage->add_option("--tile-width", flags->tile_width, "Width of each image on the sheet")
-      ->capture_default_str();
+  montage->add_option("--columns", flags->columns, "Images per row (0 = up to 6)")
+      ->check(CLI::Range(0, 1000));
+  montage
+      ->add_option("--tile-width", flags->tile_width,
+                   fmt::format("Width of each image on the sheet (16..{})", kMaxImageSide))
+      ->capture_default_str()
+      ->check(CLI::Range(16, kMaxImageSide));
   montage->callback([flags] {
+    // The sheet's width is known before any image is read; its height is checked once they are.
+    const int n = int(flags->images.size());
+    const int columns = flags->columns > 0 ? std::min(flags->columns, n) : std::min(n, 6);
+    const double width = double(columns) * (flags->tile_width + 8) + 8;
+    if (width > kMaxImageSide)
+      throw UsageError(fmt::format(
+          "--tile-width {} with {} columns makes a sheet {:.0f} pixels wide, more than the limit "
+          "of {}",
+          flags->tile_width, columns, width, kMaxImageSide));
+    RequireImageOutput(flags->out, "--out");
     std::vector<cv::Mat> images;
     for (const auto& path : flags->images) images.push_back(ReadImageSrgb8(path));
     std::vector<std::string> labels;

@@ -4,7 +4,7 @@
 
 #include <charconv>
 #include <cmath>
-#include <sstream>
+#include <algorithm>
 
 #include "lfcam/core/error.h"
 
@@ -13,9 +13,10 @@ namespace lfcam::cli {
 std::vector<double> ParseNumbers(const std::string& flag, const std::string& text,
                                  std::size_t count, char separator) {
   std::vector<double> out;
-  std::stringstream stream(text);
-  std::string item;
-  while (std::getline(stream, item, separator)) {
+  std::size_t begin = 0;
+  while (out.size() <= count) {  // one past `count` is enough to know it is too many
+    const std::size_t end = std::min(text.find(separator, begin), text.size());
+    const std::string item = text.substr(begin, end - begin);
     std::size_t used = 0;
     double value = 0;
     try {
@@ -24,11 +25,13 @@ std::vector<double> ParseNumbers(const std::string& flag, const std::string& tex
       used = 0;
     }
     if (used == 0 || used != item.size() || !std::isfinite(value))
-      throw Error(fmt::format("{}: '{}' is not a number (in '{}')", flag, item, text));
+      throw UsageError(fmt::format("{}: '{}' is not a number (in '{}')", flag, item, text));
     out.push_back(value);
+    if (end == text.size()) break;
+    begin = end + 1;
   }
   if (out.size() != count)
-    throw Error(fmt::format("{}: expected {} numbers separated by '{}', got '{}'", flag, count,
+    throw UsageError(fmt::format("{}: expected {} numbers separated by '{}', got '{}'", flag, count,
                             separator, text));
   return out;
 }
@@ -38,12 +41,13 @@ Vec3 ParseVec3(const std::string& flag, const std::string& text) {
   return {v[0], v[1], v[2]};
 }
 
-std::pair<int, int> ParseSize(const std::string& flag, const std::string& text) {
+std::pair<int, int> ParseSize(const std::string& flag, const std::string& text, int max_side) {
   const bool has_x = text.find('x') != std::string::npos;
   const auto v = has_x ? ParseNumbers(flag, text, 2, 'x') : ParseNumbers(flag, text, 1);
   const double w = v[0], h = has_x ? v[1] : v[0];
-  if (w != std::floor(w) || h != std::floor(h) || w < 1 || h < 1 || w > 65536 || h > 65536)
-    throw Error(fmt::format("{}: '{}' must be N or WxH with whole numbers 1..65536", flag, text));
+  if (w != std::floor(w) || h != std::floor(h) || w < 1 || h < 1 || w > max_side || h > max_side)
+    throw UsageError(fmt::format("{}: '{}' must be N or WxH with whole numbers 1..{}", flag, text,
+                                 max_side));
   return {int(w), int(h)};
 }
 

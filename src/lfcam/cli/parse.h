@@ -4,14 +4,27 @@
 #include <utility>
 #include <vector>
 
+#include "lfcam/core/error.h"
 #include "lfcam/core/geometry.h"
 
 namespace lfcam::cli {
 
+// Runs f(); an lfcam::Error it throws is a bad flag value: rethrown as UsageError naming the flag.
+template <typename F>
+auto FlagValue(const std::string& flag, F&& f) {
+  try {
+    return f();
+  } catch (const UsageError&) {
+    throw;
+  } catch (const Error& e) {
+    throw UsageError(flag + ": " + e.what());
+  }
+}
+
 std::vector<double> ParseNumbers(const std::string& flag, const std::string& text,
                                  std::size_t count, char separator = ',');
 Vec3 ParseVec3(const std::string& flag, const std::string& text);
-// "N" (square) or "WxH", each 1..65536.
-std::pair<int, int> ParseSize(const std::string& flag, const std::string& text);
+// "N" (square) or "WxH", each 1..max_side.
+std::pair<int, int> ParseSize(const std::string& flag, const std::string& text, int max_side);
 
 }  // namespace lfcam::cli

@@ -4,13 +4,18 @@
 
 #include <algorithm>
 #include <chrono>
+#include <filesystem>
 #include <memory>
 #include <numbers>
 #include <vector>
 
 #include "lfcam/cli/camera_flags.h"
 #include "lfcam/cli/commands.h"
+#include "lfcam/cli/parse.h"
+#include "lfcam/core/error.h"
 #include "lfcam/core/image_io.h"
+#include "lfcam/core/limits.h"
+#include "lfcam/core/progress.h"
 #include "lfcam/core/lightfield_file.h"
 #include "lfcam/render/cpu_renderer.h"
 #include "lfcam/sim/oracle.h"
@@ -42,25 +47,45 @@ void AddRenderCommand(CLI::App& app) {
     CameraFlags camera;
     int threads = 0, repeat = 1;
     std::string interpolation = "quadrilinear";
+    bool quiet = false;
   };
   auto flags = std::make_shared<Flags>();
   render->add_option("lightfield", flags->input, "Light field file (.lf)")->required();
-  render->add_option("--out", flags->out, "PNG to write")->required();
+  render->add_option("--out", flags->out, "Image to write (.png or .jpg)")->required();
   flags->camera.AddTo(*render);
   render->add_option("--threads", flags->threads, "Worker threads (0 = all cores, 1 = reference)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(CLI::Range(0, kMaxThreads));
   render->add_option("--repeat", flags->repeat, "Render this many times and report the median")
       ->check(CLI::Range(1, 1000));
-  render->add_option("--hit-mask", flags->hit_mask, "Also write where rays hit the slab (PNG)");
+  render->add_option("--hit-mask", flags->hit_mask,
+                     "Also write where rays hit the slab (white) as an image; both images are "
+                     "written, or neither");
+  render->add_flag("--quiet", flags->quiet, "No progress bar (it is drawn only on a terminal)");
   render
       ->add_option("--interpolation", flags->interpolation,
                    "quadrilinear (the paper's) or focal-plane (each camera read along its own ray "
                    "through the point in focus; Isaksen et al. 2000)")
       ->capture_default_str();
   render->callback([flags] {
-    const CpuRenderOptions options{flags->threads, InterpolationFromString(flags->interpolation)};
+    // Every flag and output is checked before the light field is read.
+    CpuRenderOptions options;
+    options.threads = flags->threads;
+    options.interpolation = FlagValue(
+        "--interpolation", [&] { return InterpolationFromString(flags->interpolation); });
+    flags->camera.Validate();
+    RequireImageOutput(flags->out, "--out");
+    if (!flags->hit_mask.empty()) {
+      RequireImageOutput(flags->hit_mask, "--hit-mask");
+      if (std::filesystem::absolute(flags->hit_mask) == std::filesystem::absolute(flags->out))
+        throw UsageError("--hit-mask: must not be the same file as --out");
+    }
     const LightField lf = ReadLightField(flags->input);
-    const VirtualCamera camera(flags->camera.Resolve(lf.slab().uv));
+    const VirtualCamera camera = flags->camera.MakeCamera(lf.slab().uv);
+    ProgressBar progress("rendering",
+                         std::int64_t(flags->repeat) * camera.width() * camera.height(),
+                         ProgressWanted(flags->quiet));
+    options.progress = progress.callback();
     std::vector<double> times_ms;
     RenderResult result;
     for (int i = 0; i < flags->repeat; ++i) {
@@ -69,12 +94,13 @@ void AddRenderCommand(CLI::App& app) {
       times_ms.push_back(SecondsSince(start) * 1e3);
     }
     std::sort(times_ms.begin(), times_ms.end());
-    WriteImage(flags->out, result.image);
+    std::vector<std::pair<std::filesystem::path, cv::Mat>> outputs = {{flags->out, result.image}};
     if (!flags->hit_mask.empty()) {
       cv::Mat rgb;
       cv::merge(std::vector<cv::Mat>{result.hit_mask, result.hit_mask, result.hit_mask}, rgb);
-      WriteImage(flags->hit_mask, rgb);
+      outputs.emplace_back(flags->hit_mask, rgb);
     }
+    WriteImages(outputs);
     if (result.rays_hit == 0)
       fmt::print(stderr,
                  "lfcam: warning: no ray met the slab (the PRP window and the st domain): the "
@@ -94,19 +120,28 @@ void AddOracleCommand(CLI::App& app) {
     std::string scene = "paper", out;
     CameraFlags camera;
     int samples = 0, threads = 0;
+    bool quiet = false;
   };
   auto flags = std::make_shared<Flags>();
   oracle->add_option("--scene", flags->scene, "Built-in scene (paper)")->capture_default_str();
-  oracle->add_option("--out", flags->out, "PNG to write")->required();
+  oracle->add_option("--out", flags->out, "Image to write (.png or .jpg)")->required();
   flags->camera.AddTo(*oracle);
-  oracle->add_option("--samples", flags->samples,
-                     "Samples per pixel (0 = 256 for a pinhole, 1024 with an aperture)");
-  oracle->add_option("--threads", flags->threads, "Worker threads (0 = all cores)");
+  oracle
+      ->add_option("--samples", flags->samples,
+                   "Samples per pixel (0 = 256 for a pinhole, 1024 with an aperture)")
+      ->check(CLI::Range(0, kMaxOracleSamples));
+  oracle->add_option("--threads", flags->threads, "Worker threads (0 = all cores)")
+      ->check(CLI::Range(0, kMaxThreads));
+  oracle->add_flag("--quiet", flags->quiet, "No progress bar (it is drawn only on a terminal)");
   oracle->callback([flags] {
-    const Scene scene = MakeScene(flags->scene);
-    const VirtualCamera camera(flags->camera.Resolve(scene.rig.array));
+    flags->camera.Validate();
+    RequireImageOutput(flags->out, "--out");
+    const Scene scene = FlagValue("--scene", [&] { return MakeScene(flags->scene); });
+    const VirtualCamera camera = flags->camera.MakeCamera(scene.rig.array);
     const auto start = std::chrono::steady_clock::now();
-    const OracleOptions options{flags->samples, flags->threads};
+    ProgressBar progress("oracle", std::int64_t(camera.width()) * camera.height(),
+                         ProgressWanted(flags->quiet));
+    const OracleOptions options{flags->samples, flags->threads, progress.callback()};
     const cv::Mat image = RenderSceneOracle(scene, camera, options);
     WriteImage(flags->out, image);
     fmt::print("wrote {}: oracle of scene '{}', {}; {:.1f} s\n", flags->out, scene.name,

@@ -7,8 +7,11 @@
 
 #include "lfcam/cli/commands.h"
 #include "lfcam/cli/parse.h"
+#include "lfcam/core/atomic_file.h"
 #include "lfcam/core/error.h"
 #include "lfcam/core/lightfield_file.h"
+#include "lfcam/core/limits.h"
+#include "lfcam/core/progress.h"
 #include "lfcam/sim/simulate_lightfield.h"
 
 namespace lfcam::cli {
@@ -36,38 +39,42 @@ void AddSimulateCommand(CLI::App& app) {
                    "Sampled st domain S0,T0,S1,T1 (view-window units)")
       ->capture_default_str();
   command->add_option("--supersampling", flags->supersampling, "Rays per st cell, per axis")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(CLI::Range(1, 16));
   command->add_option("--sample-type", flags->sample_type, "srgb8 or linear_f16")
       ->capture_default_str();
   command->add_option("--compress", flags->compression, "none or zstd")->capture_default_str();
-  command->add_flag("--quiet", flags->quiet, "No progress on stderr");
+  command->add_flag("--quiet", flags->quiet, "No progress bar (it is drawn only on a terminal)");
   command->callback([flags] {
     SimulateLightFieldOptions o;
-    const auto [rows, cols] = ParseSize("--grid", flags->grid);
+    // Grid and st resolution: the limits the light field reader accepts.
+    const auto [rows, cols] = ParseSize("--grid", flags->grid, kMaxViewsPerSide);
     o.rows = rows;
     o.cols = cols;
-    std::tie(o.n_s, o.n_t) = ParseSize("--st-res", flags->st_res);
+    std::tie(o.n_s, o.n_t) = ParseSize("--st-res", flags->st_res, kMaxStSamplesPerSide);
     const auto d = ParseNumbers("--st-domain", flags->st_domain, 4);
     if (!(d[2] > d[0]) || !(d[3] > d[1]))
-      throw Error(fmt::format("--st-domain: '{}' needs S1 > S0 and T1 > T0", flags->st_domain));
+      throw UsageError(
+          fmt::format("--st-domain: '{}' needs S1 > S0 and T1 > T0", flags->st_domain));
     o.st_domain = {d[0], d[1], d[2], d[3]};
     o.supersampling = flags->supersampling;
-    try {
-      o.sample_type = SampleTypeFromString(flags->sample_type);
-    } catch (const Error& e) {
-      throw Error(fmt::format("--sample-type: {}", e.what()));
-    }
+    o.sample_type =
+        FlagValue("--sample-type", [&] { return SampleTypeFromString(flags->sample_type); });
     LightFieldWriteOptions w;
     if (flags->compression == "zstd")
       w.compression = Compression::kZstd;
     else if (flags->compression != "none")
-      throw Error(fmt::format("--compress: '{}' is not none or zstd", flags->compression));
-    if (!flags->quiet)
-      o.progress = [](int done, int total) {
-        if (done % std::max(1, total / 10) == 0 || done == total)
-          fmt::print(stderr, "simulating views: {}/{}\n", done, total);
-      };
-    const Scene scene = MakeScene(flags->scene);
+      throw UsageError(fmt::format("--compress: '{}' is not none or zstd", flags->compression));
+    const Scene scene = FlagValue("--scene", [&] { return MakeScene(flags->scene); });
+    RequireWritableOutput(flags->out, "--out");
+    const double bytes = double(rows) * cols * o.n_s * o.n_t * 3 *
+                         double(BytesPerChannel(o.sample_type));
+    FlagValue(fmt::format("--grid {} --st-res {}", flags->grid, flags->st_res),
+              [&] { RequireMemory(bytes, "the light field"); });
+    ProgressBar progress("simulating views", std::int64_t(rows) * cols,
+                         ProgressWanted(flags->quiet));
+    if (const auto advance = progress.callback())
+      o.progress = [advance](int, int) { advance(1); };
     const auto start = std::chrono::steady_clock::now();
     const LightField lf = SimulateLightField(scene, o);
     const double seconds =

@@ -2,22 +2,27 @@
 
 #include <fmt/format.h>
 
+#include <cctype>
+#include <memory>
+#include <utility>
+#include <vector>
+
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "lfcam/core/atomic_file.h"
 #include "lfcam/core/color.h"
 #include "lfcam/core/error.h"
+#include "lfcam/core/image_header.h"
+#include "lfcam/core/input_file.h"
+#include "lfcam/core/limits.h"
 
 namespace lfcam {
 namespace {
 
 cv::Mat ReadRaw(const std::filesystem::path& path) {
-  if (!std::filesystem::is_regular_file(path))
-    throw Error(fmt::format("{}: no such image file", path.string()));
-  cv::Mat m = cv::imread(path.string(), cv::IMREAD_UNCHANGED);
-  if (m.empty()) throw Error(fmt::format("{}: not a readable image (corrupt?)", path.string()));
-  return m;
+  const auto bytes = ReadFileBytes(path, kMaxEncodedImageBytes, "image file");
+  return DecodeImageBytes(bytes, path.string());
 }
 
 cv::Mat ToRgb(const cv::Mat& m) {
@@ -39,6 +44,36 @@ cv::Mat ToRgb(const cv::Mat& m) {
 }
 
 }  // namespace
+
+cv::Mat DecodeImageBytes(std::span<const std::uint8_t> bytes, const std::string& name) {
+  ImageHeader header;
+  try {
+    header = ProbeImageHeader(bytes);
+  } catch (const Error& e) {
+    throw Error(fmt::format("{}: {}", name, e.what()));
+  }
+  if (header.width > kMaxImageSide || header.height > kMaxImageSide)
+    throw Error(fmt::format("{}: a {}x{} {} image is larger than the limit of {} pixels a side",
+                            name, header.width, header.height, header.format, kMaxImageSide));
+  // The decoded image, its 8-bit RGB copy and a linear float copy.
+  const double pixels = double(header.width) * header.height;
+  RequireMemory(pixels * (header.channels * header.bits_per_channel / 8.0 + 3 + 12),
+                fmt::format("{}: decoding a {}x{} image", name, header.width, header.height));
+  cv::Mat m;
+  try {
+    m = cv::imdecode(cv::Mat(1, int(bytes.size()), CV_8UC1, const_cast<std::uint8_t*>(bytes.data())),
+                     cv::IMREAD_UNCHANGED);
+  } catch (const cv::Exception&) {
+    m = cv::Mat();
+  }
+  if (m.empty())
+    throw Error(fmt::format("{}: not a readable {} image (corrupt or truncated)", name,
+                            header.format));
+  if (m.cols != header.width || m.rows != header.height)
+    throw Error(fmt::format("{}: decoded to {}x{}, but its header says {}x{}", name, m.cols,
+                            m.rows, header.width, header.height));
+  return m;
+}
 
 cv::Mat ReadImageSrgb8(const std::filesystem::path& path) {
   cv::Mat m = ReadRaw(path);
@@ -91,23 +126,58 @@ cv::Mat Srgb8ToLinearImage(const cv::Mat& srgb8_rgb) {
   return out;
 }
 
-void WriteImage(const std::filesystem::path& path, const cv::Mat& rgb) {
+namespace {
+
+// ".png" (also for a path with no extension) or ".jpg"; anything else is refused.
+std::string ImageExtension(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (ext.empty() || ext == ".png") return ".png";
+  if (ext == ".jpg" || ext == ".jpeg") return ".jpg";
+  throw UsageError(fmt::format("{}: cannot write an image with extension '{}' (use .png or .jpg)",
+                               path.string(), path.extension().string()));
+}
+
+std::vector<std::uint8_t> EncodeImage(const std::filesystem::path& path, const cv::Mat& rgb) {
   cv::Mat srgb = rgb.type() == CV_32FC3 ? LinearToSrgb8Image(rgb) : rgb;
   if (srgb.type() != CV_8UC3)
     throw Error(fmt::format("{}: internal: bad image type", path.string()));
   cv::Mat bgr;
   cv::cvtColor(srgb, bgr, cv::COLOR_RGB2BGR);
   std::vector<std::uint8_t> bytes;
-  const std::string ext = path.extension().string().empty() ? ".png" : path.extension().string();
   bool ok = false;
   try {
-    ok = cv::imencode(ext, bgr, bytes);
+    ok = cv::imencode(ImageExtension(path), bgr, bytes);
   } catch (const cv::Exception&) {
     ok = false;
   }
-  if (!ok)
-    throw Error(fmt::format("{}: cannot encode an image with extension '{}'", path.string(), ext));
-  WriteFileAtomically(path, bytes);
+  if (!ok) throw Error(fmt::format("{}: the image could not be encoded", path.string()));
+  return bytes;
+}
+
+}  // namespace
+
+void RequireImageOutput(const std::filesystem::path& path, const std::string& flag) {
+  try {
+    ImageExtension(path);
+  } catch (const UsageError& e) {
+    throw UsageError(fmt::format("{} {}", flag, e.what()));
+  }
+  RequireWritableOutput(path, flag);
+}
+
+void WriteImage(const std::filesystem::path& path, const cv::Mat& rgb) {
+  WriteFileAtomically(path, EncodeImage(path, rgb));
+}
+
+void WriteImages(const std::vector<std::pair<std::filesystem::path, cv::Mat>>& images) {
+  std::vector<std::unique_ptr<AtomicFileWriter>> writers;
+  for (const auto& [path, rgb] : images) {
+    const auto bytes = EncodeImage(path, rgb);
+    writers.push_back(std::make_unique<AtomicFileWriter>(path));
+    writers.back()->write(bytes);
+  }
+  CommitAll(writers);
 }
 
 }  // namespace lfcam

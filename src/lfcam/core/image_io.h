@@ -1,10 +1,22 @@
 #pragma once
 // Images in memory are cv::Mat CV_32FC3 in linear light, channels R, G, B, row 0 at the top
 // (as PNG stores them). Files are sRGB-encoded PNGs, written atomically.
+#include <cstdint>
 #include <filesystem>
 #include <opencv2/core.hpp>
+#include <span>
+#include <string>
+#include <utility>
+#include <vector>
 
 namespace lfcam {
+
+// Encoded image files larger than this are refused before they are read.
+inline constexpr std::uint64_t kMaxEncodedImageBytes = std::uint64_t(1) << 30;
+
+// Decodes a PNG or JPEG held in memory (OpenCV's channel order, any depth) after checking its
+// header: at most kMaxImageSide a side and within the memory limit. `name` is for messages.
+cv::Mat DecodeImageBytes(std::span<const std::uint8_t> bytes, const std::string& name);
 
 // Reads an 8- or 16-bit PNG/JPEG as linear RGB float. Throws lfcam::Error naming the file.
 cv::Mat ReadImageLinear(const std::filesystem::path& path);
@@ -17,6 +29,12 @@ cv::Mat LinearToSrgb8Image(const cv::Mat& linear_rgb);  // CV_32FC3 -> CV_8UC3
 cv::Mat Srgb8ToLinearImage(const cv::Mat& srgb8_rgb);   // CV_8UC3 -> CV_32FC3
 
 // Writes an sRGB 8-bit RGB image (CV_8UC3) or a linear float one (CV_32FC3, encoded first).
+// The extension picks the encoding: .png (or none) or .jpg/.jpeg; others throw UsageError.
 void WriteImage(const std::filesystem::path& path, const cv::Mat& rgb);
+// Several images, all or none (core/atomic_file.h: CommitAll).
+void WriteImages(const std::vector<std::pair<std::filesystem::path, cv::Mat>>& images);
+// Checks before any work that `path` can take an image: a known extension and a writable place.
+// Throws lfcam::UsageError naming `flag`.
+void RequireImageOutput(const std::filesystem::path& path, const std::string& flag);
 
 }  // namespace lfcam

@@ -17,6 +17,10 @@
 
 #include "lfcam/core/atomic_file.h"
 #include "lfcam/core/error.h"
+#include "lfcam/core/input_file.h"
+#include "lfcam/core/json_input.h"
+#include "lfcam/core/limits.h"
+#include "lfcam/core/signal_cleanup.h"
 
 namespace lfcam {
 namespace {
@@ -26,10 +30,7 @@ static_assert(std::endian::native == std::endian::little,
 
 constexpr std::array<std::uint8_t, 8> kMagic = {0x89, 'L', 'F', 'C', 0x0D, 0x0A, 0x1A, 0x0A};
 constexpr std::size_t kPreambleBytes = 40;
-constexpr std::uint64_t kMaxHeaderBytes = 16u << 20;
-constexpr int kMaxViewsPerSide = 4096;
-constexpr int kMaxSamplesPerSide = 65536;
-constexpr std::uint64_t kMaxDecodedBytes = std::uint64_t(1) << 36;  // 64 GiB
+constexpr std::uint64_t kMaxHeaderBytes = kMaxJsonBytes;
 
 struct ViewRecord {
   std::uint64_t offset = 0;  // from the start of the data section
@@ -73,45 +74,6 @@ std::string ViewName(const LightFieldDims& dims, std::size_t index) {
   return fmt::format("view (row {}, col {})", index / dims.cols, index % dims.cols);
 }
 
-// An open file descriptor that closes itself.
-class Fd {
- public:
-  explicit Fd(const std::filesystem::path& path) : path_(path.string()) {
-    fd_ = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-    if (fd_ < 0) throw Error(fmt::format("{}: cannot open: {}", path_, std::strerror(errno)));
-    struct stat st {};
-    if (::fstat(fd_, &st) != 0 || !S_ISREG(st.st_mode)) {
-      ::close(fd_);
-      throw Error(fmt::format("{}: not a regular file", path_));
-    }
-    size_ = std::uint64_t(st.st_size);
-  }
-  ~Fd() { ::close(fd_); }
-  Fd(const Fd&) = delete;
-  Fd& operator=(const Fd&) = delete;
-  int get() const { return fd_; }
-  std::uint64_t size() const { return size_; }
-  const std::string& name() const { return path_; }
-
-  void read_exactly(void* out, std::size_t size, std::uint64_t offset) const {
-    auto* p = static_cast<std::uint8_t*>(out);
-    std::size_t done = 0;
-    while (done < size) {
-      const ssize_t n = ::pread(fd_, p + done, size - done, off_t(offset + done));
-      if (n < 0 && errno == EINTR) continue;
-      if (n <= 0)
-        throw Error(fmt::format("{}: read failed at byte {}: {}", path_, offset + done,
-                                n == 0 ? "unexpected end of file" : std::strerror(errno)));
-      done += std::size_t(n);
-    }
-  }
-
- private:
-  std::string path_;
-  int fd_ = -1;
-  std::uint64_t size_ = 0;
-};
-
 struct ParsedFile {
   LightFieldHeader header;
   std::uint64_t data_offset = 0;
@@ -122,15 +84,15 @@ template <typename F>
 auto WithContext(const std::string& file, F&& f) {
   try {
     return f();
-  } catch (const nlohmann::json::exception& e) {
-    throw Error(fmt::format("{}: malformed header: {}", file, e.what()));
+  } catch (const nlohmann::json::exception&) {
+    throw Error(fmt::format("{}: malformed header (a field has the wrong type)", file));
   } catch (const Error& e) {
     if (std::string_view(e.what()).starts_with(file)) throw;
     throw Error(fmt::format("{}: {}", file, e.what()));
   }
 }
 
-ParsedFile ParseHeader(const Fd& fd) {
+ParsedFile ParseHeader(const InputFile& fd) {
   const std::string& name = fd.name();
   if (fd.size() < kPreambleBytes)
     throw Error(fmt::format("{}: too short to be a light field ({} bytes)", name, fd.size()));
@@ -162,41 +124,42 @@ ParsedFile ParseHeader(const Fd& fd) {
     throw Error(fmt::format("{}: header checksum mismatch (the header is corrupt)", name));
 
   return WithContext(name, [&] {
-    const auto j = nlohmann::json::parse(text);
-    if (j.at("format").get<std::string>() != "lfcam-lightfield")
+    const auto j = ParseJsonBounded(text, "header");
+    if (JsonString(j, "format", "header") != "lfcam-lightfield")
       throw Error("header format is not lfcam-lightfield");
     auto& h = parsed.header;
-    const auto& d = j.at("dims");
-    h.dims = {d.at("rows").get<int>(), d.at("cols").get<int>(), d.at("n_s").get<int>(),
-              d.at("n_t").get<int>()};
-    if (d.at("channels").get<int>() != LightFieldDims::kChannels)
+    const auto& d = JsonField(j, "dims", "header");
+    const std::string dims = "header: dims";
+    h.dims = {int(JsonInteger(d, "rows", 1, kMaxViewsPerSide, dims)),
+              int(JsonInteger(d, "cols", 1, kMaxViewsPerSide, dims)),
+              int(JsonInteger(d, "n_s", 1, kMaxStSamplesPerSide, dims)),
+              int(JsonInteger(d, "n_t", 1, kMaxStSamplesPerSide, dims))};
+    if (JsonInteger(d, "channels", 1, 64, dims) != LightFieldDims::kChannels)
       throw Error("only 3-channel (RGB) light fields are supported");
-    if (h.dims.rows < 1 || h.dims.cols < 1 || h.dims.rows > kMaxViewsPerSide ||
-        h.dims.cols > kMaxViewsPerSide || h.dims.n_s < 1 || h.dims.n_t < 1 ||
-        h.dims.n_s > kMaxSamplesPerSide || h.dims.n_t > kMaxSamplesPerSide)
-      throw Error(fmt::format("absurd dimensions {}x{} views of {}x{} samples", h.dims.rows,
-                              h.dims.cols, h.dims.n_s, h.dims.n_t));
-    h.sample_type = SampleTypeFromString(j.at("sample_type").get<std::string>());
+    h.sample_type = SampleTypeFromString(JsonString(j, "sample_type", "header"));
+    // At most 4096² views of 65536² samples of 6 bytes (about 1e17 bytes): no 64-bit overflow.
     const std::uint64_t view_bytes =
         std::uint64_t(h.dims.samples_per_view()) * 3 * BytesPerChannel(h.sample_type);
-    if (view_bytes * h.dims.view_count() > kMaxDecodedBytes)
-      throw Error(
-          fmt::format("absurd dimensions: {} bytes of samples", view_bytes * h.dims.view_count()));
-    const auto compression = j.at("compression").get<std::string>();
+    const double total_bytes = double(view_bytes) * double(h.dims.view_count());
+    if (total_bytes > double(kMaxLightFieldBytes))
+      throw Error(fmt::format("absurd dimensions: {} of samples (the format's limit is {})",
+                              HumanBytes(total_bytes), HumanBytes(double(kMaxLightFieldBytes))));
+    const auto compression = JsonString(j, "compression", "header");
     if (compression == "none")
       h.compression = Compression::kNone;
     else if (compression == "zstd")
       h.compression = Compression::kZstd;
     else
       throw Error(fmt::format("unknown compression '{}'", compression));
-    if (j.at("checksum").get<std::string>() != "xxh3-64")
+    if (JsonString(j, "checksum", "header") != "xxh3-64")
       throw Error("unknown checksum algorithm (expected xxh3-64)");
-    h.slab = j.at("slab").get<Slab>();
+    h.slab = JsonField(j, "slab", "header").get<Slab>();
     if (h.slab.uv.rows != h.dims.rows || h.slab.uv.cols != h.dims.cols)
       throw Error("slab grid does not match the view grid");
     h.metadata = j.value("metadata", nlohmann::json::object());
+    if (!h.metadata.is_object()) throw Error("header: metadata must be a JSON object");
 
-    const auto& views = j.at("views");
+    const auto& views = JsonField(j, "views", "header");
     if (!views.is_array() || views.size() != h.dims.view_count())
       throw Error(fmt::format("view table has {} entries, dims need {}", views.size(),
                               h.dims.view_count()));
@@ -205,10 +168,13 @@ ParsedFile ParseHeader(const Fd& fd) {
     for (std::size_t i = 0; i < views.size(); ++i) {
       const auto& v = views[i];
       ViewRecord r;
-      r.offset = v.at("offset").get<std::uint64_t>();
-      r.stored_bytes = v.at("stored_bytes").get<std::uint64_t>();
       const std::string where = ViewName(h.dims, i);
-      r.xxh3 = ParseHex64(v.at("xxh3").get<std::string>(), where);
+      if (JsonUnsigned(v, "row", kMaxViewsPerSide, where) != i / std::size_t(h.dims.cols) ||
+          JsonUnsigned(v, "col", kMaxViewsPerSide, where) != i % std::size_t(h.dims.cols))
+        throw Error(fmt::format("{}: the view table lists views out of order", where));
+      r.offset = JsonUnsigned(v, "offset", UINT64_MAX, where);
+      r.stored_bytes = JsonUnsigned(v, "stored_bytes", UINT64_MAX, where);
+      r.xxh3 = ParseHex64(JsonString(v, "xxh3", where), where);
       if (h.compression == Compression::kNone &&
           (r.stored_bytes != view_bytes || r.offset != i * view_bytes))
         throw Error(fmt::format("{}: stored at {} with {} bytes, expected {} with {}", where,
@@ -227,20 +193,26 @@ ParsedFile ParseHeader(const Fd& fd) {
   });
 }
 
+// A read-only mapping of the whole file. Should the file be truncated while it is mapped, an
+// access past the new end raises SIGBUS; the registration lets the handler name the file
+// (core/signal_cleanup.h) instead of dying silently.
 struct Mapping {
   void* address = MAP_FAILED;
   std::size_t size = 0;
+  std::unique_ptr<MappingRegistration> registration;
   ~Mapping() {
+    registration.reset();
     if (address != MAP_FAILED) ::munmap(address, size);
   }
 };
 
-std::shared_ptr<Mapping> MapFile(const Fd& fd) {
+std::shared_ptr<Mapping> MapFile(const InputFile& fd) {
   auto m = std::make_shared<Mapping>();
   m->size = fd.size();
-  m->address = ::mmap(nullptr, m->size, PROT_READ, MAP_PRIVATE, fd.get(), 0);
+  m->address = ::mmap(nullptr, m->size, PROT_READ, MAP_PRIVATE, fd.fd(), 0);
   if (m->address == MAP_FAILED)
     throw Error(fmt::format("{}: cannot map: {}", fd.name(), std::strerror(errno)));
+  m->registration = std::make_unique<MappingRegistration>(m->address, m->size, fd.name());
   ::madvise(m->address, m->size, MADV_WILLNEED);
   return m;
 }
@@ -329,16 +301,20 @@ void WriteLightField(const LightField& lf, const std::filesystem::path& path,
 }
 
 LightFieldHeader ReadLightFieldHeader(const std::filesystem::path& path) {
-  const Fd fd(path);
+  const InputFile fd(path);
   return ParseHeader(fd).header;
 }
 
 LightField ReadLightField(const std::filesystem::path& path, const LightFieldReadOptions& options) {
-  const Fd fd(path);
+  const InputFile fd(path);
   const ParsedFile parsed = ParseHeader(fd);
   const auto& h = parsed.header;
   const std::size_t view_bytes = h.dims.samples_per_view() * 3 * BytesPerChannel(h.sample_type);
   const std::size_t total = view_bytes * h.dims.view_count();
+  // Decoded (zstd) or read samples take memory; mapped ones do not.
+  if (h.compression == Compression::kZstd || !options.memory_map)
+    RequireMemory(double(total), fmt::format("{}: reading {} of samples", fd.name(),
+                                             HumanBytes(double(total))));
 
   // The stored bytes, in place (mapped) or read into memory.
   std::shared_ptr<Mapping> mapping;

@@ -5,6 +5,8 @@
 #include <nlohmann/json.hpp>
 
 #include "lfcam/core/error.h"
+#include "lfcam/core/json_input.h"
+#include "lfcam/core/limits.h"
 
 namespace lfcam {
 
@@ -29,12 +31,6 @@ void RequireOrthogonal(const Vec3& a, const Vec3& b, const char* names) {
   if (std::abs(a.dot(b)) > 1e-6) throw Error(fmt::format("slab: {} must be orthogonal", names));
 }
 
-Vec3 ReadVec3(const nlohmann::json& j, const char* name) {
-  const auto& a = j.at(name);
-  if (!a.is_array() || a.size() != 3) throw Error(fmt::format("slab: {} must be [x, y, z]", name));
-  return {a[0].get<double>(), a[1].get<double>(), a[2].get<double>()};
-}
-
 }  // namespace
 
 void Slab::validate() const {
@@ -47,7 +43,7 @@ void Slab::validate() const {
   if (uv.u_ca.cross(uv.v_ca).dot(uv.n_ca) < 0)
     throw Error("slab: (u_ca, v_ca, n_ca) must be right-handed");
   if (!uv.p_ca.allFinite()) throw Error("slab: p_ca must be finite");
-  if (uv.rows < 1 || uv.cols < 1 || uv.rows > 4096 || uv.cols > 4096)
+  if (uv.rows < 1 || uv.cols < 1 || uv.rows > kMaxViewsPerSide || uv.cols > kMaxViewsPerSide)
     throw Error(fmt::format("slab: array grid {}x{} is out of range", uv.rows, uv.cols));
   if (!(uv.pitch_mm > 0) || !std::isfinite(uv.pitch_mm))
     throw Error("slab: pitch_mm must be positive");
@@ -86,27 +82,26 @@ void to_json(nlohmann::json& j, const Slab& slab) {
 }
 
 void from_json(const nlohmann::json& j, Slab& slab) {
-  try {
-    slab.uv.p_ca = ReadVec3(j, "p_ca");
-    slab.uv.u_ca = ReadVec3(j, "u_ca");
-    slab.uv.v_ca = ReadVec3(j, "v_ca");
-    slab.uv.n_ca = ReadVec3(j, "n_ca");
-    slab.uv.rows = j.at("rows").get<int>();
-    slab.uv.cols = j.at("cols").get<int>();
-    slab.uv.pitch_mm = j.at("pitch_mm").get<double>();
-    const auto& w = j.at("view_window");
-    slab.st.origin = ReadVec3(w, "origin");
-    slab.st.x_axis = ReadVec3(w, "x_axis");
-    slab.st.y_axis = ReadVec3(w, "y_axis");
-    slab.st.width_mm = w.at("width_mm").get<double>();
-    slab.st.height_mm = w.at("height_mm").get<double>();
-    const auto& d = j.at("st_domain");
-    if (!d.is_array() || d.size() != 4) throw Error("slab: st_domain must be [s0, t0, s1, t1]");
-    slab.st_domain = {d[0].get<double>(), d[1].get<double>(), d[2].get<double>(),
-                      d[3].get<double>()};
-  } catch (const nlohmann::json::exception& e) {
-    throw Error(fmt::format("slab: {}", e.what()));
-  }
+  const std::string where = "slab";
+  slab.uv.p_ca = JsonVec3(j, "p_ca", where);
+  slab.uv.u_ca = JsonVec3(j, "u_ca", where);
+  slab.uv.v_ca = JsonVec3(j, "v_ca", where);
+  slab.uv.n_ca = JsonVec3(j, "n_ca", where);
+  slab.uv.rows = int(JsonInteger(j, "rows", 1, kMaxViewsPerSide, where));
+  slab.uv.cols = int(JsonInteger(j, "cols", 1, kMaxViewsPerSide, where));
+  slab.uv.pitch_mm = JsonNumber(j, "pitch_mm", where);
+  const auto& w = JsonField(j, "view_window", "slab");
+  const std::string window = "slab: view_window";
+  slab.st.origin = JsonVec3(w, "origin", window);
+  slab.st.x_axis = JsonVec3(w, "x_axis", window);
+  slab.st.y_axis = JsonVec3(w, "y_axis", window);
+  slab.st.width_mm = JsonNumber(w, "width_mm", window);
+  slab.st.height_mm = JsonNumber(w, "height_mm", window);
+  const auto& d = JsonField(j, "st_domain", where);
+  if (!d.is_array() || d.size() != 4) throw Error("slab: st_domain must be [s0, t0, s1, t1]");
+  const std::string domain = "slab: st_domain";
+  slab.st_domain = {JsonNumber(d[0], "", domain), JsonNumber(d[1], "", domain),
+                    JsonNumber(d[2], "", domain), JsonNumber(d[3], "", domain)};
   slab.validate();
 }
 

@@ -69,6 +69,8 @@ RenderResult RenderLightFieldCpu(const LightField& lf, const VirtualCamera& came
       }
     }
     hits_per_thread.local() += hits_here;
+    if (options.progress)
+      options.progress(std::int64_t(tile.rows().size()) * std::int64_t(tile.cols().size()));
   };
   const auto render = [&] {
     tbb::parallel_for(tbb::blocked_range2d<int>(0, camera.height(), 16, 0, camera.width(), 16),

@@ -4,6 +4,7 @@
 #include <opencv2/core.hpp>
 
 #include "lfcam/core/lightfield.h"
+#include "lfcam/core/progress.h"
 #include "lfcam/render/lightfield_sampler.h"
 #include "lfcam/render/virtual_camera.h"
 
@@ -12,6 +13,7 @@ namespace lfcam {
 struct CpuRenderOptions {
   int threads = 0;  // 0: all cores; 1: the paper's single-threaded CPU column
   Interpolation interpolation = Interpolation::kQuadrilinear;  // the paper's
+  ProgressCallback progress;  // told the pixels done, tile by tile (may be empty)
 };
 
 struct RenderResult {

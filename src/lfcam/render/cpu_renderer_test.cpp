@@ -60,8 +60,8 @@ TEST(CpuRenderer, APlaneInTheStPlaneIsSeenTheSameFromAnywhere) {
 TEST(CpuRenderer, OneThreadAndManyGiveIdenticalImages) {
   const LightField lf = BoardInTheStPlane();
   const VirtualCamera camera(Camera(Vec3(290, 280, 3600), 80));
-  const auto one = RenderLightFieldCpu(lf, camera, {1});
-  const auto many = RenderLightFieldCpu(lf, camera, {0});
+  const auto one = RenderLightFieldCpu(lf, camera, {1, Interpolation::kQuadrilinear, {}});
+  const auto many = RenderLightFieldCpu(lf, camera, {0, Interpolation::kQuadrilinear, {}});
   EXPECT_EQ(cv::norm(one.image, many.image, cv::NORM_INF), 0.0);
   EXPECT_EQ(one.rays_hit, many.rays_hit);
 }
@@ -118,7 +118,7 @@ TEST(CpuRenderer, FocalPlaneLookupRemovesGhostsOnThePlaneOfFocus) {
   const cv::Mat truth = LinearToSrgb8Image(RenderSceneOracle(scene, camera));
   const cv::Mat paper = LinearToSrgb8Image(RenderLightFieldCpu(lf, camera).image);
   const cv::Mat focal =
-      LinearToSrgb8Image(RenderLightFieldCpu(lf, camera, {0, Interpolation::kFocalPlane}).image);
+      LinearToSrgb8Image(RenderLightFieldCpu(lf, camera, {0, Interpolation::kFocalPlane, {}}).image);
   const double paper_psnr = CompareImages(paper, truth).psnr_db;
   const double focal_psnr = CompareImages(focal, truth).psnr_db;
   std::cout << "[wall] quadrilinear " << paper_psnr << " dB, focal-plane " << focal_psnr << " dB\n";

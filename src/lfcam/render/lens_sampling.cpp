@@ -5,6 +5,11 @@
 #include <cstdint>
 #include <numbers>
 
+#include <fmt/format.h>
+
+#include "lfcam/core/error.h"
+#include "lfcam/core/limits.h"
+
 namespace lfcam {
 
 Vec2 SampleUniformDiskConcentric(const Vec2& u) {
@@ -24,7 +29,12 @@ Vec2 SampleUniformDiskConcentric(const Vec2& u) {
 
 int LensSampleCount(double lens_rate, double aperture_mm) {
   const double radius = aperture_mm / 2.0;
-  return std::max(1, int(std::lround(lens_rate * radius * radius / 210.0)));
+  const double n = std::round(lens_rate * radius * radius / 210.0);  // in double: never wraps
+  if (!(n <= kMaxLensSamples))
+    throw Error(fmt::format("lens sampling rate {} with a {} mm aperture asks for {:.4g} lens "
+                            "samples a pixel, more than the limit of {}",
+                            lens_rate, aperture_mm, n, kMaxLensSamples));
+  return std::max(1, int(n));
 }
 
 Vec2 Hammersley(int i, int n) {

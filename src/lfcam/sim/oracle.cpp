@@ -1,5 +1,6 @@
 #include "lfcam/sim/oracle.h"
 
+#include <fmt/format.h>
 #include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -8,6 +9,8 @@
 #include <cstdint>
 #include <numeric>
 
+#include "lfcam/core/error.h"
+#include "lfcam/core/limits.h"
 #include "lfcam/render/lens_sampling.h"
 
 namespace lfcam {
@@ -33,6 +36,9 @@ int CoprimeNear(int n) {
 }  // namespace
 
 int OracleSamplesPerPixel(const VirtualCamera& camera, const OracleOptions& options) {
+  if (options.samples_per_pixel > kMaxOracleSamples)
+    throw Error(fmt::format("{} oracle samples a pixel is more than the limit of {}",
+                            options.samples_per_pixel, kMaxOracleSamples));
   if (options.samples_per_pixel > 0) return options.samples_per_pixel;
   return camera.is_pinhole() ? 256 : 1024;
 }
@@ -73,6 +79,9 @@ cv::Mat RenderSceneOracle(const Scene& scene, const VirtualCamera& camera,
                             row[i] = cv::Vec3f(float(sum.x()), float(sum.y()), float(sum.z()));
                           }
                         }
+                        if (options.progress)
+                          options.progress(std::int64_t(r.rows().size()) *
+                                           std::int64_t(r.cols().size()));
                       });
   };
   if (options.threads > 0) {

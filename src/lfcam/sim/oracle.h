@@ -4,6 +4,7 @@
 // field rendering is measured against it.
 #include <opencv2/core.hpp>
 
+#include "lfcam/core/progress.h"
 #include "lfcam/render/virtual_camera.h"
 #include "lfcam/sim/scene.h"
 
@@ -13,6 +14,7 @@ struct OracleOptions {
   int samples_per_pixel = 0;  // 0: 256 for a pinhole, 1024 with an aperture (converged:
                               // oracle_test.cpp)
   int threads = 0;            // 0: all cores
+  ProgressCallback progress;  // told the pixels done (may be empty)
 };
 
 // The samples a pixel the oracle takes with these options.

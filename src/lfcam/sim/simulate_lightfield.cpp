@@ -4,18 +4,18 @@
 #include <fmt/format.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <unistd.h>
 
 #include <atomic>
 #include <chrono>
 #include <mutex>
 
 #include "lfcam/core/error.h"
+#include "lfcam/core/limits.h"
 
 namespace lfcam {
 
 ArrayPlane ResizeArray(const ArrayPlane& array, int rows, int cols) {
-  if (rows < 1 || cols < 1 || rows > 4096 || cols > 4096)
+  if (rows < 1 || cols < 1 || rows > kMaxViewsPerSide || cols > kMaxViewsPerSide)
     throw Error(fmt::format("camera grid {}x{} is out of range", rows, cols));
   const Vec3 center = array.center();
   ArrayPlane out = array;
@@ -26,18 +26,14 @@ ArrayPlane ResizeArray(const ArrayPlane& array, int rows, int cols) {
 }
 
 LightField SimulateLightField(const Scene& scene, const SimulateLightFieldOptions& o) {
-  if (o.n_s < 1 || o.n_t < 1 || o.n_s > 65536 || o.n_t > 65536)
+  if (o.n_s < 1 || o.n_t < 1 || o.n_s > kMaxStSamplesPerSide || o.n_t > kMaxStSamplesPerSide)
     throw Error(fmt::format("st resolution {}x{} is out of range", o.n_s, o.n_t));
   if (o.supersampling < 1 || o.supersampling > 16)
     throw Error(fmt::format("supersampling {} must be 1..16", o.supersampling));
   const double bytes =
       double(o.rows) * o.cols * o.n_s * o.n_t * 3 * double(BytesPerChannel(o.sample_type));
-  const double memory = double(::sysconf(_SC_PHYS_PAGES)) * double(::sysconf(_SC_PAGE_SIZE));
-  if (bytes > 0.8 * memory)
-    throw Error(
-        fmt::format("a {}x{} light field of {}x{} samples needs {:.1f} GB, more than this "
-                    "machine's memory ({:.1f} GB) allows",
-                    o.rows, o.cols, o.n_s, o.n_t, bytes / 1e9, memory / 1e9));
+  RequireMemory(bytes, fmt::format("a {}x{} light field of {}x{} samples", o.rows, o.cols, o.n_s,
+                                   o.n_t));
   Slab slab = scene.IdealSlab(o.st_domain);
   slab.uv = ResizeArray(slab.uv, o.rows, o.cols);
   slab.validate();

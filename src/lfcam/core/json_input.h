@@ -1,0 +1,37 @@
+#pragma once
+// Reading JSON that came from outside (file headers, manifests, calibration files, network
+// requests): the size and nesting are bounded before nlohmann parses anything, and values are
+// read exactly (an integer field holds an integer in range: no silent narrowing, wrapping or
+// truncation of 10.7 to 10). Every error names `where` (a file, a field path) and throws
+// lfcam::Error; no raw nlohmann message reaches a user.
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <string_view>
+
+#include "lfcam/core/geometry.h"
+#include "lfcam/core/limits.h"
+
+namespace lfcam {
+
+// The deepest nesting of arrays and objects in `text` (strings, escapes included, are skipped).
+int JsonNestingDepth(std::string_view text);
+
+// Parses `text` after checking its size (<= kMaxJsonBytes) and nesting (<= max_depth).
+nlohmann::json ParseJsonBounded(std::string_view text, const std::string& where,
+                                int max_depth = kMaxJsonDepth);
+
+// j[key] (or j itself when key is empty) as an exact integer in [min, max].
+std::int64_t JsonInteger(const nlohmann::json& j, const char* key, std::int64_t min,
+                         std::int64_t max, const std::string& where);
+std::uint64_t JsonUnsigned(const nlohmann::json& j, const char* key, std::uint64_t max,
+                           const std::string& where);
+// j[key] as a finite number (integers accepted).
+double JsonNumber(const nlohmann::json& j, const char* key, const std::string& where);
+std::string JsonString(const nlohmann::json& j, const char* key, const std::string& where);
+// j[key] as [x, y, z], each finite.
+Vec3 JsonVec3(const nlohmann::json& j, const char* key, const std::string& where);
+// j[key], which must be present (and an object when `object` is set).
+const nlohmann::json& JsonField(const nlohmann::json& j, const char* key, const std::string& where);
+
+}  // namespace lfcam
