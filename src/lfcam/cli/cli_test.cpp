@@ -2,6 +2,7 @@
 // bad input (missing files, corrupt files, wrong flags) giving a clear message, a non-zero exit
 // and nothing half-written.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <array>
@@ -133,6 +134,169 @@ TEST_F(Cli, BadInputFailsClearlyAndWritesNothing) {
   EXPECT_FALSE(fs::exists(Path("x.lf")));
   for (const auto& entry : fs::directory_iterator(*dir_))
     EXPECT_EQ(entry.path().string().find(".tmp-"), std::string::npos) << entry.path();
+}
+
+}  // namespace
+
+namespace {
+
+// Exit status: 0 success, 1 an error in the work, 2 bad usage (docs/cli.md).
+TEST_F(Cli, HelpListsTheCommandsAndExitCodesAreConsistent) {
+  CommandResult run = Lfcam("");
+  EXPECT_EQ(run.status, 0) << run.output;
+  for (const char* word : {"simulate", "render", "oracle", "info", "compare", "montage", "help",
+                           "Exit status"})
+    EXPECT_NE(run.output.find(word), std::string::npos) << word << "\n" << run.output;
+  run = Lfcam("help render");
+  EXPECT_EQ(run.status, 0);
+  EXPECT_NE(run.output.find("--lens-rate"), std::string::npos) << run.output;
+  EXPECT_EQ(Lfcam("help simulate lightfield").status, 0);
+  EXPECT_EQ(Lfcam("render --help").status, 0);
+  EXPECT_EQ(Lfcam("--version").status, 0);
+
+  struct Case {
+    std::string args;
+    int status;
+    std::string expect;
+  };
+  const std::string lf = Path("small.lf"), out = " --out " + Path("x.png");
+  const std::vector<Case> cases = {
+      {"help nosuch", 2, "nosuch"},
+      {"frobnicate", 2, "frobnicate"},
+      {"render " + lf + out + " --bogus", 2, "--bogus"},
+      {"render " + lf, 2, "--out"},
+      {"render " + lf + out + " --size 0", 2, "--size"},
+      {"render " + lf + out + " --size 10.5", 2, "--size"},
+      {"render " + lf + out + " --size 16385", 2, "16384"},
+      {"render " + lf + out + " --threads -1", 2, "--threads"},
+      {"render " + lf + out + " --threads 4294967297", 2, "--threads"},
+      {"render " + lf + out + " --focus-distance 100", 2, "--focus-distance"},
+      {"render " + lf + out + " --interpolation cubic", 2, "--interpolation"},
+      {"render " + lf + out + " --eye 1,2,3 --look-at 1,2,3", 2, "coincide"},
+      {"oracle --scene nowhere" + out, 2, "--scene"},
+      {"oracle" + out + " --samples 100000000", 2, "--samples"},
+      {"simulate lightfield --grid 5000x2 --out " + Path("x.lf"), 2, "--grid"},
+      {"simulate lightfield --supersampling 0 --out " + Path("x.lf"), 2, "--supersampling"},
+      {"simulate lightfield --st-res 65536x65536 --out " + Path("x.lf"), 2, "memory limit"},
+      {"render " + Path("missing.lf") + out, 1, "missing.lf"},
+      {"info " + Path("missing.lf"), 1, "no such file"},
+      {"compare " + lf + " " + lf, 1, "not a PNG or JPEG"},
+  };
+  for (const auto& c : cases) {
+    run = Lfcam(c.args);
+    EXPECT_EQ(run.status, c.status) << c.args << "\n" << run.output;
+    EXPECT_NE(run.output.find(c.expect), std::string::npos) << c.args << "\n" << run.output;
+    EXPECT_EQ(run.output.find("terminate called"), std::string::npos) << run.output;
+  }
+  EXPECT_FALSE(fs::exists(Path("x.png")));
+  EXPECT_FALSE(fs::exists(Path("x.lf")));
+}
+
+TEST_F(Cli, FlagsAndOutputsAreCheckedBeforeTheInputIsRead) {
+  // The input does not exist: an error about a flag or an output proves they came first.
+  const std::string missing = "render " + Path("missing.lf");
+  CommandResult run = Lfcam(missing + " --size 0 --out " + Path("x.png"));
+  EXPECT_EQ(run.status, 2);
+  EXPECT_NE(run.output.find("--size"), std::string::npos) << run.output;
+  run = Lfcam(missing + " --out " + Path("no/such/dir/x.png"));
+  EXPECT_EQ(run.status, 2);
+  EXPECT_NE(run.output.find("--out"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("does not exist"), std::string::npos) << run.output;
+  run = Lfcam(missing + " --out " + Path("x.tiff"));
+  EXPECT_EQ(run.status, 2);
+  EXPECT_NE(run.output.find(".tiff"), std::string::npos) << run.output;
+  run = Lfcam(missing + " --out /proc/x.png");
+  EXPECT_EQ(run.status, 2);
+  EXPECT_NE(run.output.find("cannot write in /proc"), std::string::npos) << run.output;
+  EXPECT_EQ(run.output.find("Success"), std::string::npos) << run.output;
+  // Two outputs: both can be written, or the command does not start.
+  run = Lfcam("render " + Path("small.lf") + " --size 8 --out " + Path("both.png") +
+              " --hit-mask " + Path("no/dir/mask.png"));
+  EXPECT_EQ(run.status, 2);
+  EXPECT_FALSE(fs::exists(Path("both.png")));
+}
+
+TEST_F(Cli, WorkDerivedFromFlagsIsBoundedAndNamesTheFlag) {
+  CommandResult run = Lfcam("render " + Path("small.lf") +
+                            " --lens-rate 68359375 --aperture 512 --out " + Path("x.png"));
+  EXPECT_EQ(run.status, 2);
+  EXPECT_NE(run.output.find("--lens-rate"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("131072"), std::string::npos) << run.output;
+  run = Lfcam("render " + Path("small.lf") + " --aperture 1e30 --out " + Path("x.png"));
+  EXPECT_EQ(run.status, 2);
+  EXPECT_NE(run.output.find("--aperture"), std::string::npos) << run.output;
+  ASSERT_EQ(Lfcam("render " + Path("small.lf") + " --size 8 --quiet --out " + Path("t.png")).status,
+            0);
+  run = Lfcam("montage " + Path("t.png") + " --tile-width 100000 --out " + Path("x.png"));
+  EXPECT_EQ(run.status, 2);
+  EXPECT_NE(run.output.find("--tile-width"), std::string::npos) << run.output;
+  run = Lfcam("montage " + Path("t.png") + " " + Path("t.png") +
+              " --tile-width 9000 --out " + Path("x.png"));
+  EXPECT_EQ(run.status, 2);
+  EXPECT_NE(run.output.find("limit"), std::string::npos) << run.output;
+  EXPECT_FALSE(fs::exists(Path("x.png")));
+}
+
+TEST_F(Cli, JsonOutputIsValidJsonAndSaysWhatHappened) {
+  CommandResult run = Lfcam("info --verify --json " + Path("small.lf"));
+  ASSERT_EQ(run.status, 0) << run.output;
+  auto j = nlohmann::json::parse(run.output);
+  EXPECT_EQ(j["verified"], true);
+  ASSERT_EQ(Lfcam("render " + Path("small.lf") + " --size 8 --out " + Path("j.png")).status, 0);
+  run = Lfcam("compare --json " + Path("j.png") + " " + Path("j.png"));
+  ASSERT_EQ(run.status, 0) << run.output;
+  j = nlohmann::json::parse(run.output);
+  EXPECT_EQ(j["identical"], true);
+  EXPECT_TRUE(j["psnr_db"].is_null());
+  EXPECT_EQ(run.output.find("inf"), std::string::npos);
+  // Errors under --json are JSON too (on stdout), with the exit status in them.
+  run = Lfcam("info --json " + Path("missing.lf") + " 2>/dev/null");
+  EXPECT_EQ(run.status, 1);
+  j = nlohmann::json::parse(run.output);
+  EXPECT_NE(j["error"].get<std::string>().find("missing.lf"), std::string::npos);
+  EXPECT_EQ(j["exit_status"], 1);
+  run = Lfcam("info --json --bogus " + Path("small.lf") + " 2>/dev/null");
+  EXPECT_EQ(run.status, 2);
+  EXPECT_EQ(nlohmann::json::parse(run.output)["exit_status"], 2);
+}
+
+TEST_F(Cli, ProgressIsDrawnOnlyOnATerminal) {
+  const std::string render = "render " + Path("small.lf") + " --size 64 --aperture 96 --out ";
+  // popen: stdout and stderr are pipes, so no progress bar.
+  CommandResult run = Lfcam(render + Path("p.png"));
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_EQ(run.output.find('\r'), std::string::npos) << run.output;
+  if (std::system("command -v script >/dev/null 2>&1") != 0)
+    GTEST_SKIP() << "util-linux `script` is not installed: no terminal to test with";
+  // Under a pseudo-terminal the bar is drawn; --quiet silences it.
+  const std::string tty = "script -qec '" + std::string(LFCAM_CLI_PATH) + " ";
+  run = Lfcam("x >/dev/null; " + tty + render + Path("q.png") + " --repeat 40' /dev/null");
+  EXPECT_NE(run.output.find("rendering"), std::string::npos) << run.output;
+  run = Lfcam("x >/dev/null; " + tty + render + Path("q.png") + " --repeat 40 --quiet' /dev/null");
+  EXPECT_EQ(run.output.find("rendering"), std::string::npos) << run.output;
+}
+
+TEST_F(Cli, SpecialAndHugeInputsAreRefusedQuickly) {
+  const std::string fifo = Path("pipe.lf");
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  CommandResult run = Lfcam("info " + fifo);
+  EXPECT_EQ(run.status, 1);
+  EXPECT_NE(run.output.find("FIFO"), std::string::npos) << run.output;
+  run = Lfcam("compare " + fifo + " " + fifo);
+  EXPECT_EQ(run.status, 1);
+  EXPECT_NE(run.output.find("FIFO"), std::string::npos) << run.output;
+  // A PNG whose header claims 20000 x 20000 pixels.
+  ASSERT_EQ(Lfcam("render " + Path("small.lf") + " --size 8 --out " + Path("b.png")).status, 0);
+  {
+    std::fstream png(Path("b.png"), std::ios::in | std::ios::out | std::ios::binary);
+    const char size[8] = {0, 0, 0x4e, 0x20, 0, 0, 0x4e, 0x20};
+    png.seekp(16);
+    png.write(size, 8);
+  }
+  run = Lfcam("compare " + Path("b.png") + " " + Path("b.png"));
+  EXPECT_EQ(run.status, 1);
+  EXPECT_NE(run.output.find("20000x20000 PNG image is larger than the limit"), std::string::npos)
+      << run.output;
 }
 
 }  // namespace

@@ -81,6 +81,13 @@ int main(int argc, char** argv) {
   }
   app.require_subcommand(1);
   const bool json = WantsJson(argc, argv);
+  if (argv[1][0] != '-') {
+    bool known = false;
+    for (const CLI::App* sub : app.get_subcommands({})) known |= sub->get_name() == argv[1];
+    if (!known)
+      return Report(json, kExitUsage,
+                    fmt::format("'{}' is not an lfcam command (see `lfcam help`)", argv[1]));
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp&) {

@@ -56,6 +56,9 @@ nlohmann::json ParseJsonBounded(std::string_view text, const std::string& where,
     return nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {
     throw Error(fmt::format("{}: malformed JSON at byte {}", where, e.byte));
+  } catch (const nlohmann::json::exception&) {
+    // out_of_range 406: a number beyond a double's range (found by json_input_fuzz).
+    throw Error(fmt::format("{}: JSON holds a number out of range", where));
   }
 }
 

@@ -1,0 +1,41 @@
+// libFuzzer target: the flag parsers (numbers, vectors, sizes) and the virtual camera flags,
+// validated and turned into a camera, with values a user could type.
+#include <fuzzer/FuzzedDataProvider.h>
+
+#include <cstdint>
+
+#include "lfcam/cli/camera_flags.h"
+#include "lfcam/cli/parse.h"
+#include "lfcam/core/error.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  FuzzedDataProvider in(data, size);
+  lfcam::cli::CameraFlags flags;
+  flags.size = in.ConsumeRandomLengthString(24);
+  if (in.ConsumeBool()) flags.eye = in.ConsumeRandomLengthString(48);
+  if (in.ConsumeBool()) flags.look_at = in.ConsumeRandomLengthString(48);
+  if (in.ConsumeBool()) flags.up = in.ConsumeRandomLengthString(48);
+  flags.focal_length_mm = in.ConsumeFloatingPoint<double>();
+  flags.focus_distance_mm = in.ConsumeFloatingPoint<double>();
+  flags.aperture_mm = in.ConsumeFloatingPoint<double>();
+  flags.lens_rate = in.ConsumeFloatingPoint<double>();
+  flags.no_breathing = in.ConsumeBool();
+  try {
+    flags.Validate();
+    const lfcam::VirtualCamera camera = flags.MakeCamera(lfcam::ArrayPlane{});
+    if (camera.lens_samples().empty()) std::abort();
+    (void)camera.pixel_direction(camera.width() - 1, camera.height() - 1);
+  } catch (const lfcam::Error&) {
+  }
+  const std::string text = in.ConsumeRemainingBytesAsString();
+  for (const char separator : {',', 'x'})
+    try {
+      lfcam::cli::ParseNumbers("--fuzz", text, 4, separator);
+    } catch (const lfcam::Error&) {
+    }
+  try {
+    lfcam::cli::ParseSize("--fuzz", text, 65536);
+  } catch (const lfcam::Error&) {
+  }
+  return 0;
+}
