@@ -2,6 +2,8 @@
 #include <fmt/core.h>
 
 #include <algorithm>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
 #include <memory>
 #include <sstream>
 
@@ -43,8 +45,21 @@ void AddMontageCommand(CLI::App& app) {
           "of {}",
           flags->tile_width, columns, width, kMaxImageSide));
     RequireImageOutput(flags->out, "--out");
+    // Each image is shrunk to its tile as soon as it is read: memory stays bounded by the sheet,
+    // however many images there are.
     std::vector<cv::Mat> images;
-    for (const auto& path : flags->images) images.push_back(ReadImageSrgb8(path));
+    for (const auto& path : flags->images) {
+      const cv::Mat image = ReadImageSrgb8(path);
+      const double height = std::round(double(image.rows) * flags->tile_width / image.cols);
+      if (height > kMaxImageSide)
+        throw UsageError(fmt::format("{}: a {}x{} image is {:.0f} pixels tall at --tile-width {}, "
+                                     "more than the limit of {}",
+                                     path, image.cols, image.rows, height, flags->tile_width,
+                                     kMaxImageSide));
+      cv::Mat tile;
+      cv::resize(image, tile, {flags->tile_width, std::max(1, int(height))}, 0, 0, cv::INTER_AREA);
+      images.push_back(tile);
+    }
     std::vector<std::string> labels;
     std::stringstream stream(flags->labels);
     for (std::string label; std::getline(stream, label, ';');) labels.push_back(label);

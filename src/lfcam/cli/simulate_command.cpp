@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <memory>
 
 #include "lfcam/cli/commands.h"
@@ -56,6 +57,10 @@ void AddSimulateCommand(CLI::App& app) {
     if (!(d[2] > d[0]) || !(d[3] > d[1]))
       throw UsageError(
           fmt::format("--st-domain: '{}' needs S1 > S0 and T1 > T0", flags->st_domain));
+    for (const double x : d)
+      if (std::abs(x) > kMaxStDomainBound)
+        throw UsageError(fmt::format("--st-domain: {} is outside -{}..{}", x, kMaxStDomainBound,
+                                     kMaxStDomainBound));
     o.st_domain = {d[0], d[1], d[2], d[3]};
     o.supersampling = flags->supersampling;
     o.sample_type =

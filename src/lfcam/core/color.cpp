@@ -11,7 +11,8 @@ float SrgbToLinear(float encoded) {
 }
 
 float LinearToSrgb(float linear) {
-  const float x = std::clamp(linear, 0.0f, 1.0f);
+  // NaN (a corrupt sample, a 0/0) encodes as black, +inf as white: never an undefined cast.
+  const float x = linear > 0.0f ? std::min(linear, 1.0f) : 0.0f;
   if (x <= 0.0031308f) return 12.92f * x;
   return 1.055f * std::pow(x, 1.0f / 2.4f) - 0.055f;
 }

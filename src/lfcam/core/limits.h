@@ -12,6 +12,7 @@ inline constexpr int kMaxStSamplesPerSide = 65536;    // st samples per view, a 
 inline constexpr int kMaxLensSamples = 1 << 17;       // n_ls, rays a pixel
 inline constexpr int kMaxOracleSamples = 1 << 16;     // oracle samples a pixel
 inline constexpr int kMaxThreads = 1024;
+inline constexpr double kMaxStDomainBound = 1000.0;  // |s|, |t| of the sampled st domain
 inline constexpr std::uint64_t kMaxLightFieldBytes = std::uint64_t(1) << 36;  // 64 GiB of samples
 inline constexpr int kMaxJsonDepth = 64;              // nesting of any JSON lfcam reads
 inline constexpr std::uint64_t kMaxJsonBytes = 16u << 20;

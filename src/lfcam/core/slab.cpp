@@ -33,7 +33,36 @@ void RequireOrthogonal(const Vec3& a, const Vec3& b, const char* names) {
 
 }  // namespace
 
+namespace {
+
+// Geometry beyond these is a corrupt file, not a camera array: positions within 1000 km, sizes
+// from a micrometre to 1000 km, st domains within 1000 view windows of the board.
+constexpr double kMaxCoordinateMm = 1e9, kMinSizeMm = 1e-3, kMaxStDomain = kMaxStDomainBound;
+
+void RequireBounded(const Vec3& p, const char* name) {
+  if (!p.allFinite() || p.cwiseAbs().maxCoeff() > kMaxCoordinateMm)
+    throw Error(fmt::format("slab: {} must be finite and within {} mm of the origin", name,
+                            kMaxCoordinateMm));
+}
+
+void RequireSize(double mm, const char* name) {
+  if (!(mm >= kMinSizeMm && mm <= kMaxCoordinateMm))
+    throw Error(fmt::format("slab: {} {} mm must be between {} and {} mm", name, mm, kMinSizeMm,
+                            kMaxCoordinateMm));
+}
+
+}  // namespace
+
 void Slab::validate() const {
+  RequireBounded(uv.p_ca, "p_ca");
+  RequireBounded(st.origin, "view window origin");
+  RequireSize(uv.pitch_mm, "pitch_mm");
+  RequireSize(st.width_mm, "view window width");
+  RequireSize(st.height_mm, "view window height");
+  for (const double x : {st_domain.s0, st_domain.s1, st_domain.t0, st_domain.t1})
+    if (!(std::abs(x) <= kMaxStDomain))
+      throw Error(fmt::format("slab: st domain bound {} is outside -{}..{}", x, kMaxStDomain,
+                              kMaxStDomain));
   RequireUnit(uv.u_ca, "u_ca");
   RequireUnit(uv.v_ca, "v_ca");
   RequireUnit(uv.n_ca, "n_ca");

@@ -2,8 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <functional>
 #include <nlohmann/json.hpp>
 
+#include "lfcam/core/color.h"
 #include "lfcam/core/error.h"
 
 namespace lfcam {
@@ -82,6 +85,40 @@ TEST(Slab, DegenerateGeometryIsRejectedByName) {
   slab = PaperLikeSlab();
   slab.st_domain = {1, 0, 0, 1};
   EXPECT_THROW(slab.validate(), Error);
+}
+
+}  // namespace
+}  // namespace lfcam
+
+namespace lfcam {
+namespace {
+
+TEST(SlabBounds, AbsurdGeometryIsRefused) {
+  const auto refused = [](const std::function<void(Slab&)>& edit) {
+    Slab slab;
+    slab.uv.p_ca = Vec3(0, 0, 3600);
+    edit(slab);
+    try {
+      slab.validate();
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_EQ(refused([](Slab&) {}), "");
+  EXPECT_NE(refused([](Slab& s) { s.uv.p_ca.x() = 1e300; }).find("p_ca"), std::string::npos);
+  EXPECT_NE(refused([](Slab& s) { s.uv.pitch_mm = 1e300; }).find("pitch_mm"), std::string::npos);
+  EXPECT_NE(refused([](Slab& s) { s.st.width_mm = 1e-30; }).find("width"), std::string::npos);
+  EXPECT_NE(refused([](Slab& s) { s.st_domain.s1 = 1e308; }).find("st domain"), std::string::npos);
+  EXPECT_NE(refused([](Slab& s) { s.st.origin.z() = NAN; }).find("origin"), std::string::npos);
+}
+
+TEST(Color, NonFiniteLinearValuesEncodeWithoutUndefinedCasts) {
+  EXPECT_EQ(LinearToSrgb8(std::nanf("")), 0);
+  EXPECT_EQ(LinearToSrgb8(-INFINITY), 0);
+  EXPECT_EQ(LinearToSrgb8(INFINITY), 255);
+  EXPECT_EQ(LinearToSrgb8(2.0f), 255);
+  EXPECT_EQ(LinearToSrgb8(0.0f), 0);
 }
 
 }  // namespace
