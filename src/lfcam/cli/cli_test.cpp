@@ -147,6 +147,9 @@ TEST_F(Cli, HelpListsTheCommandsAndExitCodesAreConsistent) {
   for (const char* word : {"simulate", "render", "oracle", "info", "compare", "montage", "help",
                            "Exit status"})
     EXPECT_NE(run.output.find(word), std::string::npos) << word << "\n" << run.output;
+  run = Lfcam("help");
+  EXPECT_EQ(run.status, 0);
+  EXPECT_NE(run.output.find("montage"), std::string::npos) << run.output;
   run = Lfcam("help render");
   EXPECT_EQ(run.status, 0);
   EXPECT_NE(run.output.find("--lens-rate"), std::string::npos) << run.output;

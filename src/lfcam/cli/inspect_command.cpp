@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "lfcam/cli/commands.h"
+#include "lfcam/core/error.h"
 #include "lfcam/core/image_io.h"
 #include "lfcam/core/image_metrics.h"
 #include "lfcam/core/lightfield_file.h"
@@ -109,7 +110,12 @@ void AddCompareCommand(CLI::App& app) {
   compare->callback([flags] {
     const cv::Mat a = ReadImageSrgb8(flags->a), b = ReadImageSrgb8(flags->b);
     const cv::Mat mask = flags->mask.empty() ? cv::Mat() : ReadMask(flags->mask);
-    const ImageComparison r = CompareImages(a, b, mask);
+    ImageComparison r;
+    try {
+      r = CompareImages(a, b, mask);
+    } catch (const Error& e) {
+      throw Error(fmt::format("{} and {}: {}", flags->a, flags->b, e.what()));
+    }
     if (flags->json) {
       // JSON has no infinity: identical images have "psnr_db": null and "identical": true.
       const bool identical = std::isinf(r.psnr_db);

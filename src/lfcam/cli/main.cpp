@@ -47,6 +47,7 @@ void AddHelpCommand(CLI::App& app) {
   help->add_option("command", *words, "A command (and subcommand), e.g. render or simulate lightfield");
   help->callback([&app, help, words] {
     const CLI::App* target = &app;
+    std::string usage = app.get_name();
     for (const auto& word : *words) {
       const CLI::App* next = nullptr;
       for (const CLI::App* sub : target->get_subcommands({}))
@@ -54,8 +55,11 @@ void AddHelpCommand(CLI::App& app) {
       if (!next || next == help)
         throw lfcam::UsageError(fmt::format("help: no command '{}' (try `lfcam help`)", word));
       target = next;
+      usage += " " + word;
     }
-    fmt::print("{}", target->help());
+    // The formatter directly: App::help() would describe the selected subcommand, `help` itself.
+    fmt::print("{}", target->get_formatter()->make_help(
+                         target, usage, CLI::AppFormatMode::Normal));
   });
 }
 
@@ -63,7 +67,8 @@ void AddHelpCommand(CLI::App& app) {
 
 int main(int argc, char** argv) {
   lfcam::InstallSignalCleanup();
-  CLI::App app{"lfcam: capture, calibrate and render 4D light fields (An et al.'s DIY array)"};
+  CLI::App app{"lfcam: capture, calibrate and render 4D light fields (An et al.'s DIY array)",
+               "lfcam"};
   app.set_version_flag("--version", "lfcam 0.1.0");
   app.footer(
       "Run `lfcam help COMMAND` for a command's flags.\n"

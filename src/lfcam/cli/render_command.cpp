@@ -75,6 +75,10 @@ void AddRenderCommand(CLI::App& app) {
         "--interpolation", [&] { return InterpolationFromString(flags->interpolation); });
     flags->camera.Validate();
     RequireImageOutput(flags->out, "--out");
+    std::error_code ec;
+    if (std::filesystem::equivalent(flags->input, flags->out, ec))
+      throw UsageError(fmt::format("--out {}: is the input light field; choose another name",
+                                   flags->out));
     if (!flags->hit_mask.empty()) {
       RequireImageOutput(flags->hit_mask, "--hit-mask");
       if (std::filesystem::absolute(flags->hit_mask) == std::filesystem::absolute(flags->out))

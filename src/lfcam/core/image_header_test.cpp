@@ -8,6 +8,7 @@
 
 #include "lfcam/core/error.h"
 #include "lfcam/core/image_io.h"
+#include "lfcam/core/test_support.h"
 
 namespace lfcam {
 namespace {
@@ -25,14 +26,7 @@ void PutBigEndian32(std::uint8_t* p, std::uint32_t v) {
   p[3] = std::uint8_t(v);
 }
 
-std::string ErrorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using testing::ErrorOf;
 
 TEST(ImageHeader, ReadsPngAndJpegSizesWithoutDecoding) {
   const cv::Mat rgb(37, 53, CV_8UC3, cv::Scalar(10, 200, 30));
@@ -65,9 +59,11 @@ TEST(ImageHeader, DecompressionBombsAreRefusedBeforeDecoding) {
   // Within the side limit but not within memory.
   PutBigEndian32(&png[16], 16000);
   PutBigEndian32(&png[20], 16000);
-  ::setenv("LFCAM_MEMORY_LIMIT", "64M", 1);
-  const std::string error = ErrorOf([&] { DecodeImageBytes(png, "big.png"); });
-  ::unsetenv("LFCAM_MEMORY_LIMIT");
+  std::string error;
+  {
+    const testing::ScopedEnv limit("LFCAM_MEMORY_LIMIT", "64M");
+    error = ErrorOf([&] { DecodeImageBytes(png, "big.png"); });
+  }
   EXPECT_NE(error.find("memory limit"), std::string::npos) << error;
   // Truncated headers are refused by the probe.
   EXPECT_NE(ErrorOf([&] { DecodeImageBytes(std::span(png.data(), 20), "cut.png"); })
@@ -84,20 +80,20 @@ TEST(ImageHeader, RandomlyCorruptedImagesDecodeOrAreRefusedCleanly) {
   int refused = 0;
   for (const char* ext : {".png", ".jpg"}) {
     const auto good = Encode(noise, ext);
-    for (int trial = 0; trial < 300; ++trial) {
-      auto bad = good;
-      const std::size_t at = rng() % bad.size();
-      switch (rng() % 3) {
-        case 0: bad[at] = std::uint8_t(rng()); break;
-        case 1: bad.resize(at + 1); break;
-        default: bad[rng() % std::min<std::size_t>(bad.size(), 40)] ^= std::uint8_t(1 << (rng() % 8));
-      }
-      try {
-        DecodeImageBytes(bad, "mutant");
-      } catch (const Error&) {
-        ++refused;
-      }
-    }
+    refused += testing::CountRefused(
+        300,
+        [&](int) {
+          auto bad = good;
+          const std::size_t at = rng() % bad.size();
+          switch (rng() % 3) {
+            case 0: bad[at] = std::uint8_t(rng()); break;
+            case 1: bad.resize(at + 1); break;
+            default:
+              bad[rng() % std::min<std::size_t>(bad.size(), 40)] ^= std::uint8_t(1 << (rng() % 8));
+          }
+          return bad;
+        },
+        [](const std::vector<std::uint8_t>& bad) { DecodeImageBytes(bad, "mutant"); });
   }
   EXPECT_GT(refused, 50);
 }

@@ -6,18 +6,12 @@
 #include <string>
 
 #include "lfcam/core/error.h"
+#include "lfcam/core/test_support.h"
 
 namespace lfcam {
 namespace {
 
-std::string ErrorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using testing::ErrorOf;
 
 TEST(JsonInput, NestingDepthSkipsStringsAndEscapes) {
   EXPECT_EQ(JsonNestingDepth("1"), 0);
@@ -81,17 +75,15 @@ TEST(JsonInput, RandomDocumentsParseOrAreRefusedCleanly) {
   const char* pieces[] = {"[", "]", "{", "}", "\"", "\\", ":", ",", "1", "-", "e9", ".5",
                           "true", "null", "\"k\"", " ", "\xff", "\"\\u00"};
   std::mt19937 rng(5);
-  int refused = 0;
-  for (int trial = 0; trial < 3000; ++trial) {
-    std::string text;
-    const int n = 1 + int(rng() % 200);
-    for (int i = 0; i < n; ++i) text += pieces[rng() % std::size(pieces)];
-    try {
-      ParseJsonBounded(text, "random");
-    } catch (const Error&) {
-      ++refused;
-    }
-  }
+  const int refused = testing::CountRefused(
+      3000,
+      [&](int) {
+        std::string text;
+        const int n = 1 + int(rng() % 200);
+        for (int i = 0; i < n; ++i) text += pieces[rng() % std::size(pieces)];
+        return text;
+      },
+      [](const std::string& text) { ParseJsonBounded(text, "random"); });
   EXPECT_GT(refused, 2000);
 }
 

@@ -15,6 +15,7 @@
 
 #include "lfcam/core/error.h"
 #include "lfcam/core/signal_cleanup.h"
+#include "lfcam/core/test_support.h"
 
 namespace lfcam {
 namespace {
@@ -105,15 +106,7 @@ class LightFieldFileTest : public ::testing::Test {
   fs::path dir_;
 };
 
-// Sets an environment variable for the life of the object.
-class ScopedEnv {
- public:
-  ScopedEnv(const char* name, const char* value) : name_(name) { ::setenv(name, value, 1); }
-  ~ScopedEnv() { ::unsetenv(name_); }
-
- private:
-  const char* name_;
-};
+using testing::ScopedEnv;
 
 TEST_F(LightFieldFileTest, RoundTripsEveryTypeAndCompression) {
   for (const SampleType type : {SampleType::kSrgb8, SampleType::kLinearF16})

@@ -1,0 +1,49 @@
+#pragma once
+// Helpers shared by the tests (header-only; not part of the library).
+#include <cstdlib>
+#include <functional>
+#include <string>
+
+#include "lfcam/core/error.h"
+
+namespace lfcam::testing {
+
+// The message of the lfcam::Error that f() throws, or "" when it throws none.
+inline std::string ErrorOf(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// Sets an environment variable (LFCAM_MEMORY_LIMIT, say) for the life of the object.
+class ScopedEnv {
+ public:
+  ScopedEnv(const char* name, const char* value) : name_(name) { ::setenv(name, value, 1); }
+  ~ScopedEnv() { ::unsetenv(name_); }
+  ScopedEnv(const ScopedEnv&) = delete;
+  ScopedEnv& operator=(const ScopedEnv&) = delete;
+
+ private:
+  const char* name_;
+};
+
+// Runs `trials` inputs from make(trial) through consume(); counts those refused with
+// lfcam::Error. Anything else (another exception, a crash, a sanitizer report) fails the test.
+template <typename Make, typename Consume>
+int CountRefused(int trials, Make make, Consume consume) {
+  int refused = 0;
+  for (int trial = 0; trial < trials; ++trial) {
+    const auto input = make(trial);
+    try {
+      consume(input);
+    } catch (const Error&) {
+      ++refused;
+    }
+  }
+  return refused;
+}
+
+}  // namespace lfcam::testing
