@@ -37,7 +37,11 @@ void CameraFlags::AddTo(CLI::App& c) {
 }
 
 void CameraFlags::Validate() const {
-  ParseSize("--size", size, kMaxImageSide);
+  const auto [width, height] = ParseSize("--size", size, kMaxImageSide);
+  // The linear image, its hit mask and their encoded copies: about 25 bytes a pixel.
+  FlagValue("--size", [&] {
+    RequireMemory(25.0 * width * height, fmt::format("a {}x{} image", width, height));
+  });
   if (!eye.empty()) ParseVec3("--eye", eye);
   if (!look_at.empty()) ParseVec3("--look-at", look_at);
   if (!up.empty()) ParseVec3("--up", up);

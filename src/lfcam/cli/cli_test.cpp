@@ -12,6 +12,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "lfcam/core/test_support.h"
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -228,6 +230,15 @@ TEST_F(Cli, WorkDerivedFromFlagsIsBoundedAndNamesTheFlag) {
   run = Lfcam("render " + Path("small.lf") + " --aperture 1e30 --out " + Path("x.png"));
   EXPECT_EQ(run.status, 2);
   EXPECT_NE(run.output.find("--aperture"), std::string::npos) << run.output;
+  {
+    const lfcam::testing::ScopedEnv limit("LFCAM_MEMORY_LIMIT", "100M");
+    run = Lfcam("render " + Path("small.lf") + " --size 4096 --out " + Path("x.png"));
+    EXPECT_EQ(run.status, 2);
+    EXPECT_NE(run.output.find("--size: a 4096x4096 image needs"), std::string::npos) << run.output;
+    run = Lfcam("simulate lightfield --st-res 4096 --out " + Path("x.lf"));
+    EXPECT_EQ(run.status, 2);
+    EXPECT_NE(run.output.find("memory limit"), std::string::npos) << run.output;
+  }
   ASSERT_EQ(Lfcam("render " + Path("small.lf") + " --size 8 --quiet --out " + Path("t.png")).status,
             0);
   run = Lfcam("montage " + Path("t.png") + " --tile-width 100000 --out " + Path("x.png"));
