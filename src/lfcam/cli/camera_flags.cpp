@@ -37,10 +37,11 @@ void CameraFlags::AddTo(CLI::App& c) {
 }
 
 void CameraFlags::Validate() const {
-  const auto [width, height] = ParseSize("--size", size, kMaxImageSide);
+  const std::pair<int, int> image = ParseSize("--size", size, kMaxImageSide);
   // The linear image, its hit mask and their encoded copies: about 25 bytes a pixel.
   FlagValue("--size", [&] {
-    RequireMemory(25.0 * width * height, fmt::format("a {}x{} image", width, height));
+    RequireMemory(25.0 * image.first * image.second,
+                  fmt::format("a {}x{} image", image.first, image.second));
   });
   if (!eye.empty()) ParseVec3("--eye", eye);
   if (!look_at.empty()) ParseVec3("--look-at", look_at);
