@@ -97,6 +97,7 @@ void AddRenderCommand(CLI::App& app) {
       result = RenderLightFieldCpu(lf, camera, options);
       times_ms.push_back(SecondsSince(start) * 1e3);
     }
+    progress.finish();
     std::sort(times_ms.begin(), times_ms.end());
     std::vector<std::pair<std::filesystem::path, cv::Mat>> outputs = {{flags->out, result.image}};
     if (!flags->hit_mask.empty()) {
@@ -147,6 +148,7 @@ void AddOracleCommand(CLI::App& app) {
                          ProgressWanted(flags->quiet));
     const OracleOptions options{flags->samples, flags->threads, progress.callback()};
     const cv::Mat image = RenderSceneOracle(scene, camera, options);
+    progress.finish();
     WriteImage(flags->out, image);
     fmt::print("wrote {}: oracle of scene '{}', {}; {:.1f} s\n", flags->out, scene.name,
                DescribeCamera(camera, fmt::format("{} samples a pixel",

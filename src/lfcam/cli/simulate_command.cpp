@@ -82,6 +82,7 @@ void AddSimulateCommand(CLI::App& app) {
       o.progress = [advance](int, int) { advance(1); };
     const auto start = std::chrono::steady_clock::now();
     const LightField lf = SimulateLightField(scene, o);
+    progress.finish();
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     WriteLightField(lf, flags->out, w);

@@ -16,16 +16,22 @@ ProgressBar::ProgressBar(std::string label, std::int64_t total, bool enabled)
       start_(std::chrono::steady_clock::now()),
       last_draw_(start_) {}
 
-ProgressBar::~ProgressBar() {
-  if (enabled_ && drawn_) fmt::print(stderr, "\r\033[K");
+ProgressBar::~ProgressBar() { finish(); }
+
+void ProgressBar::finish() {
+  std::lock_guard lock(draw_mutex_);
+  if (enabled_ && drawn_) {
+    fmt::print(stderr, "\r\033[K");
+    std::fflush(stderr);
+  }
+  enabled_ = false;
 }
 
 void ProgressBar::advance(std::int64_t n) {
   const std::int64_t done = done_.fetch_add(n) + n;
-  if (!enabled_) return;
   const auto now = std::chrono::steady_clock::now();
   std::unique_lock lock(draw_mutex_, std::try_to_lock);
-  if (!lock.owns_lock() || now - last_draw_ < std::chrono::milliseconds(100)) return;
+  if (!lock.owns_lock() || !enabled_ || now - last_draw_ < std::chrono::milliseconds(100)) return;
   last_draw_ = now;
   draw(done);
 }

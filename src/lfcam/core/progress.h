@@ -20,11 +20,14 @@ bool ProgressWanted(bool quiet);
 class ProgressBar {
  public:
   ProgressBar(std::string label, std::int64_t total, bool enabled);
-  ~ProgressBar();  // clears the line
+  ~ProgressBar();  // finish()
   ProgressBar(const ProgressBar&) = delete;
   ProgressBar& operator=(const ProgressBar&) = delete;
 
   void advance(std::int64_t n);
+  // Clears the bar's line (so that what is printed next starts on a clean one); later calls to
+  // advance() draw nothing.
+  void finish();
   // A callback for library functions (empty when the bar is disabled, so they skip the work).
   ProgressCallback callback();
 
