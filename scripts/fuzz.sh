@@ -42,7 +42,7 @@ for name in "${targets[@]}"; do
   limit=(-max_total_time="$seconds")
   [ -n "$runs" ] && limit=(-runs="$runs")
   log=build/fuzz/$name.log
-  echo "fuzz: $name (${runs:+$runs runs}${runs:-$seconds s})"
+  if [ -n "$runs" ]; then echo "fuzz: $name ($runs runs)"; else echo "fuzz: $name ($seconds s)"; fi
   if build/fuzz/"$name" "${limit[@]}" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
       -artifact_prefix="$artifacts/" "$corpus" "fuzz/corpus/$name" >"$log" 2>&1; then
     passed=$((passed + 1))
