@@ -269,6 +269,10 @@ TEST_F(Cli, JsonOutputIsValidJsonAndSaysWhatHappened) {
   j = nlohmann::json::parse(run.output);
   EXPECT_NE(j["error"].get<std::string>().find("missing.lf"), std::string::npos);
   EXPECT_EQ(j["exit_status"], 1);
+  // Regression: a file name that is not UTF-8 made the JSON error itself throw (abort).
+  run = Lfcam("info --json " + Path("\xff\xfe.lf") + " 2>/dev/null");
+  EXPECT_EQ(run.status, 1) << run.output;
+  EXPECT_TRUE(nlohmann::json::parse(run.output).contains("error")) << run.output;
   run = Lfcam("info --json --bogus " + Path("small.lf") + " 2>/dev/null");
   EXPECT_EQ(run.status, 2);
   EXPECT_EQ(nlohmann::json::parse(run.output)["exit_status"], 2);

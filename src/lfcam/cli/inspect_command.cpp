@@ -10,6 +10,8 @@
 #include "lfcam/core/error.h"
 #include "lfcam/core/image_io.h"
 #include "lfcam/core/image_metrics.h"
+#include "lfcam/core/json_input.h"
+#include "lfcam/core/limits.h"
 #include "lfcam/core/lightfield_file.h"
 
 namespace lfcam::cli {
@@ -69,7 +71,7 @@ void AddInfoCommand(CLI::App& app) {
       j["verified_read_ms"] = verify_ms;
     }
     if (flags->json) {
-      fmt::print("{}\n", j.dump(2));
+      fmt::print("{}\n", JsonToText(j, 2));
       return;
     }
     const Slab& s = h.slab;
@@ -88,7 +90,7 @@ void AddInfoCommand(CLI::App& app) {
     fmt::print("  st domain     [{}, {}] x [{}, {}]\n", s.st_domain.s0, s.st_domain.s1,
                s.st_domain.t0, s.st_domain.t1);
     fmt::print("  plane gap     {:.1f} mm\n", s.separation_mm());
-    fmt::print("  metadata      {}\n", h.metadata.dump());
+    fmt::print("  metadata      {}\n", JsonToText(h.metadata));
     if (flags->verify)
       fmt::print("  verified      all views read and checked in {:.0f} ms\n", verify_ms);
   });
@@ -112,6 +114,9 @@ void AddCompareCommand(CLI::App& app) {
     const cv::Mat mask = flags->mask.empty() ? cv::Mat() : ReadMask(flags->mask);
     ImageComparison r;
     try {
+      // SSIM's luma and moment images: about a dozen float planes.
+      RequireMemory(48.0 * double(a.total()),
+                    fmt::format("comparing {}x{} images", a.cols, a.rows));
       r = CompareImages(a, b, mask);
     } catch (const Error& e) {
       throw Error(fmt::format("{} and {}: {}", flags->a, flags->b, e.what()));
@@ -124,7 +129,7 @@ void AddCompareCommand(CLI::App& app) {
                           {"pixels", r.pixels},
                           {"identical", identical},
                           {"psnr_db", identical ? nlohmann::json(nullptr) : nlohmann::json(r.psnr_db)}};
-      fmt::print("{}\n", j.dump(2));
+      fmt::print("{}\n", JsonToText(j, 2));
       return;
     }
     fmt::print("PSNR {:.2f} dB  SSIM {:.4f}  mean |error| {:.2f}/255 over {} pixels\n", r.psnr_db,

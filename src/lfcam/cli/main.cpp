@@ -17,6 +17,7 @@
 
 #include "lfcam/cli/commands.h"
 #include "lfcam/core/error.h"
+#include "lfcam/core/json_input.h"
 #include "lfcam/core/signal_cleanup.h"
 
 namespace {
@@ -28,7 +29,8 @@ constexpr int kExitUsage = 2;
 // stderr. Returns the exit status.
 int Report(bool json, int status, const std::string& message) {
   if (json)
-    fmt::print("{}\n", nlohmann::json{{"error", message}, {"exit_status", status}}.dump(2));
+    fmt::print("{}\n",
+               lfcam::JsonToText({{"error", message}, {"exit_status", status}}, 2));
   else
     fmt::print(stderr, "lfcam: error: {}\n", message);
   return status;

@@ -18,11 +18,15 @@ const nlohmann::json& Value(const nlohmann::json& j, const char* key, const std:
 }
 
 std::string TypeOf(const nlohmann::json& v) {
-  if (v.is_number_float()) return fmt::format("the number {}", v.dump());
-  return fmt::format("{} {}", v.type_name(), v.dump().substr(0, 40));
+  if (v.is_number_float()) return fmt::format("the number {}", JsonToText(v));
+  return fmt::format("{} {}", v.type_name(), JsonToText(v).substr(0, 40));
 }
 
 }  // namespace
+
+std::string JsonToText(const nlohmann::json& j, int indent) {
+  return j.dump(indent, ' ', false, nlohmann::json::error_handler_t::replace);
+}
 
 int JsonNestingDepth(std::string_view text) {
   int depth = 0, deepest = 0;

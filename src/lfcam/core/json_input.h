@@ -21,6 +21,10 @@ int JsonNestingDepth(std::string_view text);
 nlohmann::json ParseJsonBounded(std::string_view text, const std::string& where,
                                 int max_depth = kMaxJsonDepth);
 
+// JSON text for output (files, --json, messages): bytes that are not UTF-8 (a file name, say) are
+// replaced by U+FFFD instead of making nlohmann throw. indent < 0: one line.
+std::string JsonToText(const nlohmann::json& j, int indent = -1);
+
 // j[key] (or j itself when key is empty) as an exact integer in [min, max].
 std::int64_t JsonInteger(const nlohmann::json& j, const char* key, std::int64_t min,
                          std::int64_t max, const std::string& where);

@@ -26,7 +26,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       } catch (const lfcam::Error&) {
       }
     }
-    (void)j.dump();  // bounded nesting: no deep recursion here either
+    (void)lfcam::JsonToText(j);  // bounded nesting: no deep recursion here either
   } catch (const lfcam::Error&) {
   }
   return 0;

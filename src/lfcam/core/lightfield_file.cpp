@@ -278,7 +278,7 @@ void WriteLightField(const LightField& lf, const std::filesystem::path& path,
       {"metadata", lf.metadata()},
       {"views", views},
   };
-  const std::string text = header.dump(1);
+  const std::string text = JsonToText(header, 1);
   const std::uint64_t data_offset = RoundUp(kPreambleBytes + text.size(), kLightFieldAlignment);
 
   std::array<std::uint8_t, kPreambleBytes> pre{};
