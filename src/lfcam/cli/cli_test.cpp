@@ -219,6 +219,10 @@ TEST_F(Cli, FlagsAndOutputsAreCheckedBeforeTheInputIsRead) {
               " --hit-mask " + Path("no/dir/mask.png"));
   EXPECT_EQ(run.status, 2);
   EXPECT_FALSE(fs::exists(Path("both.png")));
+  run = Lfcam("render " + Path("small.lf") + " --size 8 --out " + Path("both.png") +
+              " --hit-mask " + Path("./both.png"));
+  EXPECT_EQ(run.status, 2);
+  EXPECT_NE(run.output.find("same file"), std::string::npos) << run.output;
 }
 
 TEST_F(Cli, WorkDerivedFromFlagsIsBoundedAndNamesTheFlag) {

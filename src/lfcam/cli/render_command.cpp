@@ -81,7 +81,8 @@ void AddRenderCommand(CLI::App& app) {
                                    flags->out));
     if (!flags->hit_mask.empty()) {
       RequireImageOutput(flags->hit_mask, "--hit-mask");
-      if (std::filesystem::absolute(flags->hit_mask) == std::filesystem::absolute(flags->out))
+      if (std::filesystem::weakly_canonical(flags->hit_mask) ==
+          std::filesystem::weakly_canonical(flags->out))
         throw UsageError("--hit-mask: must not be the same file as --out");
     }
     const LightField lf = ReadLightField(flags->input);
