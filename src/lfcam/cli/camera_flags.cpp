@@ -12,9 +12,9 @@
 namespace lfcam::cli {
 
 void CameraFlags::AddTo(CLI::App& c) {
-  c.add_option("--size", size,
-               fmt::format("Image size in pixels: N (square) or WxH, at most {} a side",
-                           kMaxImageSide))
+  c.add_option(
+       "--size", size,
+       fmt::format("Image size in pixels: N (square) or WxH, at most {} a side", kMaxImageSide))
       ->capture_default_str();
   c.add_option("--eye", eye, "Camera position e_c, X,Y,Z in world mm (default: array centre)");
   c.add_option("--look-at", look_at,
@@ -27,10 +27,11 @@ void CameraFlags::AddTo(CLI::App& c) {
       ->capture_default_str();
   c.add_option("--aperture", aperture_mm, "Aperture diameter d_l in mm (0 = pinhole)")
       ->capture_default_str();
-  c.add_option("--lens-rate", lens_rate,
-               fmt::format("Lens sampling rate gamma_ls: n_ls = gamma (d_l/2)^2 / 210 rays a pixel, "
-                           "at most {} (4 to 9 looks good)",
-                           kMaxLensSamples))
+  c.add_option(
+       "--lens-rate", lens_rate,
+       fmt::format("Lens sampling rate gamma_ls: n_ls = gamma (d_l/2)^2 / 210 rays a pixel, "
+                   "at most {} (4 to 9 looks good)",
+                   kMaxLensSamples))
       ->capture_default_str();
   c.add_flag("--no-breathing", no_breathing,
              "Keep the film at f (fixed field of view) and focus with f_e = f d_o / (f + d_o)");
@@ -47,14 +48,14 @@ void CameraFlags::Validate() const {
   if (!look_at.empty()) ParseVec3("--look-at", look_at);
   if (!up.empty()) ParseVec3("--up", up);
   if (!(focal_length_mm > 0) || !std::isfinite(focal_length_mm))
-    throw UsageError(fmt::format("--focal-length: {} must be a positive number of mm",
-                                 focal_length_mm));
+    throw UsageError(
+        fmt::format("--focal-length: {} must be a positive number of mm", focal_length_mm));
   if (!(focus_distance_mm > focal_length_mm) || !std::isfinite(focus_distance_mm))
     throw UsageError(fmt::format("--focus-distance: {} mm must exceed the focal length ({} mm)",
                                  focus_distance_mm, focal_length_mm));
   if (!(aperture_mm >= 0) || !std::isfinite(aperture_mm))
-    throw UsageError(fmt::format("--aperture: {} must be 0 (pinhole) or a positive number of mm",
-                                 aperture_mm));
+    throw UsageError(
+        fmt::format("--aperture: {} must be 0 (pinhole) or a positive number of mm", aperture_mm));
   if (!(lens_rate > 0) || !std::isfinite(lens_rate))
     throw UsageError(fmt::format("--lens-rate: {} must be positive", lens_rate));
   if (aperture_mm > 0) {

@@ -28,8 +28,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   } catch (const lfcam::Error&) {
   }
   const std::string text = in.ConsumeRemainingBytesAsString();
-  for (const char separator : {',', 'x'})
-    try {
+  for (const char separator : {',', 'x'}) try {
       lfcam::cli::ParseNumbers("--fuzz", text, 4, separator);
     } catch (const lfcam::Error&) {
     }

@@ -146,8 +146,8 @@ namespace {
 TEST_F(Cli, HelpListsTheCommandsAndExitCodesAreConsistent) {
   CommandResult run = Lfcam("");
   EXPECT_EQ(run.status, 0) << run.output;
-  for (const char* word : {"simulate", "render", "oracle", "info", "compare", "montage", "help",
-                           "Exit status"})
+  for (const char* word :
+       {"simulate", "render", "oracle", "info", "compare", "montage", "help", "Exit status"})
     EXPECT_NE(run.output.find(word), std::string::npos) << word << "\n" << run.output;
   run = Lfcam("help");
   EXPECT_EQ(run.status, 0);
@@ -248,8 +248,8 @@ TEST_F(Cli, WorkDerivedFromFlagsIsBoundedAndNamesTheFlag) {
   run = Lfcam("montage " + Path("t.png") + " --tile-width 100000 --out " + Path("x.png"));
   EXPECT_EQ(run.status, 2);
   EXPECT_NE(run.output.find("--tile-width"), std::string::npos) << run.output;
-  run = Lfcam("montage " + Path("t.png") + " " + Path("t.png") +
-              " --tile-width 9000 --out " + Path("x.png"));
+  run = Lfcam("montage " + Path("t.png") + " " + Path("t.png") + " --tile-width 9000 --out " +
+              Path("x.png"));
   EXPECT_EQ(run.status, 2);
   EXPECT_NE(run.output.find("limit"), std::string::npos) << run.output;
   EXPECT_FALSE(fs::exists(Path("x.png")));

@@ -11,8 +11,8 @@
 #include "lfcam/core/image_io.h"
 #include "lfcam/core/image_metrics.h"
 #include "lfcam/core/json_input.h"
-#include "lfcam/core/limits.h"
 #include "lfcam/core/lightfield_file.h"
+#include "lfcam/core/limits.h"
 
 namespace lfcam::cli {
 namespace {
@@ -124,11 +124,12 @@ void AddCompareCommand(CLI::App& app) {
     if (flags->json) {
       // JSON has no infinity: identical images have "psnr_db": null and "identical": true.
       const bool identical = std::isinf(r.psnr_db);
-      nlohmann::json j = {{"ssim", r.ssim},
-                          {"mean_abs_error", r.mean_abs_error},
-                          {"pixels", r.pixels},
-                          {"identical", identical},
-                          {"psnr_db", identical ? nlohmann::json(nullptr) : nlohmann::json(r.psnr_db)}};
+      nlohmann::json j = {
+          {"ssim", r.ssim},
+          {"mean_abs_error", r.mean_abs_error},
+          {"pixels", r.pixels},
+          {"identical", identical},
+          {"psnr_db", identical ? nlohmann::json(nullptr) : nlohmann::json(r.psnr_db)}};
       fmt::print("{}\n", JsonToText(j, 2));
       return;
     }

@@ -29,8 +29,7 @@ constexpr int kExitUsage = 2;
 // stderr. Returns the exit status.
 int Report(bool json, int status, const std::string& message) {
   if (json)
-    fmt::print("{}\n",
-               lfcam::JsonToText({{"error", message}, {"exit_status", status}}, 2));
+    fmt::print("{}\n", lfcam::JsonToText({{"error", message}, {"exit_status", status}}, 2));
   else
     fmt::print(stderr, "lfcam: error: {}\n", message);
   return status;
@@ -46,7 +45,8 @@ bool WantsJson(int argc, char** argv) {
 void AddHelpCommand(CLI::App& app) {
   auto* help = app.add_subcommand("help", "Show the commands, or one command's flags");
   auto words = std::make_shared<std::vector<std::string>>();
-  help->add_option("command", *words, "A command (and subcommand), e.g. render or simulate lightfield");
+  help->add_option("command", *words,
+                   "A command (and subcommand), e.g. render or simulate lightfield");
   help->callback([&app, help, words] {
     const CLI::App* target = &app;
     std::string usage = app.get_name();
@@ -60,8 +60,7 @@ void AddHelpCommand(CLI::App& app) {
       usage += " " + word;
     }
     // The formatter directly: App::help() would describe the selected subcommand, `help` itself.
-    fmt::print("{}", target->get_formatter()->make_help(
-                         target, usage, CLI::AppFormatMode::Normal));
+    fmt::print("{}", target->get_formatter()->make_help(target, usage, CLI::AppFormatMode::Normal));
   });
 }
 
@@ -116,8 +115,7 @@ int main(int argc, char** argv) {
     return Report(json, kExitError,
                   fmt::format("image processing failed in {}: {}", e.func, e.err));
   } catch (const std::filesystem::filesystem_error& e) {
-    return Report(json, kExitError,
-                  fmt::format("{}: {}", e.path1().string(), e.code().message()));
+    return Report(json, kExitError, fmt::format("{}: {}", e.path1().string(), e.code().message()));
   } catch (const nlohmann::json::exception& e) {
     return Report(json, kExitError, fmt::format("internal error reading JSON (id {})", e.id));
   } catch (const std::exception& e) {

@@ -3,8 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <opencv2/imgproc.hpp>
 #include <memory>
+#include <opencv2/imgproc.hpp>
 #include <sstream>
 
 #include "lfcam/cli/commands.h"
@@ -52,10 +52,10 @@ void AddMontageCommand(CLI::App& app) {
       const cv::Mat image = ReadImageSrgb8(path);
       const double height = std::round(double(image.rows) * flags->tile_width / image.cols);
       if (height > kMaxImageSide)
-        throw UsageError(fmt::format("{}: a {}x{} image is {:.0f} pixels tall at --tile-width {}, "
-                                     "more than the limit of {}",
-                                     path, image.cols, image.rows, height, flags->tile_width,
-                                     kMaxImageSide));
+        throw UsageError(
+            fmt::format("{}: a {}x{} image is {:.0f} pixels tall at --tile-width {}, "
+                        "more than the limit of {}",
+                        path, image.cols, image.rows, height, flags->tile_width, kMaxImageSide));
       cv::Mat tile;
       cv::resize(image, tile, {flags->tile_width, std::max(1, int(height))}, 0, 0, cv::INTER_AREA);
       images.push_back(tile);

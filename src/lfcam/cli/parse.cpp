@@ -2,9 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <algorithm>
 
 #include "lfcam/core/error.h"
 
@@ -32,7 +32,7 @@ std::vector<double> ParseNumbers(const std::string& flag, const std::string& tex
   }
   if (out.size() != count)
     throw UsageError(fmt::format("{}: expected {} numbers separated by '{}', got '{}'", flag, count,
-                            separator, text));
+                                 separator, text));
   return out;
 }
 
@@ -46,8 +46,8 @@ std::pair<int, int> ParseSize(const std::string& flag, const std::string& text, 
   const auto v = has_x ? ParseNumbers(flag, text, 2, 'x') : ParseNumbers(flag, text, 1);
   const double w = v[0], h = has_x ? v[1] : v[0];
   if (w != std::floor(w) || h != std::floor(h) || w < 1 || h < 1 || w > max_side || h > max_side)
-    throw UsageError(fmt::format("{}: '{}' must be N or WxH with whole numbers 1..{}", flag, text,
-                                 max_side));
+    throw UsageError(
+        fmt::format("{}: '{}' must be N or WxH with whole numbers 1..{}", flag, text, max_side));
   return {int(w), int(h)};
 }
 

@@ -14,9 +14,9 @@
 #include "lfcam/cli/parse.h"
 #include "lfcam/core/error.h"
 #include "lfcam/core/image_io.h"
+#include "lfcam/core/lightfield_file.h"
 #include "lfcam/core/limits.h"
 #include "lfcam/core/progress.h"
-#include "lfcam/core/lightfield_file.h"
 #include "lfcam/render/cpu_renderer.h"
 #include "lfcam/sim/oracle.h"
 
@@ -71,14 +71,14 @@ void AddRenderCommand(CLI::App& app) {
     // Every flag and output is checked before the light field is read.
     CpuRenderOptions options;
     options.threads = flags->threads;
-    options.interpolation = FlagValue(
-        "--interpolation", [&] { return InterpolationFromString(flags->interpolation); });
+    options.interpolation =
+        FlagValue("--interpolation", [&] { return InterpolationFromString(flags->interpolation); });
     flags->camera.Validate();
     RequireImageOutput(flags->out, "--out");
     std::error_code ec;
     if (std::filesystem::equivalent(flags->input, flags->out, ec))
-      throw UsageError(fmt::format("--out {}: is the input light field; choose another name",
-                                   flags->out));
+      throw UsageError(
+          fmt::format("--out {}: is the input light field; choose another name", flags->out));
     if (!flags->hit_mask.empty()) {
       RequireImageOutput(flags->hit_mask, "--hit-mask");
       if (std::filesystem::weakly_canonical(flags->hit_mask) ==

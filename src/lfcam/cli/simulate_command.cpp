@@ -72,14 +72,13 @@ void AddSimulateCommand(CLI::App& app) {
       throw UsageError(fmt::format("--compress: '{}' is not none or zstd", flags->compression));
     const Scene scene = FlagValue("--scene", [&] { return MakeScene(flags->scene); });
     RequireWritableOutput(flags->out, "--out");
-    const double bytes = double(rows) * cols * o.n_s * o.n_t * 3 *
-                         double(BytesPerChannel(o.sample_type));
+    const double bytes =
+        double(rows) * cols * o.n_s * o.n_t * 3 * double(BytesPerChannel(o.sample_type));
     FlagValue(fmt::format("--grid {} --st-res {}", flags->grid, flags->st_res),
               [&] { RequireMemory(bytes, "the light field"); });
     ProgressBar progress("simulating views", std::int64_t(rows) * cols,
                          ProgressWanted(flags->quiet));
-    if (const auto advance = progress.callback())
-      o.progress = [advance](int, int) { advance(1); };
+    if (const auto advance = progress.callback()) o.progress = [advance](int, int) { advance(1); };
     const auto start = std::chrono::steady_clock::now();
     const LightField lf = SimulateLightField(scene, o);
     progress.finish();

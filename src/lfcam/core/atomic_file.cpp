@@ -125,7 +125,8 @@ void WriteFileAtomically(const std::filesystem::path& path, std::span<const std:
 }
 
 void RequireWritableOutput(const std::filesystem::path& path, const std::string& flag) {
-  const std::string where = flag.empty() ? path.string() : fmt::format("{} {}", flag, path.string());
+  const std::string where =
+      flag.empty() ? path.string() : fmt::format("{} {}", flag, path.string());
   if (path.empty()) throw UsageError(fmt::format("{}: the output path is empty", flag));
   std::error_code ec;
   const auto status = std::filesystem::status(path, ec);
@@ -144,8 +145,8 @@ void RequireWritableOutput(const std::filesystem::path& path, const std::string&
   if (fd < 0) {
     const int e = errno;
     if (e != EEXIST)
-      throw UsageError(fmt::format("{}: cannot write in {}: {}", where, directory.string(),
-                                   Reason(e)));
+      throw UsageError(
+          fmt::format("{}: cannot write in {}: {}", where, directory.string(), Reason(e)));
     return;
   }
   ::close(fd);

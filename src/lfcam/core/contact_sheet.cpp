@@ -30,9 +30,10 @@ cv::Mat MakeContactSheet(const std::vector<cv::Mat>& images, const std::vector<s
   const double sheet_w = double(columns) * (tile_w + kGap) + kGap;
   const double sheet_h = title_h + double(rows) * (tile_h_exact + kLabelH + kGap) + kGap;
   if (sheet_w > kMaxImageSide || sheet_h > kMaxImageSide)
-    throw Error(fmt::format("contact sheet: {:.0f}x{:.0f} pixels is larger than the limit of {} "
-                            "a side (use a smaller tile width or fewer columns)",
-                            sheet_w, sheet_h, kMaxImageSide));
+    throw Error(
+        fmt::format("contact sheet: {:.0f}x{:.0f} pixels is larger than the limit of {} "
+                    "a side (use a smaller tile width or fewer columns)",
+                    sheet_w, sheet_h, kMaxImageSide));
   RequireMemory(sheet_w * sheet_h * 3 * 2, "the contact sheet");
   const int tile_h = int(tile_h_exact);
   const cv::Scalar background(24, 24, 24), ink(235, 235, 235);

@@ -28,12 +28,23 @@ ImageHeader ProbePng(std::span<const std::uint8_t> b) {
   const int depth = b[24], colour = b[25];
   int channels = 0;
   switch (colour) {
-    case 0: channels = 1; break;
-    case 2: channels = 3; break;
-    case 3: channels = 3; break;  // palette, decoded to RGB
-    case 4: channels = 2; break;
-    case 6: channels = 4; break;
-    default: throw Error(fmt::format("malformed PNG: colour type {}", colour));
+    case 0:
+      channels = 1;
+      break;
+    case 2:
+      channels = 3;
+      break;
+    case 3:
+      channels = 3;
+      break;  // palette, decoded to RGB
+    case 4:
+      channels = 2;
+      break;
+    case 6:
+      channels = 4;
+      break;
+    default:
+      throw Error(fmt::format("malformed PNG: colour type {}", colour));
   }
   if (depth != 1 && depth != 2 && depth != 4 && depth != 8 && depth != 16)
     throw Error(fmt::format("malformed PNG: bit depth {}", depth));

@@ -10,7 +10,7 @@ namespace lfcam {
 struct ImageHeader {
   std::string format;  // "PNG" or "JPEG"
   int width = 0, height = 0;
-  int channels = 0;        // as decoded: 1 (grey), 2 (grey + alpha), 3, 4
+  int channels = 0;  // as decoded: 1 (grey), 2 (grey + alpha), 3, 4
   int bits_per_channel = 0;
 };
 

@@ -43,8 +43,9 @@ TEST(ImageHeader, ReadsPngAndJpegSizesWithoutDecoding) {
   EXPECT_EQ(h.format, "JPEG");
   EXPECT_EQ(h.width, 53);
   EXPECT_EQ(h.height, 37);
-  EXPECT_NE(ErrorOf([] { ProbeImageHeader(std::vector<std::uint8_t>{'B', 'M', 0, 0}); })
-                .find("not a PNG or JPEG"),
+  EXPECT_NE(ErrorOf([] {
+              ProbeImageHeader(std::vector<std::uint8_t>{'B', 'M', 0, 0});
+            }).find("not a PNG or JPEG"),
             std::string::npos);
 }
 
@@ -53,8 +54,9 @@ TEST(ImageHeader, DecompressionBombsAreRefusedBeforeDecoding) {
   auto png = Encode(cv::Mat(8, 8, CV_8UC3, cv::Scalar::all(0)), ".png");
   PutBigEndian32(&png[16], 20000);
   PutBigEndian32(&png[20], 20000);
-  EXPECT_NE(ErrorOf([&] { DecodeImageBytes(png, "bomb.png"); })
-                .find("bomb.png: a 20000x20000 PNG image is larger than the limit of 16384"),
+  EXPECT_NE(ErrorOf([&] {
+              DecodeImageBytes(png, "bomb.png");
+            }).find("bomb.png: a 20000x20000 PNG image is larger than the limit of 16384"),
             std::string::npos);
   // Within the side limit but not within memory.
   PutBigEndian32(&png[16], 16000);
@@ -66,8 +68,9 @@ TEST(ImageHeader, DecompressionBombsAreRefusedBeforeDecoding) {
   }
   EXPECT_NE(error.find("memory limit"), std::string::npos) << error;
   // Truncated headers are refused by the probe.
-  EXPECT_NE(ErrorOf([&] { DecodeImageBytes(std::span(png.data(), 20), "cut.png"); })
-                .find("cut.png: truncated PNG header"),
+  EXPECT_NE(ErrorOf([&] {
+              DecodeImageBytes(std::span(png.data(), 20), "cut.png");
+            }).find("cut.png: truncated PNG header"),
             std::string::npos);
 }
 
@@ -86,8 +89,12 @@ TEST(ImageHeader, RandomlyCorruptedImagesDecodeOrAreRefusedCleanly) {
           auto bad = good;
           const std::size_t at = rng() % bad.size();
           switch (rng() % 3) {
-            case 0: bad[at] = std::uint8_t(rng()); break;
-            case 1: bad.resize(at + 1); break;
+            case 0:
+              bad[at] = std::uint8_t(rng());
+              break;
+            case 1:
+              bad.resize(at + 1);
+              break;
             default:
               bad[rng() % std::min<std::size_t>(bad.size(), 40)] ^= std::uint8_t(1 << (rng() % 8));
           }

@@ -4,11 +4,10 @@
 
 #include <cctype>
 #include <memory>
-#include <utility>
-#include <vector>
-
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <utility>
+#include <vector>
 
 #include "lfcam/core/atomic_file.h"
 #include "lfcam/core/color.h"
@@ -61,17 +60,18 @@ cv::Mat DecodeImageBytes(std::span<const std::uint8_t> bytes, const std::string&
                 fmt::format("{}: decoding a {}x{} image", name, header.width, header.height));
   cv::Mat m;
   try {
-    m = cv::imdecode(cv::Mat(1, int(bytes.size()), CV_8UC1, const_cast<std::uint8_t*>(bytes.data())),
-                     cv::IMREAD_UNCHANGED);
+    m = cv::imdecode(
+        cv::Mat(1, int(bytes.size()), CV_8UC1, const_cast<std::uint8_t*>(bytes.data())),
+        cv::IMREAD_UNCHANGED);
   } catch (const cv::Exception&) {
     m = cv::Mat();
   }
   if (m.empty())
-    throw Error(fmt::format("{}: not a readable {} image (corrupt or truncated)", name,
-                            header.format));
+    throw Error(
+        fmt::format("{}: not a readable {} image (corrupt or truncated)", name, header.format));
   if (m.cols != header.width || m.rows != header.height)
-    throw Error(fmt::format("{}: decoded to {}x{}, but its header says {}x{}", name, m.cols,
-                            m.rows, header.width, header.height));
+    throw Error(fmt::format("{}: decoded to {}x{}, but its header says {}x{}", name, m.cols, m.rows,
+                            header.width, header.height));
   return m;
 }
 

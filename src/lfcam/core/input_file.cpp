@@ -29,8 +29,8 @@ InputFile::InputFile(const std::filesystem::path& path) : name_(path.string()) {
   fd_ = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK | O_NOCTTY);
   if (fd_ < 0) {
     const int e = errno;
-    throw Error(fmt::format("{}: cannot open: {}", name_,
-                            e == ENOENT ? "no such file" : std::strerror(e)));
+    throw Error(
+        fmt::format("{}: cannot open: {}", name_, e == ENOENT ? "no such file" : std::strerror(e)));
   }
   struct stat st {};
   if (::fstat(fd_, &st) != 0 || !S_ISREG(st.st_mode)) {
@@ -52,9 +52,9 @@ void InputFile::read_exactly(void* out, std::size_t size, std::uint64_t offset) 
     const ssize_t n = ::pread(fd_, p + done, size - done, off_t(offset + done));
     if (n < 0 && errno == EINTR) continue;
     if (n <= 0)
-      throw Error(fmt::format("{}: read failed at byte {}: {}", name_, offset + done,
-                              n == 0 ? "unexpected end of file (truncated?)"
-                                     : std::strerror(errno)));
+      throw Error(
+          fmt::format("{}: read failed at byte {}: {}", name_, offset + done,
+                      n == 0 ? "unexpected end of file (truncated?)" : std::strerror(errno)));
     done += std::size_t(n);
   }
 }

@@ -41,9 +41,12 @@ int JsonNestingDepth(std::string_view text) {
         in_string = false;
       continue;
     }
-    if (c == '"') in_string = true;
-    else if (c == '[' || c == '{') deepest = std::max(deepest, ++depth);
-    else if ((c == ']' || c == '}') && depth > 0) --depth;
+    if (c == '"')
+      in_string = true;
+    else if (c == '[' || c == '{')
+      deepest = std::max(deepest, ++depth);
+    else if ((c == ']' || c == '}') && depth > 0)
+      --depth;
   }
   return deepest;
 }
@@ -66,7 +69,8 @@ nlohmann::json ParseJsonBounded(std::string_view text, const std::string& where,
   }
 }
 
-const nlohmann::json& JsonField(const nlohmann::json& j, const char* key, const std::string& where) {
+const nlohmann::json& JsonField(const nlohmann::json& j, const char* key,
+                                const std::string& where) {
   if (!j.is_object()) throw Error(fmt::format("{}: expected a JSON object", where));
   const auto it = j.find(key);
   if (it == j.end()) throw Error(fmt::format("{}: missing field \"{}\"", where, key));
@@ -109,8 +113,7 @@ double JsonNumber(const nlohmann::json& j, const char* key, const std::string& w
   if (!v.is_number())
     throw Error(fmt::format("{} must be a number, not {}", FieldName(where, key), TypeOf(v)));
   const double d = v.get<double>();
-  if (!std::isfinite(d))
-    throw Error(fmt::format("{} must be finite", FieldName(where, key)));
+  if (!std::isfinite(d)) throw Error(fmt::format("{} must be finite", FieldName(where, key)));
   return d;
 }
 

@@ -64,16 +64,17 @@ TEST(JsonInput, IntegersAreExactAndInRange) {
 // Regression (json_input_fuzz): a number beyond a double's range threw nlohmann's out_of_range
 // instead of lfcam::Error.
 TEST(JsonInput, NumbersOutOfRangeAreRefused) {
-  EXPECT_NE(ErrorOf([] { ParseJsonBounded("[1468474473709e551615]", "n.json"); })
-                .find("n.json: JSON holds a number out of range"),
+  EXPECT_NE(ErrorOf([] {
+              ParseJsonBounded("[1468474473709e551615]", "n.json");
+            }).find("n.json: JSON holds a number out of range"),
             std::string::npos);
   EXPECT_THROW(ParseJsonBounded("{\"a\": -1e400}", "n.json"), Error);
 }
 
 // Random documents built from JSON's own pieces: each parses or is refused with lfcam::Error.
 TEST(JsonInput, RandomDocumentsParseOrAreRefusedCleanly) {
-  const char* pieces[] = {"[", "]", "{", "}", "\"", "\\", ":", ",", "1", "-", "e9", ".5",
-                          "true", "null", "\"k\"", " ", "\xff", "\"\\u00"};
+  const char* pieces[] = {"[", "]",  "{",  "}",    "\"",   "\\",    ":", ",",    "1",
+                          "-", "e9", ".5", "true", "null", "\"k\"", " ", "\xff", "\"\\u00"};
   std::mt19937 rng(5);
   const int refused = testing::CountRefused(
       3000,

@@ -313,8 +313,8 @@ LightField ReadLightField(const std::filesystem::path& path, const LightFieldRea
   const std::size_t total = view_bytes * h.dims.view_count();
   // Decoded (zstd) or read samples take memory; mapped ones do not.
   if (h.compression == Compression::kZstd || !options.memory_map)
-    RequireMemory(double(total), fmt::format("{}: reading {} of samples", fd.name(),
-                                             HumanBytes(double(total))));
+    RequireMemory(double(total),
+                  fmt::format("{}: reading {} of samples", fd.name(), HumanBytes(double(total))));
 
   // The stored bytes, in place (mapped) or read into memory.
   std::shared_ptr<Mapping> mapping;

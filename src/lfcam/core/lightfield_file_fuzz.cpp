@@ -2,15 +2,14 @@
 // compressions; mapped and read). Any input must be read or refused with lfcam::Error.
 #include <fcntl.h>
 #include <unistd.h>
-
 #include <xxhash.h>
 
 #include <cstdint>
-#include <cstring>
-#include <vector>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "lfcam/core/error.h"
 #include "lfcam/core/lightfield_file.h"

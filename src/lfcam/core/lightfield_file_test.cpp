@@ -1,16 +1,16 @@
 #include "lfcam/core/lightfield_file.h"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 #include <xxhash.h>
 
 #include <cstring>
 #include <fstream>
 #include <functional>
-#include <iterator>
 #include <future>
+#include <iterator>
 #include <random>
-#include <sys/stat.h>
 #include <thread>
 
 #include "lfcam/core/error.h"
@@ -339,10 +339,17 @@ TEST_F(LightFieldFileTest, RandomlyCorruptedFilesAreReadOrRefusedCleanly) {
       for (int e = 0; e < edits; ++e) {
         const std::size_t at = rng() % bad.size();
         switch (rng() % 4) {
-          case 0: bad[at] = char(rng()); break;
-          case 1: bad.resize(at); break;
-          case 2: bad = bad.substr(0, at) + std::string(1 + rng() % 64, char(rng())) + bad.substr(at); break;
-          default: bad[at % std::min<std::size_t>(bad.size(), 4096)] ^= char(1 << (rng() % 8));
+          case 0:
+            bad[at] = char(rng());
+            break;
+          case 1:
+            bad.resize(at);
+            break;
+          case 2:
+            bad = bad.substr(0, at) + std::string(1 + rng() % 64, char(rng())) + bad.substr(at);
+            break;
+          default:
+            bad[at % std::min<std::size_t>(bad.size(), 4096)] ^= char(1 << (rng() % 8));
         }
         if (bad.empty()) bad.push_back('x');
       }

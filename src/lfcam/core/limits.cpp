@@ -29,10 +29,14 @@ std::optional<double> ParseByteSize(const std::string& text) {
   }
   const std::string suffix = text.substr(used);
   double scale = 1;
-  if (suffix == "K" || suffix == "k") scale = 1024.0;
-  else if (suffix == "M" || suffix == "m") scale = 1024.0 * 1024;
-  else if (suffix == "G" || suffix == "g") scale = 1024.0 * 1024 * 1024;
-  else if (!suffix.empty()) return std::nullopt;
+  if (suffix == "K" || suffix == "k")
+    scale = 1024.0;
+  else if (suffix == "M" || suffix == "m")
+    scale = 1024.0 * 1024;
+  else if (suffix == "G" || suffix == "g")
+    scale = 1024.0 * 1024 * 1024;
+  else if (!suffix.empty())
+    return std::nullopt;
   if (!std::isfinite(value) || value <= 0) return std::nullopt;
   return value * scale;
 }
@@ -51,8 +55,8 @@ std::uint64_t MemoryBudgetBytes() {
   if (const char* env = std::getenv("LFCAM_MEMORY_LIMIT")) {
     const auto v = ParseByteSize(env);
     if (!v)
-      throw Error(fmt::format("LFCAM_MEMORY_LIMIT: '{}' is not a size (bytes, or with K, M, G)",
-                              env));
+      throw Error(
+          fmt::format("LFCAM_MEMORY_LIMIT: '{}' is not a size (bytes, or with K, M, G)", env));
     return std::uint64_t(*v);
   }
   double memory = double(::sysconf(_SC_PHYS_PAGES)) * double(::sysconf(_SC_PAGE_SIZE));
@@ -73,9 +77,10 @@ std::string HumanBytes(double bytes) {
 void RequireMemory(double bytes, const std::string& what) {
   const double budget = double(MemoryBudgetBytes());
   if (!(bytes <= budget))
-    throw Error(fmt::format("{} needs {}, more than the memory limit of {} (80% of this "
-                            "machine's memory, or LFCAM_MEMORY_LIMIT)",
-                            what, HumanBytes(bytes), HumanBytes(budget)));
+    throw Error(
+        fmt::format("{} needs {}, more than the memory limit of {} (80% of this "
+                    "machine's memory, or LFCAM_MEMORY_LIMIT)",
+                    what, HumanBytes(bytes), HumanBytes(budget)));
 }
 
 }  // namespace lfcam

@@ -6,15 +6,15 @@
 
 namespace lfcam {
 
-inline constexpr int kMaxImageSide = 16384;           // rendered, read and written images
-inline constexpr int kMaxViewsPerSide = 4096;         // light field camera grid, a side
-inline constexpr int kMaxStSamplesPerSide = 65536;    // st samples per view, a side
-inline constexpr int kMaxLensSamples = 1 << 17;       // n_ls, rays a pixel
-inline constexpr int kMaxOracleSamples = 1 << 16;     // oracle samples a pixel
+inline constexpr int kMaxImageSide = 16384;         // rendered, read and written images
+inline constexpr int kMaxViewsPerSide = 4096;       // light field camera grid, a side
+inline constexpr int kMaxStSamplesPerSide = 65536;  // st samples per view, a side
+inline constexpr int kMaxLensSamples = 1 << 17;     // n_ls, rays a pixel
+inline constexpr int kMaxOracleSamples = 1 << 16;   // oracle samples a pixel
 inline constexpr int kMaxThreads = 1024;
 inline constexpr double kMaxStDomainBound = 1000.0;  // |s|, |t| of the sampled st domain
 inline constexpr std::uint64_t kMaxLightFieldBytes = std::uint64_t(1) << 36;  // 64 GiB of samples
-inline constexpr int kMaxJsonDepth = 64;              // nesting of any JSON lfcam reads
+inline constexpr int kMaxJsonDepth = 64;  // nesting of any JSON lfcam reads
 inline constexpr std::uint64_t kMaxJsonBytes = 16u << 20;
 
 // The most memory one allocation of bulk data (samples, decoded images) may take: 80% of the

@@ -24,8 +24,9 @@ TEST(Limits, MemoryBudgetComesFromTheMachineOrTheEnvironment) {
     const ScopedEnv limit("LFCAM_MEMORY_LIMIT", "1536k");
     EXPECT_EQ(MemoryBudgetBytes(), 1536u * 1024);
     EXPECT_NO_THROW(RequireMemory(1e6, "a small thing"));
-    EXPECT_NE(ErrorOf([] { RequireMemory(1e9, "a big thing"); })
-                  .find("a big thing needs 1.0 GB, more than the memory limit of 1.6 MB"),
+    EXPECT_NE(ErrorOf([] {
+                RequireMemory(1e9, "a big thing");
+              }).find("a big thing needs 1.0 GB, more than the memory limit of 1.6 MB"),
               std::string::npos);
   }
   for (const char* bad : {"abc", "-5", "0", "12X", "", "1e999", "nan"}) {

@@ -73,8 +73,9 @@ void OnBusError(int, siginfo_t* info, void*) {
     if (address < slot.begin || address >= slot.end) continue;
     WriteStderr("lfcam: error: ");
     WriteStderr(slot.file);
-    WriteStderr(": the file changed on disk while lfcam was reading it (truncated?); nothing "
-                "was written\n");
+    WriteStderr(
+        ": the file changed on disk while lfcam was reading it (truncated?); nothing "
+        "was written\n");
     RemoveTemporaries();
     ::_exit(1);
   }

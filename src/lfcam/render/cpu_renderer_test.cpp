@@ -117,8 +117,8 @@ TEST(CpuRenderer, FocalPlaneLookupRemovesGhostsOnThePlaneOfFocus) {
   const VirtualCamera camera(p);
   const cv::Mat truth = LinearToSrgb8Image(RenderSceneOracle(scene, camera));
   const cv::Mat paper = LinearToSrgb8Image(RenderLightFieldCpu(lf, camera).image);
-  const cv::Mat focal =
-      LinearToSrgb8Image(RenderLightFieldCpu(lf, camera, {0, Interpolation::kFocalPlane, {}}).image);
+  const cv::Mat focal = LinearToSrgb8Image(
+      RenderLightFieldCpu(lf, camera, {0, Interpolation::kFocalPlane, {}}).image);
   const double paper_psnr = CompareImages(paper, truth).psnr_db;
   const double focal_psnr = CompareImages(focal, truth).psnr_db;
   std::cout << "[wall] quadrilinear " << paper_psnr << " dB, focal-plane " << focal_psnr << " dB\n";

@@ -97,7 +97,8 @@ class Fidelity : public ::testing::Test {
   }
   static cv::Mat Render(const VirtualCameraParams& p, const LightField& lf = *lf_,
                         Interpolation interpolation = Interpolation::kQuadrilinear) {
-    return LinearToSrgb8Image(RenderLightFieldCpu(lf, VirtualCamera(p), {0, interpolation, {}}).image);
+    return LinearToSrgb8Image(
+        RenderLightFieldCpu(lf, VirtualCamera(p), {0, interpolation, {}}).image);
   }
   // Checks every case of PaperCases() whose label starts with `prefix`.
   static void CheckCases(const std::string& prefix);

@@ -1,11 +1,11 @@
 #include "lfcam/render/lens_sampling.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <numbers>
-
-#include <fmt/format.h>
 
 #include "lfcam/core/error.h"
 #include "lfcam/core/limits.h"
@@ -31,9 +31,10 @@ int LensSampleCount(double lens_rate, double aperture_mm) {
   const double radius = aperture_mm / 2.0;
   const double n = std::round(lens_rate * radius * radius / 210.0);  // in double: never wraps
   if (!(n <= kMaxLensSamples))
-    throw Error(fmt::format("lens sampling rate {} with a {} mm aperture asks for {:.4g} lens "
-                            "samples a pixel, more than the limit of {}",
-                            lens_rate, aperture_mm, n, kMaxLensSamples));
+    throw Error(
+        fmt::format("lens sampling rate {} with a {} mm aperture asks for {:.4g} lens "
+                    "samples a pixel, more than the limit of {}",
+                    lens_rate, aperture_mm, n, kMaxLensSamples));
   return std::max(1, int(n));
 }
 

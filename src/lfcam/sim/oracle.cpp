@@ -51,38 +51,38 @@ cv::Mat RenderSceneOracle(const Scene& scene, const VirtualCamera& camera,
   cv::Mat image(camera.height(), camera.width(), CV_32FC3);
 
   auto render = [&] {
-    tbb::parallel_for(tbb::blocked_range2d<int>(0, camera.height(), 8, 0, camera.width(), 8),
-                      [&](const tbb::blocked_range2d<int>& r) {
-                        for (int j = r.rows().begin(); j != r.rows().end(); ++j) {
-                          auto* row = image.ptr<cv::Vec3f>(camera.image_row(j));
-                          for (int i = r.cols().begin(); i != r.cols().end(); ++i) {
-                            const Vec2 rotation = PixelRotation(i, j);
-                            Vec3 sum = Vec3::Zero();
-                            for (int m = 0; m < n; ++m) {
-                              // Film position: stratified over the pixel; lens: rotated Hammersley.
-                              const int f = int((std::int64_t(m) * permute) % n);
-                              const int sx = f % strata, sy = (f / strata) % strata;
-                              const double fx = i + (sx + 0.5) / strata;
-                              const double fy = j + (sy + 0.5) / strata;
-                              const Vec3 direction = camera.direction_through(fx, fy);
-                              if (camera.is_pinhole()) {
-                                sum += scene.Radiance({camera.e_c(), direction});
-                                continue;
-                              }
-                              Vec2 u = Hammersley(m, n) + rotation;
-                              u = u.array() - u.array().floor();
-                              const Vec3 lens = camera.lens_point(SampleUniformDiskConcentric(u));
-                              const Vec3 p_o = camera.focus_point(direction);
-                              sum += scene.Radiance({lens, p_o - lens});
-                            }
-                            sum /= n;
-                            row[i] = cv::Vec3f(float(sum.x()), float(sum.y()), float(sum.z()));
-                          }
-                        }
-                        if (options.progress)
-                          options.progress(std::int64_t(r.rows().size()) *
-                                           std::int64_t(r.cols().size()));
-                      });
+    tbb::parallel_for(
+        tbb::blocked_range2d<int>(0, camera.height(), 8, 0, camera.width(), 8),
+        [&](const tbb::blocked_range2d<int>& r) {
+          for (int j = r.rows().begin(); j != r.rows().end(); ++j) {
+            auto* row = image.ptr<cv::Vec3f>(camera.image_row(j));
+            for (int i = r.cols().begin(); i != r.cols().end(); ++i) {
+              const Vec2 rotation = PixelRotation(i, j);
+              Vec3 sum = Vec3::Zero();
+              for (int m = 0; m < n; ++m) {
+                // Film position: stratified over the pixel; lens: rotated Hammersley.
+                const int f = int((std::int64_t(m) * permute) % n);
+                const int sx = f % strata, sy = (f / strata) % strata;
+                const double fx = i + (sx + 0.5) / strata;
+                const double fy = j + (sy + 0.5) / strata;
+                const Vec3 direction = camera.direction_through(fx, fy);
+                if (camera.is_pinhole()) {
+                  sum += scene.Radiance({camera.e_c(), direction});
+                  continue;
+                }
+                Vec2 u = Hammersley(m, n) + rotation;
+                u = u.array() - u.array().floor();
+                const Vec3 lens = camera.lens_point(SampleUniformDiskConcentric(u));
+                const Vec3 p_o = camera.focus_point(direction);
+                sum += scene.Radiance({lens, p_o - lens});
+              }
+              sum /= n;
+              row[i] = cv::Vec3f(float(sum.x()), float(sum.y()), float(sum.z()));
+            }
+          }
+          if (options.progress)
+            options.progress(std::int64_t(r.rows().size()) * std::int64_t(r.cols().size()));
+        });
   };
   if (options.threads > 0) {
     tbb::task_arena arena(options.threads);

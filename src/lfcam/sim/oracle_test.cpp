@@ -28,7 +28,8 @@ TEST(Oracle, DefaultSampleCountIsConverged) {
        {std::tuple{0.0, 1024, 40.0}, std::tuple{192.0, 4096, 46.0}}) {
     const VirtualCamera camera(PaperCamera(aperture));
     const cv::Mat standard = LinearToSrgb8Image(RenderSceneOracle(scene, camera));
-    const cv::Mat more = LinearToSrgb8Image(RenderSceneOracle(scene, camera, {more_samples, 0, {}}));
+    const cv::Mat more =
+        LinearToSrgb8Image(RenderSceneOracle(scene, camera, {more_samples, 0, {}}));
     EXPECT_GT(CompareImages(standard, more).psnr_db, min_psnr) << "aperture " << aperture;
   }
 }

@@ -32,8 +32,8 @@ LightField SimulateLightField(const Scene& scene, const SimulateLightFieldOption
     throw Error(fmt::format("supersampling {} must be 1..16", o.supersampling));
   const double bytes =
       double(o.rows) * o.cols * o.n_s * o.n_t * 3 * double(BytesPerChannel(o.sample_type));
-  RequireMemory(bytes, fmt::format("a {}x{} light field of {}x{} samples", o.rows, o.cols, o.n_s,
-                                   o.n_t));
+  RequireMemory(bytes,
+                fmt::format("a {}x{} light field of {}x{} samples", o.rows, o.cols, o.n_s, o.n_t));
   Slab slab = scene.IdealSlab(o.st_domain);
   slab.uv = ResizeArray(slab.uv, o.rows, o.cols);
   slab.validate();
