@@ -2,11 +2,14 @@
 // validated and turned into a camera, with values a user could type.
 #include <fuzzer/FuzzedDataProvider.h>
 
+#include <cmath>
 #include <cstdint>
+#include <cstdlib>
 
 #include "lfcam/cli/camera_flags.h"
 #include "lfcam/cli/parse.h"
 #include "lfcam/core/error.h"
+#include "lfcam/core/limits.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   FuzzedDataProvider in(data, size);
@@ -36,5 +39,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     lfcam::cli::ParseSize("--fuzz", text, 65536);
   } catch (const lfcam::Error&) {
   }
+  // LFCAM_MEMORY_LIMIT's parser: never throws, a size is positive and finite.
+  if (const auto bytes = lfcam::ParseByteSize(text); bytes && !(*bytes > 0 && *bytes < INFINITY))
+    std::abort();
   return 0;
 }

@@ -12,6 +12,7 @@
 #include "lfcam/core/error.h"
 #include "lfcam/core/image_io.h"
 #include "lfcam/core/signal_cleanup.h"
+#include "lfcam/core/test_support.h"
 
 namespace lfcam {
 namespace {
@@ -20,13 +21,7 @@ namespace fs = std::filesystem;
 
 class AtomicFileTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("lfcam_atomic_test_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
+  void SetUp() override { dir_ = testing::MakeScratchDir("lfcam_atomic_test"); }
   void TearDown() override { fs::remove_all(dir_); }
   int FilesIn(const fs::path& d) const {
     int n = 0;

@@ -24,12 +24,7 @@ namespace fs = std::filesystem;
 
 class LightFieldFileTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("lfcam_file_test_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir_);
-  }
+  void SetUp() override { dir_ = testing::MakeScratchDir("lfcam_file_test"); }
   void TearDown() override { fs::remove_all(dir_); }
 
   static LightField MakeLightField(SampleType type) {

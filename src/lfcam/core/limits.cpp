@@ -17,7 +17,16 @@
 namespace lfcam {
 namespace {
 
-// "123", "64M", "2G": bytes; nullopt when the text is not such a size.
+double CgroupMemoryMax() {
+  std::ifstream in("/sys/fs/cgroup/memory.max");
+  std::string text;
+  if (!(in >> text) || text == "max") return INFINITY;
+  const auto v = ParseByteSize(text);
+  return v ? *v : INFINITY;
+}
+
+}  // namespace
+
 std::optional<double> ParseByteSize(const std::string& text) {
   if (text.empty()) return std::nullopt;
   std::size_t used = 0;
@@ -37,19 +46,10 @@ std::optional<double> ParseByteSize(const std::string& text) {
     scale = 1024.0 * 1024 * 1024;
   else if (!suffix.empty())
     return std::nullopt;
+  value *= scale;  // "1e308G" overflows here: refused below, never cast from infinity
   if (!std::isfinite(value) || value <= 0) return std::nullopt;
-  return value * scale;
+  return value;
 }
-
-double CgroupMemoryMax() {
-  std::ifstream in("/sys/fs/cgroup/memory.max");
-  std::string text;
-  if (!(in >> text) || text == "max") return INFINITY;
-  const auto v = ParseByteSize(text);
-  return v ? *v : INFINITY;
-}
-
-}  // namespace
 
 std::uint64_t MemoryBudgetBytes() {
   if (const char* env = std::getenv("LFCAM_MEMORY_LIMIT")) {

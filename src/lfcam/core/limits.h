@@ -2,6 +2,7 @@
 // The resource limits every reader and command checks before it allocates or loops: one place,
 // so that commands agree (docs/robustness.md lists them for users).
 #include <cstdint>
+#include <optional>
 #include <string>
 
 namespace lfcam {
@@ -21,6 +22,10 @@ inline constexpr std::uint64_t kMaxJsonBytes = 16u << 20;
 // smaller of the machine's physical memory, the cgroup's memory.max and RLIMIT_AS, or the
 // LFCAM_MEMORY_LIMIT environment variable (bytes, or with a K, M or G suffix) when it is set.
 std::uint64_t MemoryBudgetBytes();
+
+// "123", "64M", "2G" (K, M, G: powers of 1024) as bytes; nullopt when the text is not a positive,
+// finite size. How LFCAM_MEMORY_LIMIT is read.
+std::optional<double> ParseByteSize(const std::string& text);
 
 // Throws lfcam::Error when `bytes` (computed in double so that nothing wraps) exceeds the
 // budget: "<what> needs 6.6 GB, more than the memory limit of 3.0 GB (...)".

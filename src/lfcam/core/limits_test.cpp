@@ -29,7 +29,7 @@ TEST(Limits, MemoryBudgetComesFromTheMachineOrTheEnvironment) {
               }).find("a big thing needs 1.0 GB, more than the memory limit of 1.6 MB"),
               std::string::npos);
   }
-  for (const char* bad : {"abc", "-5", "0", "12X", "", "1e999", "nan"}) {
+  for (const char* bad : {"abc", "-5", "0", "12X", "", "1e999", "nan", "1e308G"}) {
     const ScopedEnv limit("LFCAM_MEMORY_LIMIT", bad);
     EXPECT_NE(ErrorOf([] { MemoryBudgetBytes(); }).find("LFCAM_MEMORY_LIMIT"), std::string::npos)
         << bad;

@@ -1,12 +1,27 @@
 #pragma once
 // Helpers shared by the tests (header-only; not part of the library).
+#include <gtest/gtest.h>
+#include <unistd.h>
+
 #include <cstdlib>
+#include <filesystem>
 #include <functional>
 #include <string>
 
 #include "lfcam/core/error.h"
 
 namespace lfcam::testing {
+
+// A fresh, empty directory for the running test: PREFIX_PID_TESTNAME in the temp directory (one
+// per process and test, since ctest runs tests in parallel processes).
+inline std::filesystem::path MakeScratchDir(const std::string& prefix) {
+  const auto dir = std::filesystem::temp_directory_path() /
+                   (prefix + "_" + std::to_string(::getpid()) + "_" +
+                    ::testing::UnitTest::GetInstance()->current_test_info()->name());
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
 
 // The message of the lfcam::Error that f() throws, or "" when it throws none.
 inline std::string ErrorOf(const std::function<void()>& f) {
