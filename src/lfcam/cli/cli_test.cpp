@@ -12,28 +12,15 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "lfcam/cli/cli_test_support.h"
 #include "lfcam/core/test_support.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-struct CommandResult {
-  int status;
-  std::string output;  // stdout and stderr
-};
-
-CommandResult Lfcam(const std::string& args) {
-  const std::string command = std::string(LFCAM_CLI_PATH) + " " + args + " 2>&1";
-  FILE* pipe = ::popen(command.c_str(), "r");
-  CommandResult run{-1, ""};
-  if (!pipe) return run;
-  std::array<char, 4096> buffer{};
-  while (std::fgets(buffer.data(), buffer.size(), pipe)) run.output += buffer.data();
-  const int status = ::pclose(pipe);
-  run.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return run;
-}
+using lfcam::testing::CommandResult;
+using lfcam::testing::Lfcam;
 
 class Cli : public ::testing::Test {
  protected:

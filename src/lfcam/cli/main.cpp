@@ -75,6 +75,7 @@ int main(int argc, char** argv) {
       "Run `lfcam help COMMAND` for a command's flags.\n"
       "Exit status: 0 success, 1 an error in the work, 2 bad usage.");
   lfcam::cli::AddSimulateCommand(app);
+  lfcam::cli::AddCalibrateCommand(app);
   lfcam::cli::AddRenderCommand(app);
   lfcam::cli::AddOracleCommand(app);
   lfcam::cli::AddInfoCommand(app);

@@ -88,6 +88,7 @@ void AddSimulateCommand(CLI::App& app) {
     fmt::print("wrote {}: {}x{} views of {}x{} samples ({}, {:.1f} MB) in {:.1f} s\n", flags->out,
                rows, cols, o.n_s, o.n_t, ToString(o.sample_type), lf.total_bytes() / 1e6, seconds);
   });
+  AddSimulateCaptureCommand(*simulate);
 }
 
 }  // namespace lfcam::cli

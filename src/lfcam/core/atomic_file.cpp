@@ -14,6 +14,8 @@
 #include "lfcam/core/error.h"
 
 namespace lfcam {
+
+bool ProcessIsGone(long pid) { return pid > 0 && ::kill(pid_t(pid), 0) != 0 && errno == ESRCH; }
 namespace {
 
 std::string Reason(int error_number) { return std::strerror(error_number); }
@@ -21,8 +23,6 @@ std::string Reason(int error_number) { return std::strerror(error_number); }
 std::filesystem::path DirectoryOf(const std::filesystem::path& path) {
   return path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
 }
-
-bool ProcessIsGone(long pid) { return pid > 0 && ::kill(pid_t(pid), 0) != 0 && errno == ESRCH; }
 
 // Removes NAME.tmp-PID files whose writer no longer runs.
 void RemoveStaleTemporaries(const std::filesystem::path& path) {

@@ -55,6 +55,9 @@ void WriteFileAtomically(const std::filesystem::path& path, std::span<const std:
 // naming `flag` and the path.
 void RequireWritableOutput(const std::filesystem::path& path, const std::string& flag);
 
+// Whether no process with this id runs (a temporary it owned is stale).
+bool ProcessIsGone(long pid);
+
 // The process id in a temporary name "NAME.tmp-PID", if `name` is one for `target_name`.
 std::optional<long> TemporaryOwner(const std::string& name, const std::string& target_name);
 

@@ -13,4 +13,8 @@ std::uint8_t LinearToSrgb8(float linear);
 // Decoding table for 8-bit sRGB: SrgbDecodeTable()[v] == SrgbToLinear(v / 255).
 const std::array<float, 256>& SrgbDecodeTable();
 
+// Encoding through a table of 2^16 steps of linear light: LinearToSrgb8 to within one code
+// (exact except where the value lies within 1/131070 of a rounding boundary), for bulk work.
+std::uint8_t LinearToSrgb8Table(float linear);
+
 }  // namespace lfcam

@@ -44,7 +44,8 @@ cv::Mat ToRgb(const cv::Mat& m) {
 
 }  // namespace
 
-cv::Mat DecodeImageBytes(std::span<const std::uint8_t> bytes, const std::string& name) {
+cv::Mat DecodeImageBytes(std::span<const std::uint8_t> bytes, const std::string& name,
+                         int imread_flags) {
   ImageHeader header;
   try {
     header = ProbeImageHeader(bytes);
@@ -62,7 +63,7 @@ cv::Mat DecodeImageBytes(std::span<const std::uint8_t> bytes, const std::string&
   try {
     m = cv::imdecode(
         cv::Mat(1, int(bytes.size()), CV_8UC1, const_cast<std::uint8_t*>(bytes.data())),
-        cv::IMREAD_UNCHANGED);
+        imread_flags);
   } catch (const cv::Exception&) {
     m = cv::Mat();
   }
@@ -73,6 +74,11 @@ cv::Mat DecodeImageBytes(std::span<const std::uint8_t> bytes, const std::string&
     throw Error(fmt::format("{}: decoded to {}x{}, but its header says {}x{}", name, m.cols, m.rows,
                             header.width, header.height));
   return m;
+}
+
+cv::Mat ReadImageGray8(const std::filesystem::path& path) {
+  const auto bytes = ReadFileBytes(path, kMaxEncodedImageBytes, "image file");
+  return DecodeImageBytes(bytes, path.string(), cv::IMREAD_GRAYSCALE);
 }
 
 cv::Mat ReadImageSrgb8(const std::filesystem::path& path) {

@@ -16,10 +16,14 @@ inline constexpr std::uint64_t kMaxEncodedImageBytes = std::uint64_t(1) << 30;
 
 // Decodes a PNG or JPEG held in memory (OpenCV's channel order, any depth) after checking its
 // header: at most kMaxImageSide a side and within the memory limit. `name` is for messages.
-cv::Mat DecodeImageBytes(std::span<const std::uint8_t> bytes, const std::string& name);
+// `imread_flags` as cv::imdecode takes them (default cv::IMREAD_UNCHANGED).
+cv::Mat DecodeImageBytes(std::span<const std::uint8_t> bytes, const std::string& name,
+                         int imread_flags = -1);
 
 // Reads an 8- or 16-bit PNG/JPEG as linear RGB float. Throws lfcam::Error naming the file.
 cv::Mat ReadImageLinear(const std::filesystem::path& path);
+// Reads an image as 8-bit grey (CV_8UC1), decoded straight to grey where the codec can.
+cv::Mat ReadImageGray8(const std::filesystem::path& path);
 // Reads an image as 8-bit sRGB, channels R, G, B (CV_8UC3).
 cv::Mat ReadImageSrgb8(const std::filesystem::path& path);
 // Reads a mask (any channels; nonzero = inside) as CV_8UC1 of 0/255.

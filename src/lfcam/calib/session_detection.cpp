@@ -1,0 +1,87 @@
+#include "lfcam/calib/session_detection.h"
+
+#include <fmt/format.h>
+#include <tbb/parallel_for.h>
+
+#include <mutex>
+
+#include "lfcam/core/error.h"
+#include "lfcam/core/image_io.h"
+
+namespace lfcam {
+
+SessionDetections DetectSessionBoards(const std::filesystem::path& dir,
+                                      const CaptureManifest& manifest,
+                                      const BoardSpec& intrinsics_board,
+                                      const BoardSpec& world_board,
+                                      const std::function<void()>& image_done) {
+  SessionDetections out;
+  out.width = manifest.sensor_width;
+  out.height = manifest.sensor_height;
+  out.cameras.resize(std::size_t(manifest.rows) * std::size_t(manifest.cols));
+  for (int r = 0; r < manifest.rows; ++r)
+    for (int c = 0; c < manifest.cols; ++c) {
+      out.camera(r, c, manifest.cols).row = r;
+      out.camera(r, c, manifest.cols).col = c;
+    }
+  struct Job {
+    const ShotImage* image;
+    int intrinsics_shot;  // -1: the world shot
+    std::string shot_name;
+  };
+  std::vector<Job> jobs;
+  for (const Shot* shot : manifest.shots_of(ShotKind::kIntrinsics)) {
+    for (const ShotImage& image : shot->images)
+      jobs.push_back({&image, out.intrinsics_shots, shot->name});
+    out.intrinsics_shot_names.push_back(shot->name);
+    ++out.intrinsics_shots;
+  }
+  for (const Shot* shot : manifest.shots_of(ShotKind::kWorld))
+    for (const ShotImage& image : shot->images) jobs.push_back({&image, -1, shot->name});
+
+  std::mutex mutex;
+  std::optional<Error> mixed_sizes;
+  tbb::parallel_for(std::size_t(0), jobs.size(), [&](std::size_t index) {
+    const Job& job = jobs[index];
+    const auto path = dir / job.image->file;
+    const std::string who = CameraLabel(job.image->row, job.image->col);
+    std::optional<std::vector<cv::Point2f>> corners;
+    std::string warning;
+    bool not_found = false;
+    try {
+      const cv::Mat gray = ReadImageGray8(path);
+      if (gray.cols != out.width || gray.rows != out.height) {
+        std::lock_guard lock(mutex);
+        if (!mixed_sizes)
+          mixed_sizes = Error(fmt::format(
+              "{} ({}): the image is {}x{}, but the session's sensor is {}x{} (images of mixed "
+              "sizes)",
+              path.string(), who, gray.cols, gray.rows, out.width, out.height));
+      } else {
+        const BoardSpec& board = job.intrinsics_shot >= 0 ? intrinsics_board : world_board;
+        corners = DetectChessboard(gray, board);
+        not_found = !corners;
+      }
+    } catch (const Error& e) {
+      warning = fmt::format("{}: unreadable image: {}", job.shot_name, e.what());
+    }
+    std::lock_guard lock(mutex);
+    CameraDetections& camera = out.camera(job.image->row, job.image->col, manifest.cols);
+    if (!warning.empty()) camera.warnings.push_back(warning);
+    if (not_found) camera.not_found.push_back(job.shot_name);
+    if (corners) {
+      if (job.intrinsics_shot >= 0)
+        camera.intrinsics.push_back({job.intrinsics_shot, std::move(*corners)});
+      else
+        camera.world = std::move(*corners);
+    }
+    if (image_done) image_done();
+  });
+  if (mixed_sizes) throw *mixed_sizes;
+  for (auto& camera : out.cameras)
+    std::sort(camera.intrinsics.begin(), camera.intrinsics.end(),
+              [](const BoardView& a, const BoardView& b) { return a.shot < b.shot; });
+  return out;
+}
+
+}  // namespace lfcam

@@ -1,0 +1,25 @@
+// libFuzzer target: a capture session's manifest (the first file calibrate and build read from
+// a session someone else wrote), and the board SPEC strings of flags and manifests.
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+#include "lfcam/calib/board.h"
+#include "lfcam/capture/session.h"
+#include "lfcam/core/error.h"
+#include "lfcam/core/json_input.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const std::string_view text(reinterpret_cast<const char*>(data), size);
+  try {
+    const auto m = lfcam::ManifestFromJson(lfcam::ParseJsonBounded(text, "fuzz"), "fuzz");
+    (void)lfcam::JsonToText(lfcam::ManifestToJson(m));
+  } catch (const lfcam::Error&) {
+  }
+  try {
+    const auto board = lfcam::ParseBoardSpec(std::string(text.substr(0, 64)));
+    (void)board.corners();
+  } catch (const lfcam::Error&) {
+  }
+  return 0;
+}

@@ -1,0 +1,156 @@
+#include "lfcam/capture/session.h"
+
+#include <fmt/format.h>
+
+#include <set>
+
+#include "lfcam/core/error.h"
+#include "lfcam/core/input_file.h"
+#include "lfcam/core/json_input.h"
+#include "lfcam/core/limits.h"
+
+namespace lfcam {
+
+std::string ToString(ShotKind kind) {
+  switch (kind) {
+    case ShotKind::kIntrinsics:
+      return "intrinsics";
+    case ShotKind::kWorld:
+      return "world";
+    case ShotKind::kScene:
+      return "scene";
+  }
+  return "?";
+}
+
+std::vector<const Shot*> CaptureManifest::shots_of(ShotKind kind) const {
+  std::vector<const Shot*> out;
+  for (const Shot& s : shots)
+    if (s.kind == kind) out.push_back(&s);
+  return out;
+}
+
+std::string CameraFileName(int row, int col) {
+  return fmt::format("cam_{:02d}_{:02d}.jpg", row, col);
+}
+
+std::string CameraLabel(int row, int col) { return fmt::format("camera ({}, {})", row, col); }
+
+nlohmann::json ManifestToJson(const CaptureManifest& m) {
+  nlohmann::json shots = nlohmann::json::array();
+  for (const Shot& s : m.shots) {
+    nlohmann::json images = nlohmann::json::array();
+    for (const ShotImage& i : s.images)
+      images.push_back({{"row", i.row}, {"col", i.col}, {"file", i.file}});
+    shots.push_back({{"kind", ToString(s.kind)}, {"name", s.name}, {"images", images}});
+  }
+  nlohmann::json boards = nlohmann::json::object();
+  if (m.intrinsics_board) boards["intrinsics"] = BoardToJson(*m.intrinsics_board);
+  if (m.world_board) boards["world"] = BoardToJson(*m.world_board);
+  return {{"format", "lfcam-capture"},
+          {"version", kManifestVersion},
+          {"grid", {{"rows", m.rows}, {"cols", m.cols}, {"pitch_mm", m.pitch_mm}}},
+          {"sensor",
+           {{"width", m.sensor_width}, {"height", m.sensor_height}, {"model", m.sensor_model}}},
+          {"boards", boards},
+          {"shots", shots},
+          {"source", m.source}};
+}
+
+namespace {
+
+ShotKind ShotKindFromString(const std::string& text, const std::string& where) {
+  if (text == "intrinsics") return ShotKind::kIntrinsics;
+  if (text == "world") return ShotKind::kWorld;
+  if (text == "scene") return ShotKind::kScene;
+  throw Error(fmt::format("{}: shot kind '{}' is not intrinsics, world or scene", where, text));
+}
+
+// A relative, '/'-separated path with no empty, "." or ".." parts and no NUL.
+void CheckRelativeName(const std::string& file, const std::string& where) {
+  if (file.empty() || file.size() > 1024 || file.front() == '/' ||
+      file.find('\0') != std::string::npos || file.find('\\') != std::string::npos)
+    throw Error(
+        fmt::format("{}: file name '{}' must be a relative path inside the session", where, file));
+  std::size_t start = 0;
+  while (start <= file.size()) {
+    const std::size_t slash = std::min(file.find('/', start), file.size());
+    const std::string part = file.substr(start, slash - start);
+    if (part.empty() || part == "." || part == "..")
+      throw Error(fmt::format("{}: file name '{}' must be a relative path inside the session",
+                              where, file));
+    start = slash + 1;
+  }
+}
+
+}  // namespace
+
+CaptureManifest ManifestFromJson(const nlohmann::json& j, const std::string& where) {
+  if (!j.is_object()) throw Error(fmt::format("{}: not a capture manifest (an object)", where));
+  if (JsonString(j, "format", where) != "lfcam-capture")
+    throw Error(fmt::format("{}: format is not \"lfcam-capture\"", where));
+  const auto version = JsonInteger(j, "version", 1, 1000000, where);
+  if (version > kManifestVersion)
+    throw Error(fmt::format("{}: manifest version {} is newer than this lfcam reads ({})", where,
+                            version, kManifestVersion));
+  CaptureManifest m;
+  const auto& grid = JsonField(j, "grid", where);
+  m.rows = int(JsonInteger(grid, "rows", 1, kMaxViewsPerSide, where + ": grid"));
+  m.cols = int(JsonInteger(grid, "cols", 1, kMaxViewsPerSide, where + ": grid"));
+  m.pitch_mm = JsonNumber(grid, "pitch_mm", where + ": grid");
+  if (!(m.pitch_mm > 0 && m.pitch_mm < 1e6))
+    throw Error(fmt::format("{}: grid: pitch_mm {} must be positive", where, m.pitch_mm));
+  const auto& sensor = JsonField(j, "sensor", where);
+  m.sensor_width = int(JsonInteger(sensor, "width", 1, kMaxImageSide, where + ": sensor"));
+  m.sensor_height = int(JsonInteger(sensor, "height", 1, kMaxImageSide, where + ": sensor"));
+  if (sensor.contains("model")) m.sensor_model = JsonString(sensor, "model", where + ": sensor");
+  if (j.contains("boards")) {
+    const auto& boards = j["boards"];
+    if (!boards.is_object()) throw Error(fmt::format("{}: boards must be an object", where));
+    if (boards.contains("intrinsics"))
+      m.intrinsics_board = BoardFromJson(boards["intrinsics"], where + ": boards: intrinsics");
+    if (boards.contains("world"))
+      m.world_board = BoardFromJson(boards["world"], where + ": boards: world");
+  }
+  const auto& shots = JsonField(j, "shots", where);
+  if (!shots.is_array()) throw Error(fmt::format("{}: shots must be an array", where));
+  std::set<std::string> names;
+  for (std::size_t s = 0; s < shots.size(); ++s) {
+    const std::string sw = fmt::format("{}: shots[{}]", where, s);
+    Shot shot;
+    shot.kind = ShotKindFromString(JsonString(shots[s], "kind", sw), sw);
+    shot.name = JsonString(shots[s], "name", sw);
+    if (!names.insert(shot.name).second)
+      throw Error(fmt::format("{}: shot name '{}' is used twice", sw, shot.name));
+    const auto& images = JsonField(shots[s], "images", sw);
+    if (!images.is_array()) throw Error(fmt::format("{}: images must be an array", sw));
+    std::set<std::pair<int, int>> seen;
+    for (std::size_t i = 0; i < images.size(); ++i) {
+      const std::string iw = fmt::format("{}: images[{}]", sw, i);
+      ShotImage image;
+      image.row = int(JsonInteger(images[i], "row", 0, m.rows - 1, iw));
+      image.col = int(JsonInteger(images[i], "col", 0, m.cols - 1, iw));
+      image.file = JsonString(images[i], "file", iw);
+      CheckRelativeName(image.file, iw);
+      if (!seen.insert({image.row, image.col}).second)
+        throw Error(fmt::format("{}: {} appears twice in shot '{}'", iw,
+                                CameraLabel(image.row, image.col), shot.name));
+      shot.images.push_back(std::move(image));
+    }
+    m.shots.push_back(std::move(shot));
+  }
+  if (j.contains("source")) m.source = j["source"];
+  return m;
+}
+
+CaptureManifest ReadManifest(const std::filesystem::path& dir) {
+  const auto path = dir / kManifestName;
+  std::error_code ec;
+  if (!std::filesystem::is_directory(dir, ec))
+    throw Error(fmt::format("{}: not a capture session directory", dir.string()));
+  const auto bytes = ReadFileBytes(path, kMaxJsonBytes, "capture manifest");
+  const std::string text(bytes.begin(), bytes.end());
+  return ManifestFromJson(ParseJsonBounded(text, path.string()), path.string());
+}
+
+}  // namespace lfcam

@@ -1,0 +1,62 @@
+#pragma once
+// A capture session on disk (docs/capture-layout.md): what the capture controller writes, the
+// simulator writes, and calibrate and build read.
+//
+//   DIR/manifest.json                       grid, sensor, boards, every shot's files
+//   DIR/calib/intrinsics/shot_KK/cam_RR_CC.jpg   the intrinsics board, K = 00, 01, ...
+//   DIR/calib/world/cam_RR_CC.jpg           the world board at the view window
+//   DIR/scene/cam_RR_CC.jpg                 the scene
+//   DIR/ground_truth.json                   (simulated sessions only) what the simulator knows
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "lfcam/calib/board.h"
+
+namespace lfcam {
+
+inline constexpr const char* kManifestName = "manifest.json";
+inline constexpr int kManifestVersion = 1;
+
+enum class ShotKind { kIntrinsics, kWorld, kScene };
+std::string ToString(ShotKind kind);
+
+struct ShotImage {
+  int row = 0, col = 0;
+  std::string file;  // relative to the session directory, '/'-separated
+};
+
+struct Shot {
+  ShotKind kind = ShotKind::kScene;
+  std::string name;  // "shot_00", "world", "scene"
+  std::vector<ShotImage> images;
+};
+
+struct CaptureManifest {
+  int rows = 10, cols = 10;
+  double pitch_mm = 28.0;
+  int sensor_width = 0, sensor_height = 0;
+  std::string sensor_model;
+  std::optional<BoardSpec> intrinsics_board, world_board;
+  std::vector<Shot> shots;
+  nlohmann::json source = nlohmann::json::object();  // who made it, when, with what settings
+
+  std::vector<const Shot*> shots_of(ShotKind kind) const;
+};
+
+// "cam_RR_CC.jpg" (at least two digits each).
+std::string CameraFileName(int row, int col);
+// "camera (R, C)" for messages.
+std::string CameraLabel(int row, int col);
+
+nlohmann::json ManifestToJson(const CaptureManifest& manifest);
+// Parses a manifest; `where` names it in errors. File names must be relative and stay inside
+// the session (no "..", no absolute paths); each camera appears at most once per shot; row and
+// col are inside the grid.
+CaptureManifest ManifestFromJson(const nlohmann::json& j, const std::string& where);
+// Reads DIR/manifest.json (bounded, regular file). Throws lfcam::Error naming the file.
+CaptureManifest ReadManifest(const std::filesystem::path& session_dir);
+
+}  // namespace lfcam

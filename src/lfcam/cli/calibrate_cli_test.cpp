@@ -1,0 +1,101 @@
+// End-to-end: `simulate capture` -> `calibrate` (and `calibrate intrinsics`) through the
+// command, and their bad input: exit status 2 for flags, 1 for sessions, messages naming what.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "lfcam/cli/cli_test_support.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using lfcam::testing::CommandResult;
+using lfcam::testing::Lfcam;
+
+class CalibrateCli : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new fs::path(fs::temp_directory_path() /
+                        ("lfcam_calibrate_cli_" + std::to_string(::getpid())));
+    fs::remove_all(*dir_);
+    fs::create_directories(*dir_);
+    const CommandResult run = Lfcam(
+        "simulate capture --grid 2x2 --sensor 648x486 --shots 8 "
+        "--quiet --out " +
+        Path("session"));
+    ASSERT_EQ(run.status, 0) << run.output;
+  }
+  static void TearDownTestSuite() {
+    fs::remove_all(*dir_);
+    delete dir_;
+  }
+  static std::string Path(const std::string& name) { return (*dir_ / name).string(); }
+  static fs::path* dir_;
+};
+fs::path* CalibrateCli::dir_ = nullptr;
+
+TEST_F(CalibrateCli, WritesTheCalibrationAndItsPicture) {
+  const CommandResult run =
+      Lfcam("calibrate " + Path("session") + " --quiet --json --out " + Path("cal.json"));
+  ASSERT_EQ(run.status, 0) << run.output;
+  const auto j = nlohmann::json::parse(run.output);
+  EXPECT_EQ(j["format"], "lfcam-calibration");
+  EXPECT_EQ(j["calibrated_cameras"], 4);
+  EXPECT_EQ(j["cameras"].size(), 4u);
+  EXPECT_LT(j["bundle_adjustment"]["final_rms_px"].get<double>(), 0.2);
+  EXPECT_TRUE(fs::exists(Path("cal.json")));
+  EXPECT_GT(fs::file_size(Path("cal.png")), 1000u);
+  // The session layout is what docs/capture-layout.md says.
+  EXPECT_TRUE(fs::exists(Path("session/calib/intrinsics/shot_07/cam_01_01.jpg")));
+  EXPECT_TRUE(fs::exists(Path("session/calib/world/cam_00_01.jpg")));
+  EXPECT_TRUE(fs::exists(Path("session/scene/cam_01_00.jpg")));
+  EXPECT_TRUE(fs::exists(Path("session/ground_truth.json")));
+}
+
+TEST_F(CalibrateCli, CalibratesOneModuleFromItsImages) {
+  std::string images;
+  for (int k = 0; k < 8; ++k)
+    images += Path("session/calib/intrinsics/shot_0" + std::to_string(k) + "/cam_00_00.jpg") + " ";
+  const CommandResult run =
+      Lfcam("calibrate intrinsics " + images + "--board 10x7@30 --json --out " + Path("cam.json"));
+  ASSERT_EQ(run.status, 0) << run.output;
+  const auto j = nlohmann::json::parse(run.output);
+  EXPECT_GE(j["images_used"].size(), 4u);
+  EXPECT_LT(j["reprojection_rms_px"].get<double>(), 0.2);
+  EXPECT_NEAR(j["intrinsics"]["fx"].get<double>(), 642.9, 0.03 * 642.9);  // 3.6 mm at 648 px
+}
+
+TEST_F(CalibrateCli, BadFlagsAreUsageErrors) {
+  for (const std::string& args :
+       {"calibrate " + Path("session") + " --out " + Path("x.json") + " --intrinsics-board 10x8@30",
+        "calibrate " + Path("session") + " --out " + Path("x.json") + " --world-board abc",
+        "calibrate " + Path("session"),
+        "calibrate intrinsics " + Path("nothing.jpg") + " --board 10x7 --out " + Path("c.json"),
+        "simulate capture --out " + Path("s2") + " --defects some",
+        "simulate capture --out " + Path("s2") + " --board charuco",
+        "simulate capture --out " + Path("s2") + " --sensor 20x20",
+        "simulate capture --out " + Path("session")}) {  // exists and is not empty
+    const CommandResult run = Lfcam(args);
+    EXPECT_EQ(run.status, 2) << args << "\n" << run.output;
+  }
+  EXPECT_FALSE(fs::exists(Path("s2")));
+  EXPECT_FALSE(fs::exists(Path("x.json")));
+}
+
+TEST_F(CalibrateCli, BadSessionsAreErrorsNamingWhat) {
+  CommandResult run = Lfcam("calibrate " + Path("none") + " --out " + Path("x.json"));
+  EXPECT_EQ(run.status, 1);
+  EXPECT_NE(run.output.find("none"), std::string::npos) << run.output;
+  fs::create_directories(Path("broken"));
+  std::ofstream(Path("broken/manifest.json")) << "{\"format\": \"lfcam-capture\"}";
+  run = Lfcam("calibrate " + Path("broken") + " --out " + Path("x.json"));
+  EXPECT_EQ(run.status, 1);
+  EXPECT_NE(run.output.find("manifest.json"), std::string::npos) << run.output;
+  EXPECT_FALSE(fs::exists(Path("x.json")));
+  EXPECT_FALSE(fs::exists(Path("x.png")));
+}
+
+}  // namespace

@@ -1,0 +1,87 @@
+#include "lfcam/sim/board_radiance.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace lfcam {
+namespace {
+
+// The integral from 0 to x of the square wave that is +1 on even squares and -1 on odd ones:
+// a triangle wave of period 2 squares.
+double SquareWaveIntegral(double x, double square) {
+  const double u = x / square;
+  const double m = u - 2.0 * std::floor(u / 2.0);  // in [0, 2)
+  return square * (1.0 - std::abs(m - 1.0));
+}
+
+}  // namespace
+
+double BlackAreaFraction(const BoardSpec& board, double x0, double x1, double y0, double y1) {
+  const double area = (x1 - x0) * (y1 - y0);
+  if (!(area > 0)) return board.black_at(0.5 * (x0 + x1), 0.5 * (y0 + y1)) ? 1.0 : 0.0;
+  // Only the squared area has squares; clip the rectangle to it.
+  const double cx0 = std::max(x0, 0.0), cx1 = std::min(x1, board.width_mm());
+  const double cy0 = std::max(y0, 0.0), cy1 = std::min(y1, board.height_mm());
+  if (cx1 <= cx0 || cy1 <= cy0) return 0.0;
+  const double s = board.square_mm;
+  // Black is where the two square waves agree: (1 + q(x) q(y)) / 2.
+  const double checker = (SquareWaveIntegral(cx1, s) - SquareWaveIntegral(cx0, s)) *
+                         (SquareWaveIntegral(cy1, s) - SquareWaveIntegral(cy0, s));
+  return 0.5 * ((cx1 - cx0) * (cy1 - cy0) + checker) / area;
+}
+
+PixelRadiance BoardInFrontOf(const BoardSpec& board, const Rigid3& world_from_board,
+                             const Scene& scene, const BoardAppearance& look) {
+  const Rigid3 board_from_world = world_from_board.inverse();
+  const double margin = look.margin_squares * board.square_mm;
+  return [=, &scene](const Ray& ray, const Vec3& dx, const Vec3& dy, const Vec3* behind) -> Vec3 {
+    auto background = [&] { return behind ? *behind : scene.Radiance(ray); };
+    // Everything in board coordinates: the board is the plane z = 0.
+    const Vec3 o = board_from_world * ray.origin;
+    const Mat3& r = board_from_world.rotation;
+    auto hit = [&](const Vec3& world_direction, Vec2* at) {
+      const Vec3 d = r * world_direction;
+      if (std::abs(d.z()) < 1e-12) return false;
+      const double t = -o.z() / d.z();
+      if (!(t > 0)) return false;
+      *at = Vec2(o.x() + t * d.x(), o.y() + t * d.y());
+      return true;
+    };
+    Vec2 center, right, down;
+    if (!hit(ray.direction, &center) || !hit(ray.direction + dx, &right) ||
+        !hit(ray.direction + dy, &down))
+      return background();
+    // The footprint's extent along the board's axes, with the pixel's area.
+    const Vec2 ju = right - center, jv = down - center;
+    const double hx = 0.5 * std::sqrt(ju.x() * ju.x() + jv.x() * jv.x());
+    const double hy = 0.5 * std::sqrt(ju.y() * ju.y() + jv.y() * jv.y());
+    const double x0 = center.x() - hx, x1 = center.x() + hx;
+    const double y0 = center.y() - hy, y1 = center.y() + hy;
+    const double bx0 = -margin, bx1 = board.width_mm() + margin;
+    const double by0 = -margin, by1 = board.height_mm() + margin;
+    const double ox = std::max(0.0, std::min(x1, bx1) - std::max(x0, bx0));
+    const double oy = std::max(0.0, std::min(y1, by1) - std::max(y0, by0));
+    const double on_board = std::min(1.0, ox * oy / std::max(1e-300, (x1 - x0) * (y1 - y0)));
+    if (on_board <= 0) return background();
+    const double black = BlackAreaFraction(board, x0, x1, y0, y1);
+    const double value = look.black * black + look.white * (on_board - black);
+    Vec3 out = Vec3::Constant(value);
+    if (on_board < 1) out += (1 - on_board) * background();
+    return out;
+  };
+}
+
+PixelRadiance SceneRadiance(const Scene& scene, int n) {
+  return [&scene, n](const Ray& ray, const Vec3& dx, const Vec3& dy, const Vec3*) -> Vec3 {
+    if (n <= 1) return scene.Radiance(ray);
+    Vec3 sum = Vec3::Zero();
+    for (int a = 0; a < n; ++a)
+      for (int b = 0; b < n; ++b) {
+        const double fx = (b + 0.5) / n - 0.5, fy = (a + 0.5) / n - 0.5;
+        sum += scene.Radiance({ray.origin, ray.direction + fx * dx + fy * dy});
+      }
+    return sum / double(n * n);
+  };
+}
+
+}  // namespace lfcam

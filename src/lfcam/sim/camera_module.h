@@ -1,0 +1,78 @@
+#pragma once
+// The simulated Raspberry Pi camera module v1.3 (OmniVision OV5647: 2592 x 1944 pixels of
+// 1.4 um, a 3.60 mm lens) and the defects a real array of them has: mounting error, spread of
+// the intrinsics, lens distortion, vignetting, exposure and white-balance spread, sensor noise.
+#include <cstdint>
+#include <functional>
+#include <opencv2/core.hpp>
+#include <vector>
+
+#include "lfcam/core/camera_model.h"
+#include "lfcam/core/slab.h"
+
+namespace lfcam {
+
+inline constexpr int kPiCameraWidth = 2592;
+inline constexpr int kPiCameraHeight = 1944;
+inline constexpr double kPiCameraFocalMm = 3.60;
+inline constexpr double kPiCameraPixelUm = 1.4;  // at full resolution
+
+// The nominal module at a sensor resolution of width x height (binned or scaled from the full
+// 2592 x 1944; the field of view stays 53.5 x 41.4 degrees): no distortion, centred.
+CameraIntrinsics NominalPiCamera(int width, int height);
+
+// A module's photometric response: what it records for linear radiance L at pixel x is
+//   gain[c] * L * (1 + vignetting[0] rho^2 + vignetting[1] rho^4),
+// rho the distance from the image centre over the half-diagonal.
+struct ModulePhotometry {
+  Vec3 gain = Vec3::Ones();
+  double vignetting[2] = {0.0, 0.0};
+  double falloff(double rho2) const { return 1 + rho2 * (vignetting[0] + rho2 * vignetting[1]); }
+};
+
+struct SimulatedModule {
+  int row = 0, col = 0;
+  CameraIntrinsics intrinsics;
+  Rigid3 world_from_camera;
+  ModulePhotometry photometry;
+};
+
+enum class ModuleDefects { kNone, kRealistic };
+
+// One module per grid position of `array`, looking along -n_ca. kRealistic draws, from `seed`:
+// a centre within +-1 mm and a rotation within 1 degree of the ideal mount; focal lengths within
+// +-2%; a principal point within +-20 px (scaled to the sensor); Brown-Conrady distortion of a
+// 3.6 mm wide-angle lens; vignetting; gain within +-15% and white balance within +-8%.
+std::vector<SimulatedModule> MakeModules(const ArrayPlane& array, int width, int height,
+                                         ModuleDefects defects, std::uint64_t seed);
+
+// What a pixel sees: the linear radiance over the footprint of the pixel whose centre ray is
+// `ray` (unit direction), with `dx`, `dy` the change of that direction one pixel right and down.
+// `behind`, when not null, is what the pixel would see were the nearest thing not there (a
+// scene rendered once and shared by every board shot of a module).
+using PixelRadiance =
+    std::function<Vec3(const Ray& ray, const Vec3& dx, const Vec3& dy, const Vec3* behind)>;
+
+struct ExposureOptions {
+  bool noise = true;          // photon shot noise and read noise (off: an ideal sensor)
+  double full_well = 4000.0;  // electrons at radiance 1 after gain: sets the shot noise
+  double read_noise = 3.0;    // electrons, RMS
+  std::uint64_t noise_seed = 1;
+};
+
+// Each pixel centre's viewing direction in the world frame (unit, CV_32FC3), distortion undone:
+// computed once per module and shared by all its shots.
+cv::Mat ModuleRayDirections(const SimulatedModule& module);
+
+// The module's image, 8-bit sRGB RGB (CV_8UC3, row 0 at the top), with its photometry and noise.
+// `directions` is ModuleRayDirections(module). Rows are rendered in parallel.
+// `behind` (optional, CV_32FC3 linear, the module's size) is passed on to `radiance` per pixel.
+cv::Mat ExposeModule(const SimulatedModule& module, const cv::Mat& directions,
+                     const PixelRadiance& radiance, const ExposureOptions& options,
+                     const cv::Mat* behind = nullptr);
+
+// The radiance each pixel sees, linear (CV_32FC3), without photometry or noise.
+cv::Mat RenderRadiance(const SimulatedModule& module, const cv::Mat& directions,
+                       const PixelRadiance& radiance);
+
+}  // namespace lfcam
