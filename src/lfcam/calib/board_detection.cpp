@@ -59,10 +59,14 @@ std::optional<std::vector<cv::Point2f>> DetectChessboard(const cv::Mat& gray,
   cv::Mat small = gray;
   if (scale < 1.0) cv::resize(gray, small, cv::Size(), scale, scale, cv::INTER_AREA);
   std::vector<cv::Point2f> corners;
-  bool found = cv::findChessboardCorners(
-      small, pattern, corners,
-      cv::CALIB_CB_ADAPTIVE_THRESH | cv::CALIB_CB_NORMALIZE_IMAGE | cv::CALIB_CB_FAST_CHECK);
-  if (!found) {
+  bool found = cv::findChessboardCorners(small, pattern, corners, cv::CALIB_CB_FAST_CHECK);
+  if (!found && options.thorough) {
+    corners.clear();
+    found = cv::findChessboardCorners(
+        small, pattern, corners,
+        cv::CALIB_CB_ADAPTIVE_THRESH | cv::CALIB_CB_NORMALIZE_IMAGE | cv::CALIB_CB_FAST_CHECK);
+  }
+  if (!found && options.thorough) {
     corners.clear();
     found = cv::findChessboardCornersSB(small, pattern, corners, cv::CALIB_CB_NORMALIZE_IMAGE);
   }

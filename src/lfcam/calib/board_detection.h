@@ -12,6 +12,11 @@ namespace lfcam {
 
 struct BoardDetectionOptions {
   int detect_long_side = 1024;  // the downscaled copy's longer side (0: detect at full size)
+  // false: OpenCV's plain detector only (about 10 ms; gives up fast on a board partly out of
+  // view). true: also adaptive thresholds and the sector-based detector (up to a second or two
+  // on an image without the whole board), for images the plain one missed but that should
+  // hold the board.
+  bool thorough = false;
 };
 
 // The corners of `board` in `gray` (CV_8UC1, full resolution) in the board's point order, or

@@ -13,6 +13,7 @@ const cv::Scalar kDim(150, 150, 150);
 
 struct Panel {
   std::string title, unit;
+  double scale_floor;  // the scale reaches at least this: a good array stays dark
   std::function<double(const CameraCalibration&)> value;
 };
 
@@ -30,7 +31,11 @@ void DrawPanel(cv::Mat& canvas, cv::Rect area, const ArrayCalibration& a, const 
       calibrated.push_back(&c);
     }
   if (calibrated.empty()) hi = 0;
-  lo = 0;  // an honest scale: from zero, so that a uniformly good array looks uniform
+  const double worst = hi;
+  // From zero to at least the floor: a uniformly good array looks uniformly dark, a bad camera
+  // stands out bright.
+  lo = 0;
+  hi = std::max(hi, panel.scale_floor);
   const double span = hi > lo ? hi - lo : 1.0;
   cv::Mat ramp(1, 256, CV_8UC1);
   for (int i = 0; i < 256; ++i) ramp.at<std::uint8_t>(i) = std::uint8_t(i);
@@ -57,8 +62,10 @@ void DrawPanel(cv::Mat& canvas, cv::Rect area, const ArrayCalibration& a, const 
   std::sort(calibrated.begin(), calibrated.end(),
             [&](auto* x, auto* y) { return panel.value(*x) > panel.value(*y); });
   const int bottom = origin.y + a.rows * cell;
-  cv::putText(canvas, fmt::format("0 .. {:.3g} {} (dark to bright)", hi, panel.unit),
-              {area.x + 10, bottom + 20}, cv::FONT_HERSHEY_SIMPLEX, 0.45, kDim, 1, cv::LINE_AA);
+  cv::putText(
+      canvas,
+      fmt::format("scale 0 .. {:.3g} {} (dark to bright); worst {:.3g}", hi, panel.unit, worst),
+      {area.x + 10, bottom + 20}, cv::FONT_HERSHEY_SIMPLEX, 0.45, kDim, 1, cv::LINE_AA);
   for (std::size_t i = 0; i < std::min<std::size_t>(3, calibrated.size()); ++i) {
     const auto& c = *calibrated[i];
     const cv::Point center(origin.x + c.col * cell + cell / 2 - 5,
@@ -85,9 +92,9 @@ cv::Mat DrawCalibrationReport(const ArrayCalibration& a) {
                   a.calibrated_count(), a.cameras.size(), ba.final_rms_px, a.fit.grid_rms_mm),
       {10, 24}, cv::FONT_HERSHEY_SIMPLEX, 0.55, kText, 1, cv::LINE_AA);
   DrawPanel(canvas, {0, 40, panel_w, panel_h}, a,
-            {"reprojection error", "px", [](const CameraCalibration& c) { return c.rms_px; }});
+            {"reprojection error", "px", 0.5, [](const CameraCalibration& c) { return c.rms_px; }});
   DrawPanel(canvas, {panel_w, 40, panel_w, panel_h}, a,
-            {"distance from the ideal grid", "mm",
+            {"distance from the ideal grid", "mm", 2.0,
              [](const CameraCalibration& c) { return c.distance_to_ideal_mm; }});
   return canvas;
 }

@@ -14,7 +14,7 @@ SessionDetections DetectSessionBoards(const std::filesystem::path& dir,
                                       const CaptureManifest& manifest,
                                       const BoardSpec& intrinsics_board,
                                       const BoardSpec& world_board,
-                                      const std::function<void()>& image_done) {
+                                      const std::function<void()>& image_done, int min_views) {
   SessionDetections out;
   out.width = manifest.sensor_width;
   out.height = manifest.sensor_height;
@@ -41,8 +41,8 @@ SessionDetections DetectSessionBoards(const std::filesystem::path& dir,
 
   std::mutex mutex;
   std::optional<Error> mixed_sizes;
-  tbb::parallel_for(std::size_t(0), jobs.size(), [&](std::size_t index) {
-    const Job& job = jobs[index];
+  // Searches one image; returns whether its board was found.
+  auto search = [&](const Job& job, bool thorough) {
     const auto path = dir / job.image->file;
     const std::string who = CameraLabel(job.image->row, job.image->col);
     std::optional<std::vector<cv::Point2f>> corners;
@@ -59,7 +59,9 @@ SessionDetections DetectSessionBoards(const std::filesystem::path& dir,
               path.string(), who, gray.cols, gray.rows, out.width, out.height));
       } else {
         const BoardSpec& board = job.intrinsics_shot >= 0 ? intrinsics_board : world_board;
-        corners = DetectChessboard(gray, board);
+        BoardDetectionOptions options;
+        options.thorough = thorough;
+        corners = DetectChessboard(gray, board, options);
         not_found = !corners;
       }
     } catch (const Error& e) {
@@ -68,15 +70,42 @@ SessionDetections DetectSessionBoards(const std::filesystem::path& dir,
     std::lock_guard lock(mutex);
     CameraDetections& camera = out.camera(job.image->row, job.image->col, manifest.cols);
     if (!warning.empty()) camera.warnings.push_back(warning);
-    if (not_found) camera.not_found.push_back(job.shot_name);
     if (corners) {
       if (job.intrinsics_shot >= 0)
         camera.intrinsics.push_back({job.intrinsics_shot, std::move(*corners)});
       else
         camera.world = std::move(*corners);
     }
-    if (image_done) image_done();
+    return !not_found;
+  };
+
+  // First pass: the plain detector on every image (fast, also where the board is partly out of
+  // view, which is most misses).
+  std::vector<char> missed(jobs.size(), 0);
+  tbb::parallel_for(std::size_t(0), jobs.size(), [&](std::size_t index) {
+    missed[index] = !search(jobs[index], false);
+    if (image_done) {
+      std::lock_guard lock(mutex);
+      image_done();
+    }
   });
+  // Second pass, thorough, where a miss hurts: the world board of every camera that missed it,
+  // and every missed intrinsics image of a camera left with too few views.
+  std::vector<std::size_t> retry;
+  for (std::size_t i = 0; i < jobs.size(); ++i) {
+    if (!missed[i]) continue;
+    const CameraDetections& camera =
+        out.camera(jobs[i].image->row, jobs[i].image->col, manifest.cols);
+    if (jobs[i].intrinsics_shot < 0 || int(camera.intrinsics.size()) < min_views)
+      retry.push_back(i);
+  }
+  tbb::parallel_for(std::size_t(0), retry.size(), [&](std::size_t r) {
+    if (search(jobs[retry[r]], true)) missed[retry[r]] = 0;
+  });
+  for (std::size_t i = 0; i < jobs.size(); ++i)
+    if (missed[i])
+      out.camera(jobs[i].image->row, jobs[i].image->col, manifest.cols)
+          .not_found.push_back(jobs[i].shot_name);
   if (mixed_sizes) throw *mixed_sizes;
   for (auto& camera : out.cameras)
     std::sort(camera.intrinsics.begin(), camera.intrinsics.end(),

@@ -38,10 +38,15 @@ struct SessionDetections {
 // read, or whose board is not found, becomes a warning on its camera; an image whose size is not
 // the manifest's sensor size throws lfcam::Error naming the file (a session of mixed sizes).
 // `image_done` is called once per image (serialised).
+//
+// Every image is searched with the plain detector first; the thorough one (adaptive thresholds,
+// the sector-based detector) then retries the world image of every camera that missed its world
+// board and the missed intrinsics images of every camera left with fewer than `min_views`.
 SessionDetections DetectSessionBoards(const std::filesystem::path& session_dir,
                                       const CaptureManifest& manifest,
                                       const BoardSpec& intrinsics_board,
                                       const BoardSpec& world_board,
-                                      const std::function<void()>& image_done = {});
+                                      const std::function<void()>& image_done = {},
+                                      int min_views = 4);
 
 }  // namespace lfcam

@@ -84,7 +84,9 @@ void AddIntrinsicsSubcommand(CLI::App& calibrate) {
         throw Error(fmt::format("{}: the image is {}x{}, the first was {}x{} (mixed sizes)", path,
                                 gray.cols, gray.rows, width, height));
       }
-      if (auto corners = DetectChessboard(gray, board)) {
+      BoardDetectionOptions thorough;
+      thorough.thorough = true;
+      if (auto corners = DetectChessboard(gray, board, thorough)) {
         views.push_back(std::move(*corners));
         used.push_back(path);
       } else {

@@ -106,4 +106,16 @@ void LightField::set_linear_rgb(int row, int col, int k, int l, const Eigen::Vec
   for (int c = 0; c < 3; ++c) p[c] = Eigen::half(rgb[c]);
 }
 
+void LightField::set_measured_poses(std::vector<ViewPose> poses) {
+  if (!poses.empty() && poses.size() != dims_.view_count())
+    throw Error(
+        fmt::format("{} measured view poses for {} views", poses.size(), dims_.view_count()));
+  measured_poses_ = std::move(poses);
+}
+
+Vec3 LightField::camera_center(int row, int col) const {
+  if (!measured_poses_.empty()) return measured_poses_[std::size_t(row) * dims_.cols + col].center;
+  return slab_.uv.camera_center(row, col);
+}
+
 }  // namespace lfcam

@@ -11,6 +11,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "lfcam/core/slab.h"
 
@@ -23,6 +24,13 @@ enum class SampleType {
 std::string ToString(SampleType type);
 SampleType SampleTypeFromString(const std::string& name);  // throws lfcam::Error
 std::size_t BytesPerChannel(SampleType type);
+
+// Where a view's camera actually was: its centre of projection (world, mm) and the rotation
+// world_from_camera (camera frame: OpenCV's, x right, y down, z forward).
+struct ViewPose {
+  Vec3 center = Vec3::Zero();
+  Mat3 orientation = Mat3::Identity();
+};
 
 struct LightFieldDims {
   int rows = 0, cols = 0;  // views (the camera grid)
@@ -72,6 +80,13 @@ class LightField {
   std::uint8_t* mutable_view_data(int row, int col);
   const std::uint8_t* data() const { return samples_.data(); }
 
+  // Each view's measured camera pose (a calibrated capture), row-major; empty when the views sit
+  // on the slab's ideal grid (a simulated light field, a format version 1 file).
+  const std::vector<ViewPose>& measured_poses() const { return measured_poses_; }
+  void set_measured_poses(std::vector<ViewPose> poses);  // view_count() entries, or none
+  // Camera (row, col)'s centre: measured when known, else its ideal grid position.
+  Vec3 camera_center(int row, int col) const;
+
   // The st-plane position of sample (k, l), in view-window units.
   double s_of(double k) const {
     return slab_.st_domain.s0 + (k + 0.5) / dims_.n_s * slab_.st_domain.s_extent();
@@ -92,6 +107,7 @@ class LightField {
   Slab slab_;
   nlohmann::json metadata_ = nlohmann::json::object();
   SampleBuffer samples_;
+  std::vector<ViewPose> measured_poses_;
 };
 
 }  // namespace lfcam

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "lfcam/core/atomic_file.h"
+#include "lfcam/core/camera_model.h"
 #include "lfcam/core/error.h"
 #include "lfcam/core/input_file.h"
 #include "lfcam/core/json_input.h"
@@ -103,9 +104,11 @@ ParsedFile ParseHeader(const InputFile& fd) {
   ParsedFile parsed;
   parsed.header.file_bytes = fd.size();
   parsed.header.version = GetLe<std::uint32_t>(&pre[8]);
-  if (parsed.header.version != kLightFieldFormatVersion)
-    throw Error(fmt::format("{}: format version {} is not supported (this build reads {})", name,
-                            parsed.header.version, kLightFieldFormatVersion));
+  if (parsed.header.version < kOldestLightFieldFormatVersion ||
+      parsed.header.version > kLightFieldFormatVersion)
+    throw Error(fmt::format("{}: format version {} is not supported (this build reads {} to {})",
+                            name, parsed.header.version, kOldestLightFieldFormatVersion,
+                            kLightFieldFormatVersion));
   const auto header_bytes = GetLe<std::uint64_t>(&pre[16]);
   const auto header_xxh3 = GetLe<std::uint64_t>(&pre[24]);
   parsed.data_offset = GetLe<std::uint64_t>(&pre[32]);
@@ -188,6 +191,21 @@ ParsedFile ParseHeader(const InputFile& fd) {
       next_free = r.offset + r.stored_bytes;
       h.stored_sample_bytes += r.stored_bytes;
       parsed.views.push_back(r);
+      // Version 2: the camera's measured pose, on every view or on none.
+      const bool has_pose = v.contains("center");
+      if (i > 0 && has_pose != !h.measured_poses.empty())
+        throw Error(
+            fmt::format("{}: measured camera poses must be given for every view or none", where));
+      if (has_pose) {
+        if (h.version < 2)
+          throw Error(fmt::format("{}: a version 1 file has no measured camera poses", where));
+        ViewPose pose{
+            JsonVec3(v, "center", where),
+            RotationFromJson(JsonField(v, "orientation", where), where + ": orientation")};
+        if (pose.center.cwiseAbs().maxCoeff() > 1e9)
+          throw Error(fmt::format("{}: camera centre is out of range", where));
+        h.measured_poses.push_back(pose);
+      }
     }
     return parsed;
   });
@@ -253,12 +271,19 @@ void WriteLightField(const LightField& lf, const std::filesystem::path& path,
   }
 
   nlohmann::json views = nlohmann::json::array();
-  for (std::size_t i = 0; i < n_views; ++i)
-    views.push_back({{"row", i / dims.cols},
-                     {"col", i % dims.cols},
-                     {"offset", records[i].offset},
-                     {"stored_bytes", records[i].stored_bytes},
-                     {"xxh3", Hex(records[i].xxh3)}});
+  for (std::size_t i = 0; i < n_views; ++i) {
+    nlohmann::json view = {{"row", i / dims.cols},
+                           {"col", i % dims.cols},
+                           {"offset", records[i].offset},
+                           {"stored_bytes", records[i].stored_bytes},
+                           {"xxh3", Hex(records[i].xxh3)}};
+    if (!lf.measured_poses().empty()) {
+      const ViewPose& pose = lf.measured_poses()[i];
+      view["center"] = {pose.center.x(), pose.center.y(), pose.center.z()};
+      view["orientation"] = RotationToJson(pose.orientation);
+    }
+    views.push_back(view);
+  }
   const nlohmann::json header = {
       {"format", "lfcam-lightfield"},
       {"version", kLightFieldFormatVersion},
@@ -365,6 +390,7 @@ LightField ReadLightField(const std::filesystem::path& path, const LightFieldRea
   }
   LightField lf(h.dims, h.sample_type, h.slab, std::move(samples));
   lf.metadata() = h.metadata;
+  lf.set_measured_poses(h.measured_poses);
   return lf;
 }
 

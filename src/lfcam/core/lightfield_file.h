@@ -10,7 +10,9 @@
 
 namespace lfcam {
 
-inline constexpr std::uint32_t kLightFieldFormatVersion = 1;
+// Version 2 adds each view's measured camera pose (optional); version 1 files are still read.
+inline constexpr std::uint32_t kLightFieldFormatVersion = 2;
+inline constexpr std::uint32_t kOldestLightFieldFormatVersion = 1;
 inline constexpr std::size_t kLightFieldAlignment = 4096;
 
 enum class Compression { kNone, kZstd };
@@ -42,6 +44,7 @@ struct LightFieldHeader {
   Compression compression = Compression::kNone;
   Slab slab;
   nlohmann::json metadata;
+  std::vector<ViewPose> measured_poses;  // empty, or one per view
   std::uint64_t file_bytes = 0;
   std::uint64_t stored_sample_bytes = 0;
 };

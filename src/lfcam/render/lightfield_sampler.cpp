@@ -31,7 +31,7 @@ LightFieldSampler::LightFieldSampler(const LightField& lf)
   s_to_k_ = n_s_ / slab.st_domain.s_extent();
   t_to_l_ = n_t_ / slab.st_domain.t_extent();
   for (int r = 0; r < rows_; ++r)
-    for (int c = 0; c < cols_; ++c) camera_centers_.push_back(slab.uv.camera_center(r, c));
+    for (int c = 0; c < cols_; ++c) camera_centers_.push_back(lf.camera_center(r, c));
 }
 
 std::string ToString(Interpolation interpolation) {

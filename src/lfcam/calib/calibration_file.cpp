@@ -1,0 +1,74 @@
+#include "lfcam/calib/calibration_file.h"
+
+#include <fmt/format.h>
+
+#include "lfcam/calib/array_calibration.h"
+#include "lfcam/core/error.h"
+#include "lfcam/core/input_file.h"
+#include "lfcam/core/json_input.h"
+#include "lfcam/core/limits.h"
+
+namespace lfcam {
+
+CalibrationFile CalibrationFromJson(const nlohmann::json& j, const std::string& where) {
+  if (!j.is_object() || JsonString(j, "format", where) != "lfcam-calibration")
+    throw Error(fmt::format("{}: not an lfcam calibration (format \"lfcam-calibration\")", where));
+  const auto version = JsonInteger(j, "version", 1, 1000000, where);
+  if (version > kCalibrationVersion)
+    throw Error(fmt::format("{}: calibration version {} is newer than this lfcam reads ({})", where,
+                            version, kCalibrationVersion));
+  CalibrationFile c;
+  const auto& grid = JsonField(j, "grid", where);
+  c.rows = int(JsonInteger(grid, "rows", 1, kMaxViewsPerSide, where + ": grid"));
+  c.cols = int(JsonInteger(grid, "cols", 1, kMaxViewsPerSide, where + ": grid"));
+  const auto& sensor = JsonField(j, "sensor", where);
+  c.width = int(JsonInteger(sensor, "width", 1, kMaxImageSide, where + ": sensor"));
+  c.height = int(JsonInteger(sensor, "height", 1, kMaxImageSide, where + ": sensor"));
+  try {
+    c.slab = JsonField(j, "slab", where).get<Slab>();
+  } catch (const Error& e) {
+    throw Error(fmt::format("{}: {}", where, e.what()));
+  }
+  if (c.slab.uv.rows != c.rows || c.slab.uv.cols != c.cols)
+    throw Error(fmt::format("{}: the slab's grid does not match the calibration's", where));
+  const auto& cameras = JsonField(j, "cameras", where);
+  if (!cameras.is_array() || cameras.size() != std::size_t(c.rows) * std::size_t(c.cols))
+    throw Error(
+        fmt::format("{}: cameras must list all {}x{} grid positions", where, c.rows, c.cols));
+  c.cameras.resize(cameras.size());
+  for (std::size_t i = 0; i < cameras.size(); ++i) {
+    const auto& cj = cameras[i];
+    const std::string cw = fmt::format("{}: cameras[{}]", where, i);
+    CalibratedCamera cam;
+    cam.row = int(JsonInteger(cj, "row", 0, c.rows - 1, cw));
+    cam.col = int(JsonInteger(cj, "col", 0, c.cols - 1, cw));
+    if (std::size_t(cam.row * c.cols + cam.col) != i)
+      throw Error(fmt::format("{}: cameras must be listed row-major", cw));
+    const auto& flag = JsonField(cj, "calibrated", cw);
+    if (!flag.is_boolean()) throw Error(fmt::format("{}: calibrated must be true or false", cw));
+    cam.calibrated = flag.get<bool>();
+    if (cam.calibrated) {
+      cam.intrinsics = IntrinsicsFromJson(JsonField(cj, "intrinsics", cw), cw + ": intrinsics");
+      if (cam.intrinsics.width != c.width || cam.intrinsics.height != c.height)
+        throw Error(fmt::format("{}: intrinsics are for {}x{} images, the sensor is {}x{}", cw,
+                                cam.intrinsics.width, cam.intrinsics.height, c.width, c.height));
+      cam.world_from_camera.translation = JsonVec3(cj, "center", cw);
+      cam.world_from_camera.rotation =
+          RotationFromJson(JsonField(cj, "orientation", cw), cw + ": orientation");
+    } else if (cj.contains("reason")) {
+      cam.reason = JsonString(cj, "reason", cw);
+    }
+    c.cameras[i] = cam;
+  }
+  for (const char* key : {"array_fit", "bundle_adjustment"})
+    if (j.contains(key)) c.summary[key] = j[key];
+  return c;
+}
+
+CalibrationFile ReadCalibration(const std::filesystem::path& path) {
+  const auto bytes = ReadFileBytes(path, kMaxJsonBytes, "calibration file");
+  return CalibrationFromJson(
+      ParseJsonBounded(std::string(bytes.begin(), bytes.end()), path.string()), path.string());
+}
+
+}  // namespace lfcam
