@@ -10,6 +10,30 @@
 
 namespace lfcam {
 
+double PhotometricCorrection::falloff(const CameraIntrinsics& k, double x, double y) const {
+  const double half_diagonal2 = 0.25 * (double(k.width) * k.width + double(k.height) * k.height);
+  const double dx = x - k.cx, dy = y - k.cy;
+  return 1.0 + vignetting * (dx * dx + dy * dy) / half_diagonal2;
+}
+
+nlohmann::json PhotometryToJson(const PhotometricCorrection& p) {
+  return {{"gain", {p.gain.x(), p.gain.y(), p.gain.z()}},
+          {"vignetting", p.vignetting},
+          {"rho_max", p.rho_max}};
+}
+
+PhotometricCorrection PhotometryFromJson(const nlohmann::json& j, const std::string& where) {
+  PhotometricCorrection p;
+  p.gain = JsonVec3(j, "gain", where);
+  if (!(p.gain.minCoeff() > 0.01 && p.gain.maxCoeff() < 100))
+    throw Error(fmt::format("{}: gains must be 0.01..100", where));
+  p.vignetting = JsonNumber(j, "vignetting", where);
+  if (!(p.vignetting > -0.95 && p.vignetting < 10))
+    throw Error(fmt::format("{}: vignetting {} is out of range", where, p.vignetting));
+  p.rho_max = JsonNumber(j, "rho_max", where);
+  return p;
+}
+
 CalibrationFile CalibrationFromJson(const nlohmann::json& j, const std::string& where) {
   if (!j.is_object() || JsonString(j, "format", where) != "lfcam-calibration")
     throw Error(fmt::format("{}: not an lfcam calibration (format \"lfcam-calibration\")", where));
@@ -55,6 +79,8 @@ CalibrationFile CalibrationFromJson(const nlohmann::json& j, const std::string& 
       cam.world_from_camera.translation = JsonVec3(cj, "center", cw);
       cam.world_from_camera.rotation =
           RotationFromJson(JsonField(cj, "orientation", cw), cw + ": orientation");
+      if (cj.contains("photometry"))
+        cam.photometry = PhotometryFromJson(cj["photometry"], cw + ": photometry");
     } else if (cj.contains("reason")) {
       cam.reason = JsonString(cj, "reason", cw);
     }

@@ -2,6 +2,8 @@
 // Reading calibration.json back (docs/calibration.md): what `lfcam build` needs of it.
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "lfcam/core/camera_model.h"
@@ -9,12 +11,26 @@
 
 namespace lfcam {
 
+// A module's photometric response (calib/photometry.h): it records
+// gain[c] * falloff(x, y) * L of linear radiance L.
+struct PhotometricCorrection {
+  Vec3 gain = Vec3::Ones();
+  double vignetting = 0;  // falloff = 1 + vignetting * rho^2
+  double rho_max = 0;     // the largest rho the estimate saw: beyond it, extrapolated
+
+  // rho: the distance from the principal point over the image's half-diagonal.
+  double falloff(const CameraIntrinsics& k, double x, double y) const;
+};
+nlohmann::json PhotometryToJson(const PhotometricCorrection& p);
+PhotometricCorrection PhotometryFromJson(const nlohmann::json& j, const std::string& where);
+
 struct CalibratedCamera {
   int row = 0, col = 0;
   bool calibrated = false;
   std::string reason;  // when not
   CameraIntrinsics intrinsics;
   Rigid3 world_from_camera;
+  std::optional<PhotometricCorrection> photometry;
 };
 
 struct CalibrationFile {

@@ -7,7 +7,9 @@
 
 #include "lfcam/calib/array_calibration.h"
 #include "lfcam/calib/board_detection.h"
+#include "lfcam/calib/calibration_file.h"
 #include "lfcam/calib/calibration_report.h"
+#include "lfcam/calib/photometry.h"
 #include "lfcam/calib/intrinsics_calibration.h"
 #include "lfcam/cli/commands.h"
 #include "lfcam/cli/parse.h"
@@ -153,12 +155,18 @@ void AddCalibrateCommand(CLI::App& app) {
     const CaptureManifest manifest = ReadManifest(flags->session);
     std::int64_t images = 0;
     for (const Shot& s : manifest.shots)
-      if (s.kind != ShotKind::kScene) images += std::int64_t(s.images.size());
+      if (s.kind != ShotKind::kScene)
+        images += std::int64_t(s.images.size()) * (s.kind == ShotKind::kWorld ? 2 : 1);
     ProgressBar progress("finding boards", images, ProgressWanted(flags->quiet || flags->json));
     if (const auto advance = progress.callback()) o.image_done = [advance] { advance(1); };
     const ArrayCalibration a = CalibrateArray(flags->session, manifest, o);
+    nlohmann::json j = CalibrationToJson(a);
+    // The modules' photometric response, from the world shot, on the calibrated geometry.
+    const PhotometryEstimate photometry =
+        EstimatePhotometry(flags->session, manifest, CalibrationFromJson(j, flags->out),
+                           a.world_board, o.image_done);
+    AddPhotometryToCalibration(j, photometry);
     progress.finish();
-    const nlohmann::json j = CalibrationToJson(a);
     WriteJsonFile(flags->out, j);
     WriteImage(report, DrawCalibrationReport(a));
     if (flags->json)

@@ -7,6 +7,7 @@ namespace lfcam::cli {
 void AddSimulateCommand(CLI::App& app);
 void AddSimulateCaptureCommand(CLI::App& simulate);  // `simulate capture`, under `simulate`
 void AddCalibrateCommand(CLI::App& app);
+void AddBuildCommand(CLI::App& app);
 void AddRenderCommand(CLI::App& app);
 void AddOracleCommand(CLI::App& app);
 void AddInfoCommand(CLI::App& app);

@@ -76,6 +76,7 @@ int main(int argc, char** argv) {
       "Exit status: 0 success, 1 an error in the work, 2 bad usage.");
   lfcam::cli::AddSimulateCommand(app);
   lfcam::cli::AddCalibrateCommand(app);
+  lfcam::cli::AddBuildCommand(app);
   lfcam::cli::AddRenderCommand(app);
   lfcam::cli::AddOracleCommand(app);
   lfcam::cli::AddInfoCommand(app);

@@ -1,0 +1,360 @@
+#include "lfcam/calib/lightfield_build.h"
+
+#include <fmt/chrono.h>
+#include <fmt/format.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <climits>
+#include <cstdint>
+#include <cmath>
+#include <mutex>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "lfcam/core/color.h"
+#include "lfcam/core/error.h"
+#include "lfcam/core/image_io.h"
+#include "lfcam/core/input_file.h"
+#include "lfcam/core/limits.h"
+
+namespace lfcam {
+namespace {
+
+constexpr int kStatsStride = 8;  // the colour statistics look at every 8th st sample each way
+
+// What one view contributes to the colour statistics, on the coarse st grid.
+struct ViewStats {
+  std::vector<std::uint8_t> valid;
+  std::vector<Vec3> after, before;  // linear, with and without the photometric correction
+};
+
+int ReductionFlags(int reduction) {
+  switch (reduction) {
+    case 2: return cv::IMREAD_REDUCED_COLOR_2;
+    case 4: return cv::IMREAD_REDUCED_COLOR_4;
+    case 8: return cv::IMREAD_REDUCED_COLOR_8;
+    default: return cv::IMREAD_COLOR;
+  }
+}
+
+struct ViewJob {
+  int row, col;
+  const CalibratedCamera* camera;
+  std::filesystem::path image;
+};
+
+// Resamples one camera's scene image into its view. Returns the decode reduction used.
+int BuildView(const ViewJob& job, const Slab& slab, int n_s, int n_t, bool correct,
+              std::uint8_t* view, ViewStats* stats, double* decode_seconds) {
+  const CameraIntrinsics& k = job.camera->intrinsics;
+  const Rigid3 camera_from_world = job.camera->world_from_camera.inverse();
+  const Mat3& r = camera_from_world.rotation;
+  // Camera-frame point of st position (s, t): s * a_s + t * a_t + a_0.
+  const Vec3 a_s = r * (slab.st.width_mm * slab.st.x_axis);
+  const Vec3 a_t = r * (slab.st.height_mm * slab.st.y_axis);
+  const Vec3 a_0 = camera_from_world * slab.st.origin;
+  const StDomain& d = slab.st_domain;
+  auto pixel_of = [&](double kk, double ll) -> Vec2 {
+    const double s = d.s0 + (kk + 0.5) / n_s * d.s_extent();
+    const double t = d.t0 + (ll + 0.5) / n_t * d.t_extent();
+    const Vec3 q = s * a_s + t * a_t + a_0;
+    if (!(q.z() > 1e-9)) return Vec2(-1e9, -1e9);  // behind the camera
+    const Vec2 n = k.distortion.Apply(Vec2(q.x() / q.z(), q.y() / q.z()));
+    return Vec2(k.fx * n.x() + k.cx, k.fy * n.y() + k.cy);
+  };
+  // The map's footprint at the view's centre, in full-resolution pixels per st sample.
+  const Vec2 c = pixel_of(0.5 * n_s, 0.5 * n_t);
+  const double footprint = std::max((pixel_of(0.5 * n_s + 1, 0.5 * n_t) - c).norm(),
+                                    (pixel_of(0.5 * n_s, 0.5 * n_t + 1) - c).norm());
+  int reduction = 1;
+  while (reduction < 8 && 2.0 * reduction <= footprint) reduction *= 2;
+
+  const auto start = std::chrono::steady_clock::now();
+  const auto bytes = ReadFileBytes(job.image, kMaxEncodedImageBytes, "image file");
+  const cv::Mat bgr = DecodeImageBytes(bytes, job.image.string(), ReductionFlags(reduction));
+  *decode_seconds +=
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const int expected_w = (k.width + reduction - 1) / reduction;
+  const int expected_h = (k.height + reduction - 1) / reduction;
+  if (bgr.type() != CV_8UC3 || std::abs(bgr.cols - expected_w) > 1 ||
+      std::abs(bgr.rows - expected_h) > 1)
+    throw Error(fmt::format("{} ({}): the image is {}x{} at 1/{} size, but the calibration is for "
+                            "{}x{} images",
+                            job.image.string(), CameraLabel(job.row, job.col), bgr.cols, bgr.rows,
+                            reduction, k.width, k.height));
+
+  // The map, in the decoded image's pixels.
+  cv::Mat map_x(n_t, n_s, CV_32FC1), map_y(n_t, n_s, CV_32FC1);
+  float x_lo = 1e30f, x_hi = -1e30f, y_lo = 1e30f, y_hi = -1e30f;
+  const float scale = 1.0f / float(reduction), shift = 0.5f / float(reduction) - 0.5f;
+  for (int l = 0; l < n_t; ++l) {
+    float* mx = map_x.ptr<float>(l);
+    float* my = map_y.ptr<float>(l);
+    for (int kk = 0; kk < n_s; ++kk) {
+      const Vec2 p = pixel_of(kk, l);
+      mx[kk] = float(p.x()) * scale + shift;
+      my[kk] = float(p.y()) * scale + shift;
+      if (mx[kk] >= -1 && mx[kk] <= bgr.cols && my[kk] >= -1 && my[kk] <= bgr.rows) {
+        x_lo = std::min(x_lo, mx[kk]);
+        x_hi = std::max(x_hi, mx[kk]);
+        y_lo = std::min(y_lo, my[kk]);
+        y_hi = std::max(y_hi, my[kk]);
+      }
+    }
+  }
+  cv::Mat sampled(n_t, n_s, CV_32FC3, cv::Scalar(0, 0, 0));
+  const PhotometricCorrection identity;
+  const PhotometricCorrection& photometry =
+      correct && job.camera->photometry ? *job.camera->photometry : identity;
+  const cv::Rect roi = x_hi < x_lo ? cv::Rect()
+                                   : cv::Rect(cv::Point(int(std::floor(x_lo)) - 3,
+                                                        int(std::floor(y_lo)) - 3),
+                                              cv::Point(int(std::ceil(x_hi)) + 4,
+                                                        int(std::ceil(y_hi)) + 4)) &
+                                         cv::Rect(0, 0, bgr.cols, bgr.rows);
+  if (roi.area() > 0) {
+    // The part of the image the map reads, in linear light, photometrically corrected.
+    const auto& lut = SrgbDecodeTable();
+    cv::Mat linear(roi.size(), CV_32FC3);
+    const Vec3 inverse_gain = photometry.gain.cwiseInverse();
+    for (int y = 0; y < roi.height; ++y) {
+      const auto* in = bgr.ptr<cv::Vec3b>(roi.y + y) + roi.x;
+      auto* out = linear.ptr<cv::Vec3f>(y);
+      const double full_y = (roi.y + y + 0.5) * reduction - 0.5;
+      for (int x = 0; x < roi.width; ++x) {
+        const double full_x = (roi.x + x + 0.5) * reduction - 0.5;
+        const double f = photometry.vignetting == 0 ? 1.0 : 1.0 / photometry.falloff(k, full_x, full_y);
+        out[x] = cv::Vec3f(float(lut[in[x][2]] * inverse_gain.x() * f),
+                           float(lut[in[x][1]] * inverse_gain.y() * f),
+                           float(lut[in[x][0]] * inverse_gain.z() * f));
+      }
+    }
+    // What the scaled decode left of the shrink: a Gaussian prefilter.
+    const double remaining = footprint / reduction;
+    if (remaining > 1.25) {
+      const double sigma = 0.5 * std::sqrt(remaining * remaining - 1.0);
+      cv::GaussianBlur(linear, linear, cv::Size(), sigma, sigma, cv::BORDER_REPLICATE);
+    }
+    map_x -= float(roi.x);
+    map_y -= float(roi.y);
+    cv::remap(linear, sampled, map_x, map_y, cv::INTER_LINEAR, cv::BORDER_CONSTANT,
+              cv::Scalar(0, 0, 0));
+    map_x += float(roi.x);
+    map_y += float(roi.y);
+  }
+  // Encode the view (row l = 0 at the bottom of the st domain, as the map's rows are).
+  for (int l = 0; l < n_t; ++l) {
+    const auto* in = sampled.ptr<cv::Vec3f>(l);
+    std::uint8_t* out = view + std::size_t(l) * std::size_t(n_s) * 3;
+    for (int kk = 0; kk < n_s; ++kk)
+      for (int ch = 0; ch < 3; ++ch) out[kk * 3 + ch] = LinearToSrgb8Table(in[kk][ch]);
+  }
+  // Colour statistics on the coarse grid: inside the image, with and without the correction.
+  for (int l = 0, i = 0; l < n_t; l += kStatsStride)
+    for (int kk = 0; kk < n_s; kk += kStatsStride, ++i) {
+      const float mx = map_x.at<float>(l, kk), my = map_y.at<float>(l, kk);
+      const bool inside = mx >= 1 && my >= 1 && mx <= bgr.cols - 2 && my <= bgr.rows - 2;
+      stats->valid[std::size_t(i)] = inside;
+      if (!inside) continue;
+      const cv::Vec3f v = sampled.at<cv::Vec3f>(l, kk);
+      const Vec3 after(v[0], v[1], v[2]);
+      const double full_x = (mx + 0.5) * reduction - 0.5, full_y = (my + 0.5) * reduction - 0.5;
+      stats->after[std::size_t(i)] = after;
+      stats->before[std::size_t(i)] =
+          after.cwiseProduct(photometry.gain) * photometry.falloff(k, full_x, full_y);
+    }
+  return reduction;
+}
+
+ColourSpread Spread(const std::vector<ViewStats>& stats, const std::vector<bool>& built,
+                    bool before) {
+  ColourSpread out;
+  const std::size_t cells = stats.empty() ? 0 : stats[0].valid.size();
+  std::vector<std::uint8_t> common(cells, 1);
+  for (std::size_t v = 0; v < stats.size(); ++v)
+    if (built[v])
+      for (std::size_t i = 0; i < cells; ++i) common[i] &= stats[v].valid[i];
+  const auto region = std::count(common.begin(), common.end(), 1);
+  out.region_fraction = cells ? double(region) / double(cells) : 0;
+  if (region == 0) return out;
+  std::vector<Vec3> means;
+  for (std::size_t v = 0; v < stats.size(); ++v) {
+    if (!built[v]) continue;
+    Vec3 sum = Vec3::Zero();
+    for (std::size_t i = 0; i < cells; ++i)
+      if (common[i]) sum += before ? stats[v].before[i] : stats[v].after[i];
+    means.push_back(sum / double(region));
+  }
+  out.cameras = int(means.size());
+  Vec3 median;
+  for (int ch = 0; ch < 3; ++ch) {
+    std::vector<double> values;
+    for (const Vec3& m : means) values.push_back(m[ch]);
+    std::nth_element(values.begin(), values.begin() + std::ptrdiff_t(values.size() / 2),
+                     values.end());
+    median[ch] = values[values.size() / 2];
+  }
+  double sum2 = 0;
+  for (const Vec3& m : means)
+    for (int ch = 0; ch < 3; ++ch) {
+      const double deviation = median[ch] > 0 ? m[ch] / median[ch] - 1 : 0;
+      out.max_deviation = std::max(out.max_deviation, std::abs(deviation));
+      sum2 += deviation * deviation;
+    }
+  out.rms_deviation = std::sqrt(sum2 / (3.0 * double(means.size())));
+  return out;
+}
+
+}  // namespace
+
+LightField BuildLightField(const std::filesystem::path& dir, const CaptureManifest& manifest,
+                           const CalibrationFile& cal, const BuildOptions& o,
+                           BuildReport* report_out) {
+  const auto start = std::chrono::steady_clock::now();
+  BuildReport report;
+  if (manifest.rows != cal.rows || manifest.cols != cal.cols)
+    throw Error(fmt::format("the calibration is for a {}x{} array, the session has {}x{}",
+                            cal.rows, cal.cols, manifest.rows, manifest.cols));
+  if (manifest.sensor_width != cal.width || manifest.sensor_height != cal.height)
+    throw Error(fmt::format("the calibration is for {}x{} images, the session's are {}x{}",
+                            cal.width, cal.height, manifest.sensor_width, manifest.sensor_height));
+  const Shot* shot = nullptr;
+  for (const Shot& s : manifest.shots)
+    if (s.name == o.shot) shot = &s;
+  if (!shot)
+    throw Error(fmt::format("{}: the session has no shot named '{}'",
+                            (dir / kManifestName).string(), o.shot));
+  if (o.n_s < 1 || o.n_t < 1 || o.n_s > kMaxStSamplesPerSide || o.n_t > kMaxStSamplesPerSide)
+    throw Error(fmt::format("st resolution {}x{} is out of range", o.n_s, o.n_t));
+  Slab slab = cal.slab;
+  if (o.st_domain) slab.st_domain = *o.st_domain;
+  slab.validate();
+  const int rows = cal.rows, cols = cal.cols;
+  RequireMemory(double(rows) * cols * o.n_s * o.n_t * 3,
+                fmt::format("a {}x{} light field of {}x{} samples", rows, cols, o.n_s, o.n_t));
+
+  // Which views can be built, and why not the others.
+  std::vector<const ShotImage*> image_of(std::size_t(rows) * std::size_t(cols), nullptr);
+  for (const ShotImage& image : shot->images)
+    image_of[std::size_t(image.row * cols + image.col)] = &image;
+  std::vector<ViewJob> jobs;
+  std::vector<bool> built(image_of.size(), false);
+  std::vector<std::string> missing;
+  for (int r = 0; r < rows; ++r)
+    for (int c = 0; c < cols; ++c) {
+      const std::size_t i = std::size_t(r * cols + c);
+      const CalibratedCamera& camera = cal.cameras[i];
+      if (!image_of[i])
+        missing.push_back(fmt::format("{}: no image in shot '{}'", CameraLabel(r, c), o.shot));
+      else if (!camera.calibrated)
+        missing.push_back(fmt::format("{}: not calibrated ({})", CameraLabel(r, c),
+                                      camera.reason.empty() ? "see the calibration" : camera.reason));
+      else {
+        jobs.push_back({r, c, &camera, dir / image_of[i]->file});
+        built[i] = true;
+      }
+    }
+  if (!missing.empty() && !o.allow_missing)
+    throw Error(fmt::format("{} of {} cameras cannot be built (--allow-missing fills them from "
+                            "their neighbours):\n  {}",
+                            missing.size(), image_of.size(), fmt::join(missing, "\n  ")));
+  if (jobs.empty()) throw Error("no camera of the session can be built");
+
+  LightField lf({rows, cols, o.n_s, o.n_t}, SampleType::kSrgb8, slab);
+  const std::size_t cells = std::size_t((o.n_s + kStatsStride - 1) / kStatsStride) *
+                            std::size_t((o.n_t + kStatsStride - 1) / kStatsStride);
+  std::vector<ViewStats> stats(image_of.size());
+  std::mutex mutex;
+  std::atomic<int> reduction_max{1};
+  double decode_seconds = 0;
+  tbb::parallel_for(std::size_t(0), jobs.size(), [&](std::size_t j) {
+    const ViewJob& job = jobs[j];
+    ViewStats& s = stats[std::size_t(job.row * cols + job.col)];
+    s.valid.assign(cells, 0);
+    s.after.assign(cells, Vec3::Zero());
+    s.before.assign(cells, Vec3::Zero());
+    double decode = 0;
+    const int reduction = BuildView(job, slab, o.n_s, o.n_t, o.photometric_correction,
+                                    lf.mutable_view_data(job.row, job.col), &s, &decode);
+    std::lock_guard lock(mutex);
+    decode_seconds += decode;
+    reduction_max = std::max(reduction_max.load(), reduction);
+    if (o.view_done) o.view_done();
+  });
+  report.decode_seconds = decode_seconds;
+  report.reduction_max = reduction_max;
+  report.before = Spread(stats, built, true);
+  report.after = Spread(stats, built, false);
+
+  // Measured poses; missing views filled from their nearest built neighbours, in linear light.
+  std::vector<ViewPose> poses(image_of.size());
+  for (std::size_t i = 0; i < image_of.size(); ++i)
+    if (built[i]) poses[i] = {cal.cameras[i].world_from_camera.translation,
+                              cal.cameras[i].world_from_camera.rotation};
+  nlohmann::json filled = nlohmann::json::array();
+  const auto& lut = SrgbDecodeTable();
+  for (int r = 0; r < rows; ++r)
+    for (int c = 0; c < cols; ++c) {
+      const std::size_t i = std::size_t(r * cols + c);
+      if (built[i]) continue;
+      // The nearest built views (all those at the smallest grid distance).
+      std::vector<std::pair<int, int>> from;
+      int best = INT32_MAX;
+      for (int rr = 0; rr < rows; ++rr)
+        for (int cc = 0; cc < cols; ++cc) {
+          if (!built[std::size_t(rr * cols + cc)]) continue;
+          const int d2 = (rr - r) * (rr - r) + (cc - c) * (cc - c);
+          if (d2 < best) from.clear();
+          if (d2 <= best) {
+            best = d2;
+            from.push_back({rr, cc});
+          }
+        }
+      std::uint8_t* out = lf.mutable_view_data(r, c);
+      const std::size_t n = lf.view_bytes();
+      for (std::size_t b = 0; b < n; ++b) {
+        float sum = 0;
+        for (const auto& [rr, cc] : from) sum += lut[lf.view_data(rr, cc)[b]];
+        out[b] = LinearToSrgb8Table(sum / float(from.size()));
+      }
+      poses[i] = {slab.uv.camera_center(r, c), poses[std::size_t(from[0].first * cols + from[0].second)].orientation};
+      std::vector<std::string> names;
+      for (const auto& [rr, cc] : from) names.push_back(fmt::format("({}, {})", rr, cc));
+      report.filled.push_back(
+          fmt::format("{} from {}", CameraLabel(r, c), fmt::join(names, ", ")));
+      filled.push_back({{"row", r}, {"col", c}, {"from", from}});
+    }
+  lf.set_measured_poses(std::move(poses));
+  const auto now = std::chrono::floor<std::chrono::seconds>(std::chrono::system_clock::now());
+  auto spread_json = [](const ColourSpread& s) {
+    return nlohmann::json{{"max_deviation", s.max_deviation},
+                          {"rms_deviation", s.rms_deviation},
+                          {"cameras", s.cameras},
+                          {"region_fraction", s.region_fraction}};
+  };
+  nlohmann::json corrections = nlohmann::json::array();
+  for (const CalibratedCamera& camera : cal.cameras)
+    if (camera.photometry && o.photometric_correction)
+      corrections.push_back({{"row", camera.row},
+                             {"col", camera.col},
+                             {"photometry", PhotometryToJson(*camera.photometry)}});
+  lf.metadata() = {{"source", "built"},
+                   {"shot", o.shot},
+                   {"session", manifest.source},
+                   {"calibration", cal.summary},
+                   {"color_correction",
+                    {{"applied", o.photometric_correction && !corrections.empty()},
+                     {"cameras", corrections},
+                     {"mean_colour_spread_before", spread_json(report.before)},
+                     {"mean_colour_spread_after", spread_json(report.after)}}},
+                   {"filled_views", filled},
+                   {"created", fmt::format("{:%Y-%m-%dT%H:%M:%SZ}", now)}};
+  report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (report_out) *report_out = report;
+  return lf;
+}
+
+}  // namespace lfcam

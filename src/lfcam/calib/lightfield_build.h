@@ -1,0 +1,50 @@
+#pragma once
+// Building the light field from a calibrated capture session (paper §5.2.3): for every camera,
+// one resampling map from the st samples of the view window to its scene image (the plane's
+// homography, then the lens distortion), the photometric correction, and a bilinear lookup in
+// linear light, antialiased where the map shrinks (the image is decoded at 1/2, 1/4 or 1/8 size
+// by libjpeg-turbo's scaled decoding, then blurred for what remains). Cameras in parallel.
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "lfcam/calib/calibration_file.h"
+#include "lfcam/capture/session.h"
+#include "lfcam/core/lightfield.h"
+
+namespace lfcam {
+
+struct BuildOptions {
+  int n_s = 1248, n_t = 1152;
+  std::optional<StDomain> st_domain;  // default: the calibration's (the world board, [0, 1]^2)
+  bool allow_missing = false;  // fill cameras without an image or calibration from neighbours
+  bool photometric_correction = true;  // when the calibration has it
+  std::string shot = "scene";  // the shot to build (the world shot shows the board at the st-plane)
+  std::function<void()> view_done;     // once per view (serialised)
+};
+
+struct ColourSpread {
+  // Over the st region every camera sees, each camera's mean linear colour against the array's
+  // median: the largest relative deviation of any camera in any channel, and the RMS.
+  double max_deviation = 0, rms_deviation = 0;
+  int cameras = 0;
+  double region_fraction = 0;  // of the st domain
+};
+
+struct BuildReport {
+  std::vector<std::string> filled;  // "camera (r, c) from (r, c), ..." for each filled view
+  ColourSpread before, after;       // per-camera mean colour, without and with correction
+  int reduction_max = 1;            // the largest decode reduction used
+  double seconds = 0, decode_seconds = 0;  // wall; decode summed over threads
+};
+
+// Throws lfcam::Error naming the camera and file for a missing image (unless allow_missing), an
+// unreadable image, an image of the wrong size, or a calibration that does not match the
+// session's grid or sensor.
+LightField BuildLightField(const std::filesystem::path& session_dir,
+                           const CaptureManifest& manifest, const CalibrationFile& calibration,
+                           const BuildOptions& options, BuildReport* report = nullptr);
+
+}  // namespace lfcam

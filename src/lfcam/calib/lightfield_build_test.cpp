@@ -1,0 +1,139 @@
+// Building light fields from a small realistic capture (3x3 modules of 648x486): geometry from
+// the calibration, the photometric correction, missing cameras, and bad sessions.
+#include "lfcam/calib/lightfield_build.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <fstream>
+
+#include "lfcam/calib/array_calibration.h"
+#include "lfcam/calib/calibration_file.h"
+#include "lfcam/calib/photometry.h"
+#include "lfcam/core/color.h"
+#include "lfcam/core/error.h"
+#include "lfcam/core/lightfield_file.h"
+#include "lfcam/core/test_support.h"
+#include "lfcam/sim/capture_simulation.h"
+
+namespace lfcam {
+namespace {
+
+namespace fs = std::filesystem;
+
+class LightFieldBuildTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    scratch_ = new fs::path(fs::temp_directory_path() / ("build_test_" + std::to_string(::getpid())));
+    fs::remove_all(*scratch_);
+    fs::create_directories(*scratch_);
+    CaptureSimulationOptions o;
+    o.rows = o.cols = 3;
+    o.sensor_width = 648;
+    o.sensor_height = 486;
+    o.seed = 11;
+    SimulateCapture(MakePaperScene(), o, session());
+    const CaptureManifest manifest = ReadManifest(session());
+    const ArrayCalibration a = CalibrateArray(session(), manifest, {});
+    nlohmann::json j = CalibrationToJson(a);
+    AddPhotometryToCalibration(
+        j, EstimatePhotometry(session(), manifest, CalibrationFromJson(j, "cal"), a.world_board));
+    calibration_ = new CalibrationFile(CalibrationFromJson(j, "cal"));
+  }
+  static void TearDownTestSuite() {
+    std::error_code ec;
+    fs::remove_all(*scratch_, ec);
+    delete scratch_;
+    delete calibration_;
+  }
+  static fs::path session() { return *scratch_ / "session"; }
+  static BuildOptions Small() {
+    BuildOptions o;
+    o.n_s = 150;
+    o.n_t = 138;
+    return o;
+  }
+  static fs::path* scratch_;
+  static CalibrationFile* calibration_;
+};
+fs::path* LightFieldBuildTest::scratch_ = nullptr;
+CalibrationFile* LightFieldBuildTest::calibration_ = nullptr;
+
+// The world board's squares, read from a built light field of the world shot, are black and
+// white where the board says: the views are where the calibration puts them.
+TEST_F(LightFieldBuildTest, TheWorldBoardLandsOnItsOwnSquares) {
+  BuildOptions o = Small();
+  o.shot = "world";
+  BuildReport report;
+  const LightField lf = BuildLightField(session(), ReadManifest(session()), *calibration_, o, &report);
+  const auto& board = lf.slab().st;
+  const BoardSpec spec{11, 10, 50.0};
+  ASSERT_NEAR(board.width_mm, spec.width_mm(), 1e-9);
+  int right = 0, total = 0;
+  for (int row = 0; row < 3; ++row)
+    for (int col = 0; col < 3; ++col)
+      for (int l = 0; l < o.n_t; ++l)
+        for (int k = 0; k < o.n_s; ++k) {
+          const double x = lf.s_of(k) * board.width_mm, y = lf.t_of(l) * board.height_mm;
+          // Only samples well inside a square (a fifth of a square from its edges).
+          const double fx = std::fmod(x, 50.0), fy = std::fmod(y, 50.0);
+          if (fx < 10 || fx > 40 || fy < 10 || fy > 40) continue;
+          const double value = lf.linear_rgb(row, col, k, l).mean();
+          right += spec.black_at(x, y) ? value < 0.2 : value > 0.4;
+          ++total;
+        }
+  EXPECT_GT(double(right) / total, 0.995) << right << " of " << total;
+  // Colour: the modules' spread (about 15%) is corrected to within 2% on the board at this small
+  // size (its square edges are a few pixels wide and blur differently in each camera); full-size
+  // figures are in docs/fidelity.md.
+  EXPECT_GT(report.before.max_deviation, 0.05);
+  EXPECT_LT(report.after.max_deviation, 0.02);
+  EXPECT_GT(report.after.region_fraction, 0.9);
+  // Measured poses are recorded, and survive the file.
+  ASSERT_EQ(lf.measured_poses().size(), 9u);
+  EXPECT_EQ(lf.measured_poses()[4].center, calibration_->camera(1, 1).world_from_camera.translation);
+  const fs::path file = *scratch_ / "world.lf";
+  WriteLightField(lf, file);
+  const LightField back = ReadLightField(file);
+  ASSERT_EQ(back.measured_poses().size(), 9u);
+  EXPECT_EQ(back.camera_center(2, 1), lf.camera_center(2, 1));
+  EXPECT_EQ(back.metadata()["color_correction"]["applied"], true);
+}
+
+TEST_F(LightFieldBuildTest, MissingCamerasAreRefusedOrFilledAndRecorded) {
+  CaptureManifest m = ReadManifest(session());
+  for (Shot& shot : m.shots)
+    if (shot.kind == ShotKind::kScene)
+      std::erase_if(shot.images, [](const ShotImage& i) { return i.row == 0 && i.col == 2; });
+  const std::string message =
+      testing::ErrorOf([&] { BuildLightField(session(), m, *calibration_, Small()); });
+  EXPECT_NE(message.find("camera (0, 2): no image in shot 'scene'"), std::string::npos) << message;
+  EXPECT_NE(message.find("--allow-missing"), std::string::npos) << message;
+  BuildOptions o = Small();
+  o.allow_missing = true;
+  BuildReport report;
+  const LightField lf = BuildLightField(session(), m, *calibration_, o, &report);
+  ASSERT_EQ(report.filled.size(), 1u);
+  EXPECT_EQ(report.filled[0], "camera (0, 2) from (0, 1), (1, 2)");
+  EXPECT_EQ(lf.metadata()["filled_views"].size(), 1u);
+  // The filled view is the mean of its neighbours, so it is not black.
+  EXPECT_GT(lf.linear_rgb(0, 2, 75, 69).sum(), 0.01);
+}
+
+TEST_F(LightFieldBuildTest, BadImagesAndMismatchedCalibrationsAreNamed) {
+  const fs::path broken = *scratch_ / "broken";
+  fs::remove_all(broken);
+  fs::copy(session(), broken, fs::copy_options::recursive);
+  std::ofstream(broken / "scene/cam_01_01.jpg", std::ios::trunc) << "garbage";
+  const std::string message = testing::ErrorOf(
+      [&] { BuildLightField(broken, ReadManifest(broken), *calibration_, Small()); });
+  EXPECT_NE(message.find("cam_01_01.jpg"), std::string::npos) << message;
+  CaptureManifest other = ReadManifest(session());
+  other.sensor_width = 1296;
+  EXPECT_NE(testing::ErrorOf([&] { BuildLightField(session(), other, *calibration_, Small()); })
+                .find("calibration is for 648x486"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace lfcam

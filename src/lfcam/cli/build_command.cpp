@@ -1,0 +1,105 @@
+// `lfcam build SESSION --calibration calibration.json --out FILE`: the light field of a
+// calibrated capture session.
+#include <fmt/core.h>
+
+#include <cmath>
+#include <memory>
+
+#include "lfcam/calib/calibration_file.h"
+#include "lfcam/calib/lightfield_build.h"
+#include "lfcam/cli/commands.h"
+#include "lfcam/cli/parse.h"
+#include "lfcam/core/atomic_file.h"
+#include "lfcam/core/error.h"
+#include "lfcam/core/json_input.h"
+#include "lfcam/core/lightfield_file.h"
+#include "lfcam/core/limits.h"
+#include "lfcam/core/progress.h"
+
+namespace lfcam::cli {
+
+void AddBuildCommand(CLI::App& app) {
+  auto* command =
+      app.add_subcommand("build", "Build the light field of a calibrated capture session");
+  struct Flags {
+    std::string session, calibration, out, st_res = "1248x1152", st_domain, compression = "none",
+                shot = "scene";
+    bool allow_missing = false, no_color = false, json = false, quiet = false;
+  };
+  auto flags = std::make_shared<Flags>();
+  command->add_option("session", flags->session, "Capture session directory")->required();
+  command->add_option("--calibration", flags->calibration, "calibration.json of the session")
+      ->required();
+  command->add_option("--out", flags->out, "Light field file to write (.lf)")->required();
+  command->add_option("--st-res", flags->st_res, "st samples per view, N_SxN_T")
+      ->capture_default_str();
+  command->add_option("--st-domain", flags->st_domain,
+                      "Sampled st domain S0,T0,S1,T1 (view-window units; default 0,0,1,1)");
+  command->add_option("--compress", flags->compression, "none or zstd")->capture_default_str();
+  command->add_option("--shot", flags->shot, "The session's shot to build (scene, or world)")
+      ->capture_default_str();
+  command->add_flag("--allow-missing", flags->allow_missing,
+                    "Fill cameras without an image or calibration from their nearest neighbours "
+                    "(recorded in the file's metadata)");
+  command->add_flag("--no-color-correction", flags->no_color,
+                    "Do not apply the calibration's per-module gain and vignetting correction");
+  command->add_flag("--json", flags->json, "Print a summary as JSON on stdout");
+  command->add_flag("--quiet", flags->quiet, "No progress bar (it is drawn only on a terminal)");
+  command->callback([flags] {
+    BuildOptions o;
+    std::tie(o.n_s, o.n_t) = ParseSize("--st-res", flags->st_res, kMaxStSamplesPerSide);
+    if (!flags->st_domain.empty()) {
+      const auto d = ParseNumbers("--st-domain", flags->st_domain, 4);
+      if (!(d[2] > d[0]) || !(d[3] > d[1]))
+        throw UsageError(
+            fmt::format("--st-domain: '{}' needs S1 > S0 and T1 > T0", flags->st_domain));
+      for (const double x : d)
+        if (std::abs(x) > kMaxStDomainBound)
+          throw UsageError(fmt::format("--st-domain: {} is outside -{}..{}", x, kMaxStDomainBound,
+                                       kMaxStDomainBound));
+      o.st_domain = StDomain{d[0], d[1], d[2], d[3]};
+    }
+    LightFieldWriteOptions w;
+    if (flags->compression == "zstd")
+      w.compression = Compression::kZstd;
+    else if (flags->compression != "none")
+      throw UsageError(fmt::format("--compress: '{}' is not none or zstd", flags->compression));
+    o.allow_missing = flags->allow_missing;
+    o.shot = flags->shot;
+    o.photometric_correction = !flags->no_color;
+    RequireWritableOutput(flags->out, "--out");
+    const CaptureManifest manifest = ReadManifest(flags->session);
+    const CalibrationFile calibration = ReadCalibration(flags->calibration);
+    ProgressBar progress("building views", std::int64_t(calibration.rows) * calibration.cols,
+                         ProgressWanted(flags->quiet || flags->json));
+    if (const auto advance = progress.callback()) o.view_done = [advance] { advance(1); };
+    BuildReport report;
+    const LightField lf = BuildLightField(flags->session, manifest, calibration, o, &report);
+    progress.finish();
+    WriteLightField(lf, flags->out, w);
+    if (flags->json) {
+      fmt::print("{}\n", JsonToText({{"out", flags->out},
+                                     {"rows", lf.dims().rows},
+                                     {"cols", lf.dims().cols},
+                                     {"n_s", lf.dims().n_s},
+                                     {"n_t", lf.dims().n_t},
+                                     {"seconds", report.seconds},
+                                     {"decode_seconds", report.decode_seconds},
+                                     {"metadata", lf.metadata()}},
+                                    2));
+      return;
+    }
+    fmt::print("built {}x{} views of {}x{} samples in {:.2f} s (JPEG decoding {:.2f} s of thread "
+               "time, at up to 1/{} size)\n",
+               lf.dims().rows, lf.dims().cols, lf.dims().n_s, lf.dims().n_t, report.seconds,
+               report.decode_seconds, report.reduction_max);
+    fmt::print("  mean colour over the common st region ({:.0f}% of it): cameras within "
+               "{:.2f}% of the median (RMS {:.2f}%), {:.2f}% before correction\n",
+               100 * report.after.region_fraction, 100 * report.after.max_deviation,
+               100 * report.after.rms_deviation, 100 * report.before.max_deviation);
+    for (const auto& f : report.filled) fmt::print(stderr, "lfcam: warning: filled {}\n", f);
+    fmt::print("wrote {}\n", flags->out);
+  });
+}
+
+}  // namespace lfcam::cli
