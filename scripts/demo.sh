@@ -1,8 +1,12 @@
 #!/usr/bin/env bash
-# The main job: build lfcam, simulate the paper's 10x10 array looking at the Fig. 11 scene, and
-# render Fig. 11 (a)-(e) with the paper's parameters into out/demo/ (one PNG per frame and one
-# contact sheet per sequence).
-# Usage: scripts/demo.sh [--quick]   (--quick: a 624x576 light field and 512x512 frames)
+# The main job, the way a user with an array runs it: build lfcam; take a raw capture with the
+# simulated 10x10 array of Raspberry Pi camera modules (board shots and the Fig. 11 scene);
+# calibrate the array; build the light field; and render Fig. 11 (a)-(e) from it with the
+# paper's parameters into out/demo/ (one PNG per frame and one contact sheet per sequence).
+# Usage: scripts/demo.sh [--quick]
+#   default: modules of 1296x972 (binned, half the Pi v1.3's size), a 1248x1152 light field,
+#            1024x1024 frames
+#   --quick: modules of 648x486, a 624x576 light field and 512x512 frames
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -23,10 +27,20 @@ lfcam=build/release/lfcam
 
 out=out/demo
 mkdir -p "$out"
-if [ $quick -eq 1 ]; then st_res=624x576; size=512; else st_res=1248x1152; size=1024; fi
+if [ $quick -eq 1 ]; then
+  sensor=648x486; st_res=624x576; size=512
+else
+  sensor=1296x972; st_res=1248x1152; size=1024
+fi
+session="$out/capture"
 lf="$out/paper.lf"
-echo "== simulating the paper's array: 10x10 views of $st_res st samples"
-$lfcam simulate lightfield --scene paper --grid 10x10 --st-res "$st_res" --out "$lf"
+rm -rf "$session"
+echo "== capturing: 10x10 simulated Pi camera modules of $sensor (14 board poses, world board, scene)"
+$lfcam simulate capture --scene paper --grid 10x10 --sensor "$sensor" --out "$session"
+echo "== calibrating the array"
+$lfcam calibrate "$session" --out "$out/calibration.json"
+echo "== building the light field: 10x10 views of $st_res st samples"
+$lfcam build "$session" --calibration "$out/calibration.json" --st-res "$st_res" --out "$lf"
 $lfcam info "$lf"
 
 # render NAME FLAGS...: one frame of a sequence.

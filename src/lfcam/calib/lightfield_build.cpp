@@ -8,8 +8,8 @@
 #include <atomic>
 #include <chrono>
 #include <climits>
-#include <cstdint>
 #include <cmath>
+#include <cstdint>
 #include <mutex>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -33,10 +33,14 @@ struct ViewStats {
 
 int ReductionFlags(int reduction) {
   switch (reduction) {
-    case 2: return cv::IMREAD_REDUCED_COLOR_2;
-    case 4: return cv::IMREAD_REDUCED_COLOR_4;
-    case 8: return cv::IMREAD_REDUCED_COLOR_8;
-    default: return cv::IMREAD_COLOR;
+    case 2:
+      return cv::IMREAD_REDUCED_COLOR_2;
+    case 4:
+      return cv::IMREAD_REDUCED_COLOR_4;
+    case 8:
+      return cv::IMREAD_REDUCED_COLOR_8;
+    default:
+      return cv::IMREAD_COLOR;
   }
 }
 
@@ -81,10 +85,11 @@ int BuildView(const ViewJob& job, const Slab& slab, int n_s, int n_t, bool corre
   const int expected_h = (k.height + reduction - 1) / reduction;
   if (bgr.type() != CV_8UC3 || std::abs(bgr.cols - expected_w) > 1 ||
       std::abs(bgr.rows - expected_h) > 1)
-    throw Error(fmt::format("{} ({}): the image is {}x{} at 1/{} size, but the calibration is for "
-                            "{}x{} images",
-                            job.image.string(), CameraLabel(job.row, job.col), bgr.cols, bgr.rows,
-                            reduction, k.width, k.height));
+    throw Error(
+        fmt::format("{} ({}): the image is {}x{} at 1/{} size, but the calibration is for "
+                    "{}x{} images",
+                    job.image.string(), CameraLabel(job.row, job.col), bgr.cols, bgr.rows,
+                    reduction, k.width, k.height));
 
   // The map, in the decoded image's pixels.
   cv::Mat map_x(n_t, n_s, CV_32FC1), map_y(n_t, n_s, CV_32FC1);
@@ -109,12 +114,11 @@ int BuildView(const ViewJob& job, const Slab& slab, int n_s, int n_t, bool corre
   const PhotometricCorrection identity;
   const PhotometricCorrection& photometry =
       correct && job.camera->photometry ? *job.camera->photometry : identity;
-  const cv::Rect roi = x_hi < x_lo ? cv::Rect()
-                                   : cv::Rect(cv::Point(int(std::floor(x_lo)) - 3,
-                                                        int(std::floor(y_lo)) - 3),
-                                              cv::Point(int(std::ceil(x_hi)) + 4,
-                                                        int(std::ceil(y_hi)) + 4)) &
-                                         cv::Rect(0, 0, bgr.cols, bgr.rows);
+  const cv::Rect roi =
+      x_hi < x_lo ? cv::Rect()
+                  : cv::Rect(cv::Point(int(std::floor(x_lo)) - 3, int(std::floor(y_lo)) - 3),
+                             cv::Point(int(std::ceil(x_hi)) + 4, int(std::ceil(y_hi)) + 4)) &
+                        cv::Rect(0, 0, bgr.cols, bgr.rows);
   if (roi.area() > 0) {
     // The part of the image the map reads, in linear light, photometrically corrected.
     const auto& lut = SrgbDecodeTable();
@@ -126,7 +130,8 @@ int BuildView(const ViewJob& job, const Slab& slab, int n_s, int n_t, bool corre
       const double full_y = (roi.y + y + 0.5) * reduction - 0.5;
       for (int x = 0; x < roi.width; ++x) {
         const double full_x = (roi.x + x + 0.5) * reduction - 0.5;
-        const double f = photometry.vignetting == 0 ? 1.0 : 1.0 / photometry.falloff(k, full_x, full_y);
+        const double f =
+            photometry.vignetting == 0 ? 1.0 : 1.0 / photometry.falloff(k, full_x, full_y);
         out[x] = cv::Vec3f(float(lut[in[x][2]] * inverse_gain.x() * f),
                            float(lut[in[x][1]] * inverse_gain.y() * f),
                            float(lut[in[x][0]] * inverse_gain.z() * f));
@@ -216,8 +221,8 @@ LightField BuildLightField(const std::filesystem::path& dir, const CaptureManife
   const auto start = std::chrono::steady_clock::now();
   BuildReport report;
   if (manifest.rows != cal.rows || manifest.cols != cal.cols)
-    throw Error(fmt::format("the calibration is for a {}x{} array, the session has {}x{}",
-                            cal.rows, cal.cols, manifest.rows, manifest.cols));
+    throw Error(fmt::format("the calibration is for a {}x{} array, the session has {}x{}", cal.rows,
+                            cal.cols, manifest.rows, manifest.cols));
   if (manifest.sensor_width != cal.width || manifest.sensor_height != cal.height)
     throw Error(fmt::format("the calibration is for {}x{} images, the session's are {}x{}",
                             cal.width, cal.height, manifest.sensor_width, manifest.sensor_height));
@@ -250,17 +255,19 @@ LightField BuildLightField(const std::filesystem::path& dir, const CaptureManife
       if (!image_of[i])
         missing.push_back(fmt::format("{}: no image in shot '{}'", CameraLabel(r, c), o.shot));
       else if (!camera.calibrated)
-        missing.push_back(fmt::format("{}: not calibrated ({})", CameraLabel(r, c),
-                                      camera.reason.empty() ? "see the calibration" : camera.reason));
+        missing.push_back(
+            fmt::format("{}: not calibrated ({})", CameraLabel(r, c),
+                        camera.reason.empty() ? "see the calibration" : camera.reason));
       else {
         jobs.push_back({r, c, &camera, dir / image_of[i]->file});
         built[i] = true;
       }
     }
   if (!missing.empty() && !o.allow_missing)
-    throw Error(fmt::format("{} of {} cameras cannot be built (--allow-missing fills them from "
-                            "their neighbours):\n  {}",
-                            missing.size(), image_of.size(), fmt::join(missing, "\n  ")));
+    throw Error(
+        fmt::format("{} of {} cameras cannot be built (--allow-missing fills them from "
+                    "their neighbours):\n  {}",
+                    missing.size(), image_of.size(), fmt::join(missing, "\n  ")));
   if (jobs.empty()) throw Error("no camera of the session can be built");
 
   LightField lf({rows, cols, o.n_s, o.n_t}, SampleType::kSrgb8, slab);
@@ -292,8 +299,9 @@ LightField BuildLightField(const std::filesystem::path& dir, const CaptureManife
   // Measured poses; missing views filled from their nearest built neighbours, in linear light.
   std::vector<ViewPose> poses(image_of.size());
   for (std::size_t i = 0; i < image_of.size(); ++i)
-    if (built[i]) poses[i] = {cal.cameras[i].world_from_camera.translation,
-                              cal.cameras[i].world_from_camera.rotation};
+    if (built[i])
+      poses[i] = {cal.cameras[i].world_from_camera.translation,
+                  cal.cameras[i].world_from_camera.rotation};
   nlohmann::json filled = nlohmann::json::array();
   const auto& lut = SrgbDecodeTable();
   for (int r = 0; r < rows; ++r)
@@ -320,11 +328,11 @@ LightField BuildLightField(const std::filesystem::path& dir, const CaptureManife
         for (const auto& [rr, cc] : from) sum += lut[lf.view_data(rr, cc)[b]];
         out[b] = LinearToSrgb8Table(sum / float(from.size()));
       }
-      poses[i] = {slab.uv.camera_center(r, c), poses[std::size_t(from[0].first * cols + from[0].second)].orientation};
+      poses[i] = {slab.uv.camera_center(r, c),
+                  poses[std::size_t(from[0].first * cols + from[0].second)].orientation};
       std::vector<std::string> names;
       for (const auto& [rr, cc] : from) names.push_back(fmt::format("({}, {})", rr, cc));
-      report.filled.push_back(
-          fmt::format("{} from {}", CameraLabel(r, c), fmt::join(names, ", ")));
+      report.filled.push_back(fmt::format("{} from {}", CameraLabel(r, c), fmt::join(names, ", ")));
       filled.push_back({{"row", r}, {"col", c}, {"from", from}});
     }
   lf.set_measured_poses(std::move(poses));

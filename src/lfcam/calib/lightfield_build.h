@@ -22,7 +22,7 @@ struct BuildOptions {
   bool allow_missing = false;  // fill cameras without an image or calibration from neighbours
   bool photometric_correction = true;  // when the calibration has it
   std::string shot = "scene";  // the shot to build (the world shot shows the board at the st-plane)
-  std::function<void()> view_done;     // once per view (serialised)
+  std::function<void()> view_done;  // once per view (serialised)
 };
 
 struct ColourSpread {
@@ -34,9 +34,9 @@ struct ColourSpread {
 };
 
 struct BuildReport {
-  std::vector<std::string> filled;  // "camera (r, c) from (r, c), ..." for each filled view
-  ColourSpread before, after;       // per-camera mean colour, without and with correction
-  int reduction_max = 1;            // the largest decode reduction used
+  std::vector<std::string> filled;         // "camera (r, c) from (r, c), ..." for each filled view
+  ColourSpread before, after;              // per-camera mean colour, without and with correction
+  int reduction_max = 1;                   // the largest decode reduction used
   double seconds = 0, decode_seconds = 0;  // wall; decode summed over threads
 };
 

@@ -24,7 +24,8 @@ namespace fs = std::filesystem;
 class LightFieldBuildTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    scratch_ = new fs::path(fs::temp_directory_path() / ("build_test_" + std::to_string(::getpid())));
+    scratch_ =
+        new fs::path(fs::temp_directory_path() / ("build_test_" + std::to_string(::getpid())));
     fs::remove_all(*scratch_);
     fs::create_directories(*scratch_);
     CaptureSimulationOptions o;
@@ -65,7 +66,8 @@ TEST_F(LightFieldBuildTest, TheWorldBoardLandsOnItsOwnSquares) {
   BuildOptions o = Small();
   o.shot = "world";
   BuildReport report;
-  const LightField lf = BuildLightField(session(), ReadManifest(session()), *calibration_, o, &report);
+  const LightField lf =
+      BuildLightField(session(), ReadManifest(session()), *calibration_, o, &report);
   const auto& board = lf.slab().st;
   const BoardSpec spec{11, 10, 50.0};
   ASSERT_NEAR(board.width_mm, spec.width_mm(), 1e-9);
@@ -91,7 +93,8 @@ TEST_F(LightFieldBuildTest, TheWorldBoardLandsOnItsOwnSquares) {
   EXPECT_GT(report.after.region_fraction, 0.9);
   // Measured poses are recorded, and survive the file.
   ASSERT_EQ(lf.measured_poses().size(), 9u);
-  EXPECT_EQ(lf.measured_poses()[4].center, calibration_->camera(1, 1).world_from_camera.translation);
+  EXPECT_EQ(lf.measured_poses()[4].center,
+            calibration_->camera(1, 1).world_from_camera.translation);
   const fs::path file = *scratch_ / "world.lf";
   WriteLightField(lf, file);
   const LightField back = ReadLightField(file);
@@ -130,8 +133,9 @@ TEST_F(LightFieldBuildTest, BadImagesAndMismatchedCalibrationsAreNamed) {
   EXPECT_NE(message.find("cam_01_01.jpg"), std::string::npos) << message;
   CaptureManifest other = ReadManifest(session());
   other.sensor_width = 1296;
-  EXPECT_NE(testing::ErrorOf([&] { BuildLightField(session(), other, *calibration_, Small()); })
-                .find("calibration is for 648x486"),
+  EXPECT_NE(testing::ErrorOf([&] {
+              BuildLightField(session(), other, *calibration_, Small());
+            }).find("calibration is for 648x486"),
             std::string::npos);
 }
 

@@ -74,8 +74,7 @@ std::vector<std::optional<SquareView>> ObserveSquares(const cv::Mat& bgr, int re
 
 PhotometryEstimate EstimatePhotometry(const std::filesystem::path& dir,
                                       const CaptureManifest& manifest,
-                                      const CalibrationFile& calibration,
-                                      const BoardSpec& board,
+                                      const CalibrationFile& calibration, const BoardSpec& board,
                                       const std::function<void()>& image_done) {
   const auto world = manifest.shots_of(ShotKind::kWorld);
   if (world.size() != 1) throw Error("photometry: the session needs exactly one world shot");
@@ -184,8 +183,9 @@ void AddPhotometryToCalibration(nlohmann::json& calibration, const PhotometryEst
       ++corrected;
     }
   calibration["photometry"] = {
-      {"model", "gain[c] * (1 + vignetting * rho^2), rho from the principal point over the "
-                "half-diagonal"},
+      {"model",
+       "gain[c] * (1 + vignetting * rho^2), rho from the principal point over the "
+       "half-diagonal"},
       {"source", "world board squares, median over the cameras"},
       {"squares_compared", e.squares},
       {"cameras", corrected}};

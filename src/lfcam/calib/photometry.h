@@ -22,7 +22,7 @@ namespace lfcam {
 
 struct PhotometryEstimate {
   std::vector<std::optional<PhotometricCorrection>> cameras;  // row-major; none where unseen
-  int squares = 0;  // board squares compared
+  int squares = 0;                                            // board squares compared
 };
 
 // Reads the world shot (decoded at reduced size) and fits the model for every calibrated camera

@@ -23,7 +23,7 @@ void AddBuildCommand(CLI::App& app) {
       app.add_subcommand("build", "Build the light field of a calibrated capture session");
   struct Flags {
     std::string session, calibration, out, st_res = "1248x1152", st_domain, compression = "none",
-                shot = "scene";
+                                           shot = "scene";
     bool allow_missing = false, no_color = false, json = false, quiet = false;
   };
   auto flags = std::make_shared<Flags>();
@@ -89,14 +89,16 @@ void AddBuildCommand(CLI::App& app) {
                                     2));
       return;
     }
-    fmt::print("built {}x{} views of {}x{} samples in {:.2f} s (JPEG decoding {:.2f} s of thread "
-               "time, at up to 1/{} size)\n",
-               lf.dims().rows, lf.dims().cols, lf.dims().n_s, lf.dims().n_t, report.seconds,
-               report.decode_seconds, report.reduction_max);
-    fmt::print("  mean colour over the common st region ({:.0f}% of it): cameras within "
-               "{:.2f}% of the median (RMS {:.2f}%), {:.2f}% before correction\n",
-               100 * report.after.region_fraction, 100 * report.after.max_deviation,
-               100 * report.after.rms_deviation, 100 * report.before.max_deviation);
+    fmt::print(
+        "built {}x{} views of {}x{} samples in {:.2f} s (JPEG decoding {:.2f} s of thread "
+        "time, at up to 1/{} size)\n",
+        lf.dims().rows, lf.dims().cols, lf.dims().n_s, lf.dims().n_t, report.seconds,
+        report.decode_seconds, report.reduction_max);
+    fmt::print(
+        "  mean colour over the common st region ({:.0f}% of it): cameras within "
+        "{:.2f}% of the median (RMS {:.2f}%), {:.2f}% before correction\n",
+        100 * report.after.region_fraction, 100 * report.after.max_deviation,
+        100 * report.after.rms_deviation, 100 * report.before.max_deviation);
     for (const auto& f : report.filled) fmt::print(stderr, "lfcam: warning: filled {}\n", f);
     fmt::print("wrote {}\n", flags->out);
   });

@@ -10,12 +10,41 @@
 #include "lfcam/cli/parse.h"
 #include "lfcam/core/atomic_file.h"
 #include "lfcam/core/error.h"
+#include "lfcam/core/input_file.h"
+#include "lfcam/core/json_input.h"
 #include "lfcam/core/lightfield_file.h"
 #include "lfcam/core/limits.h"
 #include "lfcam/core/progress.h"
 #include "lfcam/sim/simulate_lightfield.h"
 
 namespace lfcam::cli {
+namespace {
+
+// cameras[].center of a ground_truth.json or calibration.json, row-major; every grid position.
+std::vector<Vec3> ReadCameraCenters(const std::string& path, int rows, int cols) {
+  const auto bytes = ReadFileBytes(path, kMaxJsonBytes, "--centers-from file");
+  const auto j = ParseJsonBounded(std::string(bytes.begin(), bytes.end()), path);
+  const auto& cameras = JsonField(j, "cameras", path);
+  if (!cameras.is_array()) throw Error(fmt::format("{}: cameras must be an array", path));
+  std::vector<Vec3> centers(std::size_t(rows) * std::size_t(cols), Vec3::Constant(NAN));
+  for (std::size_t i = 0; i < cameras.size(); ++i) {
+    const std::string where = fmt::format("{}: cameras[{}]", path, i);
+    const int r = int(JsonInteger(cameras[i], "row", 0, kMaxViewsPerSide, where));
+    const int c = int(JsonInteger(cameras[i], "col", 0, kMaxViewsPerSide, where));
+    if (r >= rows || c >= cols)
+      throw Error(
+          fmt::format("{}: camera ({}, {}) is outside the {}x{} grid", where, r, c, rows, cols));
+    if (cameras[i].contains("center"))
+      centers[std::size_t(r * cols + c)] = JsonVec3(cameras[i], "center", where);
+  }
+  for (int r = 0; r < rows; ++r)
+    for (int c = 0; c < cols; ++c)
+      if (!centers[std::size_t(r * cols + c)].allFinite())
+        throw Error(fmt::format("{}: no centre for camera ({}, {})", path, r, c));
+  return centers;
+}
+
+}  // namespace
 
 void AddSimulateCommand(CLI::App& app) {
   auto* simulate = app.add_subcommand("simulate", "Play the camera array without hardware");
@@ -24,7 +53,7 @@ void AddSimulateCommand(CLI::App& app) {
       simulate->add_subcommand("lightfield", "Write the light field an ideal array captures");
   struct Flags {
     std::string scene = "paper", out, grid = "10x10", st_res = "1248x1152", st_domain = "0,0,1,1",
-                sample_type = "srgb8", compression = "none";
+                sample_type = "srgb8", compression = "none", centers_from;
     int supersampling = 2;
     bool quiet = false;
   };
@@ -45,6 +74,9 @@ void AddSimulateCommand(CLI::App& app) {
   command->add_option("--sample-type", flags->sample_type, "srgb8 or linear_f16")
       ->capture_default_str();
   command->add_option("--compress", flags->compression, "none or zstd")->capture_default_str();
+  command->add_option("--centers-from", flags->centers_from,
+                      "Put the cameras where this ground_truth.json or calibration.json says "
+                      "(cameras[].row, col, center) instead of on the ideal grid");
   command->add_flag("--quiet", flags->quiet, "No progress bar (it is drawn only on a terminal)");
   command->callback([flags] {
     SimulateLightFieldOptions o;
@@ -71,6 +103,8 @@ void AddSimulateCommand(CLI::App& app) {
     else if (flags->compression != "none")
       throw UsageError(fmt::format("--compress: '{}' is not none or zstd", flags->compression));
     const Scene scene = FlagValue("--scene", [&] { return MakeScene(flags->scene); });
+    if (!flags->centers_from.empty())
+      o.camera_centers = ReadCameraCenters(flags->centers_from, rows, cols);
     RequireWritableOutput(flags->out, "--out");
     const double bytes =
         double(rows) * cols * o.n_s * o.n_t * 3 * double(BytesPerChannel(o.sample_type));

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <cctype>
+#include <cstdlib>
 #include <memory>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -70,9 +71,19 @@ cv::Mat DecodeImageBytes(std::span<const std::uint8_t> bytes, const std::string&
   if (m.empty())
     throw Error(
         fmt::format("{}: not a readable {} image (corrupt or truncated)", name, header.format));
-  if (m.cols != header.width || m.rows != header.height)
-    throw Error(fmt::format("{}: decoded to {}x{}, but its header says {}x{}", name, m.cols, m.rows,
-                            header.width, header.height));
+  // cv::IMREAD_REDUCED_*_2, _4, _8 decode at 1/2, 1/4, 1/8 size (JPEG: scaled DCT, rounded up).
+  const int reduction = imread_flags < 0           ? 1
+                        : (imread_flags & 16) != 0 ? 2
+                        : (imread_flags & 32) != 0 ? 4
+                        : (imread_flags & 64) != 0 ? 8
+                                                   : 1;
+  const int expected_w = (header.width + reduction - 1) / reduction;
+  const int expected_h = (header.height + reduction - 1) / reduction;
+  if (std::abs(m.cols - expected_w) > (reduction > 1) ||
+      std::abs(m.rows - expected_h) > (reduction > 1))
+    throw Error(fmt::format("{}: decoded to {}x{}, but its header says {}x{}{}", name, m.cols,
+                            m.rows, header.width, header.height,
+                            reduction > 1 ? fmt::format(" (at 1/{} size)", reduction) : ""));
   return m;
 }
 

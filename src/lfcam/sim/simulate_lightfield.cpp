@@ -9,6 +9,7 @@
 #include <chrono>
 #include <mutex>
 
+#include "lfcam/core/camera_model.h"
 #include "lfcam/core/error.h"
 #include "lfcam/core/limits.h"
 
@@ -38,6 +39,15 @@ LightField SimulateLightField(const Scene& scene, const SimulateLightFieldOption
   slab.uv = ResizeArray(slab.uv, o.rows, o.cols);
   slab.validate();
   LightField lf({o.rows, o.cols, o.n_s, o.n_t}, o.sample_type, slab);
+  if (!o.camera_centers.empty()) {
+    if (o.camera_centers.size() != lf.dims().view_count())
+      throw Error(fmt::format("{} camera centres for {}x{} views", o.camera_centers.size(), o.rows,
+                              o.cols));
+    std::vector<ViewPose> poses;
+    const Mat3 ideal = WorldFromCameraRotation(slab.uv.u_ca, slab.uv.v_ca, slab.uv.n_ca);
+    for (const Vec3& c : o.camera_centers) poses.push_back({c, ideal});
+    lf.set_measured_poses(std::move(poses));
+  }
   const auto now = std::chrono::floor<std::chrono::seconds>(std::chrono::system_clock::now());
   lf.metadata() = {{"source", "simulated"},
                    {"scene", scene.name},
@@ -52,7 +62,7 @@ LightField SimulateLightField(const Scene& scene, const SimulateLightFieldOption
   const int total = o.rows * o.cols;
   tbb::parallel_for(0, total, [&](int view) {
     const int row = view / o.cols, col = view % o.cols;
-    const Vec3 center = slab.uv.camera_center(row, col);
+    const Vec3 center = lf.camera_center(row, col);
     tbb::parallel_for(tbb::blocked_range<int>(0, o.n_t, 8), [&](const tbb::blocked_range<int>& r) {
       for (int l = r.begin(); l != r.end(); ++l) {
         for (int k = 0; k < o.n_s; ++k) {

@@ -3,6 +3,7 @@
 // view (row, col) is the scene seen from camera (row, col)'s centre through the st samples,
 // each sample the average radiance over its st cell (supersampled, linear light).
 #include <functional>
+#include <vector>
 
 #include "lfcam/core/lightfield.h"
 #include "lfcam/sim/scene.h"
@@ -15,6 +16,9 @@ struct SimulateLightFieldOptions {
   StDomain st_domain;
   int supersampling = 2;  // per axis, per st cell
   SampleType sample_type = SampleType::kSrgb8;
+  // Where each camera really is (row-major, rows x cols entries), for the light field an actual
+  // array with mounting errors captures; empty: the ideal grid. Recorded as measured poses.
+  std::vector<Vec3> camera_centers;
   std::function<void(int views_done, int views_total)> progress;
 };
 
