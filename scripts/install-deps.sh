@@ -8,7 +8,7 @@ packages=(
   libeigen3-dev libtbb-dev libcli11-dev nlohmann-json3-dev libfmt-dev
   libzstd-dev libxxhash-dev
   libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev libopencv-calib3d-dev
-  libceres-dev
+  libceres-dev libjpeg62-turbo-dev
   libgtest-dev libgmock-dev
 )
 # scripts/fuzz.sh: clang and its libFuzzer runtime.

@@ -13,11 +13,14 @@
 #include <mutex>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <span>
 
 #include "lfcam/core/color.h"
 #include "lfcam/core/error.h"
+#include "lfcam/core/image_header.h"
 #include "lfcam/core/image_io.h"
 #include "lfcam/core/input_file.h"
+#include "lfcam/core/jpeg_region.h"
 #include "lfcam/core/limits.h"
 
 namespace lfcam {
@@ -50,7 +53,38 @@ struct ViewJob {
   std::filesystem::path image;
 };
 
-// Resamples one camera's scene image into its view. Returns the decode reduction used.
+// The part of the image a map reads, decoded: R, G, B (CV_8UC3) and where it lies in the image
+// scaled by 1/reduction. JPEGs decode only those rows and columns.
+struct DecodedRegion {
+  cv::Mat rgb;
+  cv::Rect roi;
+};
+
+DecodedRegion DecodeRegion(std::span<const std::uint8_t> bytes, const std::string& name,
+                           int reduction, cv::Size scaled, cv::Rect wanted) {
+  DecodedRegion out;
+  if (wanted.area() == 0) return out;
+  if (LooksLikeJpeg(bytes)) {
+    JpegRegion region = DecodeJpegRegion(bytes, name, reduction, wanted);
+    if (region.scaled != scaled)
+      throw Error(fmt::format("{}: decoded at 1/{} size to {}x{}, expected {}x{}", name, reduction,
+                              region.scaled.width, region.scaled.height, scaled.width,
+                              scaled.height));
+    out.rgb = region.rgb;
+    out.roi = cv::Rect(region.origin, out.rgb.size());
+    return out;
+  }
+  const cv::Mat bgr = DecodeImageBytes(bytes, name, ReductionFlags(reduction));
+  if (bgr.type() != CV_8UC3 || std::abs(bgr.cols - scaled.width) > 1 ||
+      std::abs(bgr.rows - scaled.height) > 1)
+    throw Error(fmt::format("{}: not an 8-bit colour image of {}x{} at 1/{} size", name,
+                            scaled.width, scaled.height, reduction));
+  out.roi = wanted & cv::Rect(0, 0, bgr.cols, bgr.rows);
+  cv::cvtColor(bgr(out.roi), out.rgb, cv::COLOR_BGR2RGB);
+  return out;
+}
+
+// Resamples one camera's image into its view. Returns the decode reduction used.
 int BuildView(const ViewJob& job, const Slab& slab, int n_s, int n_t, bool correct,
               std::uint8_t* view, ViewStats* stats, double* decode_seconds) {
   const CameraIntrinsics& k = job.camera->intrinsics;
@@ -76,22 +110,22 @@ int BuildView(const ViewJob& job, const Slab& slab, int n_s, int n_t, bool corre
   int reduction = 1;
   while (reduction < 8 && 2.0 * reduction <= footprint) reduction *= 2;
 
-  const auto start = std::chrono::steady_clock::now();
   const auto bytes = ReadFileBytes(job.image, kMaxEncodedImageBytes, "image file");
-  const cv::Mat bgr = DecodeImageBytes(bytes, job.image.string(), ReductionFlags(reduction));
-  *decode_seconds +=
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const int expected_w = (k.width + reduction - 1) / reduction;
-  const int expected_h = (k.height + reduction - 1) / reduction;
-  if (bgr.type() != CV_8UC3 || std::abs(bgr.cols - expected_w) > 1 ||
-      std::abs(bgr.rows - expected_h) > 1)
+  ImageHeader header;
+  try {
+    header = ProbeImageHeader(bytes);
+  } catch (const Error& e) {
     throw Error(
-        fmt::format("{} ({}): the image is {}x{} at 1/{} size, but the calibration is for "
-                    "{}x{} images",
-                    job.image.string(), CameraLabel(job.row, job.col), bgr.cols, bgr.rows,
-                    reduction, k.width, k.height));
+        fmt::format("{} ({}): {}", job.image.string(), CameraLabel(job.row, job.col), e.what()));
+  }
+  if (header.width != k.width || header.height != k.height)
+    throw Error(fmt::format("{} ({}): the image is {}x{}, but the calibration is for {}x{} images",
+                            job.image.string(), CameraLabel(job.row, job.col), header.width,
+                            header.height, k.width, k.height));
+  const cv::Size scaled((k.width + reduction - 1) / reduction,
+                        (k.height + reduction - 1) / reduction);
 
-  // The map, in the decoded image's pixels.
+  // The map, in the scaled image's pixels, and the part of the image it reads.
   cv::Mat map_x(n_t, n_s, CV_32FC1), map_y(n_t, n_s, CV_32FC1);
   float x_lo = 1e30f, x_hi = -1e30f, y_lo = 1e30f, y_hi = -1e30f;
   const float scale = 1.0f / float(reduction), shift = 0.5f / float(reduction) - 0.5f;
@@ -102,7 +136,7 @@ int BuildView(const ViewJob& job, const Slab& slab, int n_s, int n_t, bool corre
       const Vec2 p = pixel_of(kk, l);
       mx[kk] = float(p.x()) * scale + shift;
       my[kk] = float(p.y()) * scale + shift;
-      if (mx[kk] >= -1 && mx[kk] <= bgr.cols && my[kk] >= -1 && my[kk] <= bgr.rows) {
+      if (mx[kk] >= -1 && mx[kk] <= scaled.width && my[kk] >= -1 && my[kk] <= scaled.height) {
         x_lo = std::min(x_lo, mx[kk]);
         x_hi = std::max(x_hi, mx[kk]);
         y_lo = std::min(y_lo, my[kk]);
@@ -110,31 +144,41 @@ int BuildView(const ViewJob& job, const Slab& slab, int n_s, int n_t, bool corre
       }
     }
   }
+  // A margin for the bilinear lookup and the prefilter.
+  const int margin = 4 + int(std::ceil(footprint / reduction));
+  const cv::Rect wanted =
+      x_hi < x_lo
+          ? cv::Rect()
+          : cv::Rect(
+                cv::Point(int(std::floor(x_lo)) - margin, int(std::floor(y_lo)) - margin),
+                cv::Point(int(std::ceil(x_hi)) + margin + 1, int(std::ceil(y_hi)) + margin + 1)) &
+                cv::Rect(cv::Point(0, 0), scaled);
+  const auto start = std::chrono::steady_clock::now();
+  const DecodedRegion region = DecodeRegion(bytes, job.image.string(), reduction, scaled, wanted);
+  *decode_seconds +=
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
   cv::Mat sampled(n_t, n_s, CV_32FC3, cv::Scalar(0, 0, 0));
   const PhotometricCorrection identity;
   const PhotometricCorrection& photometry =
       correct && job.camera->photometry ? *job.camera->photometry : identity;
-  const cv::Rect roi =
-      x_hi < x_lo ? cv::Rect()
-                  : cv::Rect(cv::Point(int(std::floor(x_lo)) - 3, int(std::floor(y_lo)) - 3),
-                             cv::Point(int(std::ceil(x_hi)) + 4, int(std::ceil(y_hi)) + 4)) &
-                        cv::Rect(0, 0, bgr.cols, bgr.rows);
+  const cv::Rect& roi = region.roi;
   if (roi.area() > 0) {
-    // The part of the image the map reads, in linear light, photometrically corrected.
+    // The region in linear light, photometrically corrected.
     const auto& lut = SrgbDecodeTable();
     cv::Mat linear(roi.size(), CV_32FC3);
     const Vec3 inverse_gain = photometry.gain.cwiseInverse();
     for (int y = 0; y < roi.height; ++y) {
-      const auto* in = bgr.ptr<cv::Vec3b>(roi.y + y) + roi.x;
+      const auto* in = region.rgb.ptr<cv::Vec3b>(y);
       auto* out = linear.ptr<cv::Vec3f>(y);
       const double full_y = (roi.y + y + 0.5) * reduction - 0.5;
       for (int x = 0; x < roi.width; ++x) {
         const double full_x = (roi.x + x + 0.5) * reduction - 0.5;
         const double f =
             photometry.vignetting == 0 ? 1.0 : 1.0 / photometry.falloff(k, full_x, full_y);
-        out[x] = cv::Vec3f(float(lut[in[x][2]] * inverse_gain.x() * f),
+        out[x] = cv::Vec3f(float(lut[in[x][0]] * inverse_gain.x() * f),
                            float(lut[in[x][1]] * inverse_gain.y() * f),
-                           float(lut[in[x][0]] * inverse_gain.z() * f));
+                           float(lut[in[x][2]] * inverse_gain.z() * f));
       }
     }
     // What the scaled decode left of the shrink: a Gaussian prefilter.
@@ -161,7 +205,7 @@ int BuildView(const ViewJob& job, const Slab& slab, int n_s, int n_t, bool corre
   for (int l = 0, i = 0; l < n_t; l += kStatsStride)
     for (int kk = 0; kk < n_s; kk += kStatsStride, ++i) {
       const float mx = map_x.at<float>(l, kk), my = map_y.at<float>(l, kk);
-      const bool inside = mx >= 1 && my >= 1 && mx <= bgr.cols - 2 && my <= bgr.rows - 2;
+      const bool inside = mx >= 1 && my >= 1 && mx <= scaled.width - 2 && my <= scaled.height - 2;
       stats->valid[std::size_t(i)] = inside;
       if (!inside) continue;
       const cv::Vec3f v = sampled.at<cv::Vec3f>(l, kk);

@@ -48,17 +48,7 @@ void AddBuildCommand(CLI::App& app) {
   command->callback([flags] {
     BuildOptions o;
     std::tie(o.n_s, o.n_t) = ParseSize("--st-res", flags->st_res, kMaxStSamplesPerSide);
-    if (!flags->st_domain.empty()) {
-      const auto d = ParseNumbers("--st-domain", flags->st_domain, 4);
-      if (!(d[2] > d[0]) || !(d[3] > d[1]))
-        throw UsageError(
-            fmt::format("--st-domain: '{}' needs S1 > S0 and T1 > T0", flags->st_domain));
-      for (const double x : d)
-        if (std::abs(x) > kMaxStDomainBound)
-          throw UsageError(fmt::format("--st-domain: {} is outside -{}..{}", x, kMaxStDomainBound,
-                                       kMaxStDomainBound));
-      o.st_domain = StDomain{d[0], d[1], d[2], d[3]};
-    }
+    if (!flags->st_domain.empty()) o.st_domain = ParseStDomain("--st-domain", flags->st_domain);
     LightFieldWriteOptions w;
     if (flags->compression == "zstd")
       w.compression = Compression::kZstd;

@@ -98,4 +98,55 @@ TEST_F(CalibrateCli, BadSessionsAreErrorsNamingWhat) {
   EXPECT_FALSE(fs::exists(Path("x.png")));
 }
 
+TEST_F(CalibrateCli, BuildsTheLightFieldAndRecordsHowItWasMade) {
+  ASSERT_EQ(Lfcam("calibrate " + Path("session") + " --quiet --out " + Path("c2.json")).status, 0);
+  CommandResult run = Lfcam("build " + Path("session") + " --calibration " + Path("c2.json") +
+                            " --st-res 64x58 --quiet --json --out " + Path("built.lf"));
+  ASSERT_EQ(run.status, 0) << run.output;
+  const auto j = nlohmann::json::parse(run.output);
+  EXPECT_EQ(j["metadata"]["source"], "built");
+  EXPECT_EQ(j["metadata"]["color_correction"]["applied"], true);
+  EXPECT_EQ(j["metadata"]["filled_views"].size(), 0u);
+  run = Lfcam("info --json " + Path("built.lf"));
+  ASSERT_EQ(run.status, 0) << run.output;
+  const auto info = nlohmann::json::parse(run.output);
+  EXPECT_EQ(info["format_version"], 2);
+  EXPECT_EQ(info["measured_poses"], true);
+  // The same array simulated directly from the true centres, and the two compared.
+  run = Lfcam("simulate lightfield --grid 2x2 --st-res 64x58 --quiet --centers-from " +
+              Path("session/ground_truth.json") + " --out " + Path("truth.lf"));
+  ASSERT_EQ(run.status, 0) << run.output;
+  run = Lfcam("compare --json " + Path("built.lf") + " " + Path("truth.lf"));
+  ASSERT_EQ(run.status, 0) << run.output;
+  const auto c = nlohmann::json::parse(run.output);
+  // Tiny (a view of 64x58, from 648x486 images): the plumbing, not the accuracy (that is in
+  // docs/fidelity.md). A view misplaced or flipped would be near 10 dB.
+  EXPECT_GT(c["psnr_db"].get<double>(), 16.0);
+  EXPECT_EQ(c["samples"], 4 * 64 * 58);
+  run = Lfcam("compare --json " + Path("built.lf") + " " + Path("built.lf"));
+  EXPECT_EQ(nlohmann::json::parse(run.output)["identical"], true);
+}
+
+TEST_F(CalibrateCli, BuildRefusesBadFlagsAndMismatches) {
+  const std::string base = "build " + Path("session") + " --out " + Path("b.lf");
+  for (const std::string& args :
+       {base, base + " --calibration " + Path("c.json") + " --st-res 0x5",
+        base + " --calibration " + Path("c.json") + " --st-domain 1,1,0,0",
+        base + " --calibration " + Path("c.json") + " --compress lz4"}) {
+    const CommandResult run = Lfcam(args);
+    EXPECT_EQ(run.status, 2) << args << "\n" << run.output;
+  }
+  // A calibration that is not one, and centres for a different grid.
+  std::ofstream(Path("not-a-calibration.json")) << "{\"format\": \"something\"}";
+  CommandResult run = Lfcam(base + " --calibration " + Path("not-a-calibration.json"));
+  EXPECT_EQ(run.status, 1);
+  EXPECT_NE(run.output.find("not-a-calibration.json"), std::string::npos) << run.output;
+  run = Lfcam("simulate lightfield --grid 3x3 --st-res 8x8 --quiet --centers-from " +
+              Path("session/ground_truth.json") + " --out " + Path("t3.lf"));
+  EXPECT_EQ(run.status, 1);
+  EXPECT_NE(run.output.find("no centre for camera (0, 2)"), std::string::npos) << run.output;
+  EXPECT_FALSE(fs::exists(Path("b.lf")));
+  EXPECT_FALSE(fs::exists(Path("t3.lf")));
+}
+
 }  // namespace

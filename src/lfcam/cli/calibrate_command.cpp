@@ -9,8 +9,8 @@
 #include "lfcam/calib/board_detection.h"
 #include "lfcam/calib/calibration_file.h"
 #include "lfcam/calib/calibration_report.h"
-#include "lfcam/calib/photometry.h"
 #include "lfcam/calib/intrinsics_calibration.h"
+#include "lfcam/calib/photometry.h"
 #include "lfcam/cli/commands.h"
 #include "lfcam/cli/parse.h"
 #include "lfcam/core/atomic_file.h"
@@ -162,9 +162,8 @@ void AddCalibrateCommand(CLI::App& app) {
     const ArrayCalibration a = CalibrateArray(flags->session, manifest, o);
     nlohmann::json j = CalibrationToJson(a);
     // The modules' photometric response, from the world shot, on the calibrated geometry.
-    const PhotometryEstimate photometry =
-        EstimatePhotometry(flags->session, manifest, CalibrationFromJson(j, flags->out),
-                           a.world_board, o.image_done);
+    const PhotometryEstimate photometry = EstimatePhotometry(
+        flags->session, manifest, CalibrationFromJson(j, flags->out), a.world_board, o.image_done);
     AddPhotometryToCalibration(j, photometry);
     progress.finish();
     WriteJsonFile(flags->out, j);

@@ -172,7 +172,8 @@ TEST_F(Cli, HelpListsTheCommandsAndExitCodesAreConsistent) {
       {"simulate lightfield --st-res 65536x65536 --out " + Path("x.lf"), 2, "memory limit"},
       {"render " + Path("missing.lf") + out, 1, "missing.lf"},
       {"info " + Path("missing.lf"), 1, "no such file"},
-      {"compare " + lf + " " + lf, 1, "not a PNG or JPEG"},
+      {"compare " + lf + " " + Path("missing.png"), 1, "not a PNG or JPEG"},
+      {"compare " + lf + " " + Path("missing.lf"), 1, "missing.lf"},
   };
   for (const auto& c : cases) {
     run = Lfcam(c.args);

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "lfcam/core/error.h"
+#include "lfcam/core/limits.h"
 
 namespace lfcam::cli {
 
@@ -49,6 +50,17 @@ std::pair<int, int> ParseSize(const std::string& flag, const std::string& text, 
     throw UsageError(
         fmt::format("{}: '{}' must be N or WxH with whole numbers 1..{}", flag, text, max_side));
   return {int(w), int(h)};
+}
+
+StDomain ParseStDomain(const std::string& flag, const std::string& text) {
+  const auto d = ParseNumbers(flag, text, 4);
+  if (!(d[2] > d[0]) || !(d[3] > d[1]))
+    throw UsageError(fmt::format("{}: '{}' needs S1 > S0 and T1 > T0", flag, text));
+  for (const double x : d)
+    if (std::abs(x) > kMaxStDomainBound)
+      throw UsageError(
+          fmt::format("{}: {} is outside -{}..{}", flag, x, kMaxStDomainBound, kMaxStDomainBound));
+  return {d[0], d[1], d[2], d[3]};
 }
 
 }  // namespace lfcam::cli

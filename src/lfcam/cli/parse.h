@@ -6,6 +6,7 @@
 
 #include "lfcam/core/error.h"
 #include "lfcam/core/geometry.h"
+#include "lfcam/core/slab.h"
 
 namespace lfcam::cli {
 
@@ -26,5 +27,8 @@ std::vector<double> ParseNumbers(const std::string& flag, const std::string& tex
 Vec3 ParseVec3(const std::string& flag, const std::string& text);
 // "N" (square) or "WxH", each 1..max_side.
 std::pair<int, int> ParseSize(const std::string& flag, const std::string& text, int max_side);
+
+// "S0,T0,S1,T1": the sampled st domain, S1 > S0, T1 > T0, each within +-kMaxStDomainBound.
+StDomain ParseStDomain(const std::string& flag, const std::string& text);
 
 }  // namespace lfcam::cli

@@ -85,15 +85,7 @@ void AddSimulateCommand(CLI::App& app) {
     o.rows = rows;
     o.cols = cols;
     std::tie(o.n_s, o.n_t) = ParseSize("--st-res", flags->st_res, kMaxStSamplesPerSide);
-    const auto d = ParseNumbers("--st-domain", flags->st_domain, 4);
-    if (!(d[2] > d[0]) || !(d[3] > d[1]))
-      throw UsageError(
-          fmt::format("--st-domain: '{}' needs S1 > S0 and T1 > T0", flags->st_domain));
-    for (const double x : d)
-      if (std::abs(x) > kMaxStDomainBound)
-        throw UsageError(fmt::format("--st-domain: {} is outside -{}..{}", x, kMaxStDomainBound,
-                                     kMaxStDomainBound));
-    o.st_domain = {d[0], d[1], d[2], d[3]};
+    o.st_domain = ParseStDomain("--st-domain", flags->st_domain);
     o.supersampling = flags->supersampling;
     o.sample_type =
         FlagValue("--sample-type", [&] { return SampleTypeFromString(flags->sample_type); });

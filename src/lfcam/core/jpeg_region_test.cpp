@@ -1,0 +1,90 @@
+#include "lfcam/core/jpeg_region.h"
+
+#include <gtest/gtest.h>
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <random>
+#include <vector>
+
+#include "lfcam/core/error.h"
+#include "lfcam/core/test_support.h"
+
+namespace lfcam {
+namespace {
+
+// A smooth colourful 640x480 test image, JPEG-encoded at quality 95.
+std::vector<std::uint8_t> TestJpeg(cv::Mat* rgb_out) {
+  cv::Mat rgb(480, 640, CV_8UC3);
+  for (int y = 0; y < rgb.rows; ++y)
+    for (int x = 0; x < rgb.cols; ++x)
+      rgb.at<cv::Vec3b>(y, x) =
+          cv::Vec3b(std::uint8_t(x * 255 / 639), std::uint8_t(y * 255 / 479),
+                    ((x / 5 + y / 5) % 2) ? 220 : 30);  // sharp: shows any offset
+  cv::Mat bgr;
+  cv::cvtColor(rgb, bgr, cv::COLOR_RGB2BGR);
+  std::vector<std::uint8_t> bytes;
+  cv::imencode(".jpg", bgr, bytes, {cv::IMWRITE_JPEG_QUALITY, 95});
+  *rgb_out = rgb;
+  return bytes;
+}
+
+TEST(JpegRegion, DecodesTheRegionAsAWholeDecodeWould) {
+  cv::Mat rgb;
+  const auto bytes = TestJpeg(&rgb);
+  for (const int reduction : {1, 2, 4, 8}) {
+    SCOPED_TRACE(reduction);
+    const cv::Size scaled((640 + reduction - 1) / reduction, (480 + reduction - 1) / reduction);
+    const cv::Rect wanted(scaled.width / 3, scaled.height / 4, scaled.width / 3, scaled.height / 2);
+    const JpegRegion r = DecodeJpegRegion(bytes, "test.jpg", reduction, wanted);
+    EXPECT_EQ(r.scaled, scaled);
+    const cv::Rect got(r.origin, r.rgb.size());
+    EXPECT_EQ(got & wanted, wanted);  // it covers the region
+    // The same pixels as OpenCV's whole decode at that scale.
+    const int flags = reduction == 1   ? cv::IMREAD_COLOR
+                      : reduction == 2 ? cv::IMREAD_REDUCED_COLOR_2
+                      : reduction == 4 ? cv::IMREAD_REDUCED_COLOR_4
+                                       : cv::IMREAD_REDUCED_COLOR_8;
+    cv::Mat whole = cv::imdecode(bytes, flags);
+    cv::cvtColor(whole, whole, cv::COLOR_BGR2RGB);
+    cv::Mat difference;
+    cv::absdiff(whole(wanted), r.rgb(cv::Rect(wanted.tl() - r.origin, wanted.size())), difference);
+    // An offset of one pixel would differ by up to 190 on the 5-pixel checker.
+    const cv::Scalar mean = cv::mean(difference);
+    EXPECT_LT(mean[0] + mean[1] + mean[2], 0.1) << mean;
+    cv::Mat grey;
+    cv::transform(difference, grey, cv::Matx13f(1, 1, 1));
+    double worst = 0;
+    cv::Point at;
+    cv::minMaxLoc(grey, nullptr, &worst, nullptr, &at);
+    EXPECT_LE(worst, 2.0) << at << " in " << wanted << " decoded from " << r.origin;
+  }
+}
+
+TEST(JpegRegion, RefusesWhatIsNotAReadableJpeg) {
+  cv::Mat rgb;
+  auto bytes = TestJpeg(&rgb);
+  EXPECT_THROW(DecodeJpegRegion(bytes, "x.jpg", 3, {0, 0, 10, 10}), Error);
+  const std::vector<std::uint8_t> png = {0x89, 'P', 'N', 'G', 0, 0, 0, 0};
+  EXPECT_NE(testing::ErrorOf([&] {
+              DecodeJpegRegion(png, "x.png", 1, {0, 0, 10, 10});
+            }).find("not a JPEG"),
+            std::string::npos);
+  // Truncated: the rows that are missing would be grey, so it is an error.
+  std::vector<std::uint8_t> truncated(bytes.begin(),
+                                      bytes.begin() + std::ptrdiff_t(bytes.size() / 2));
+  const std::string message = testing::ErrorOf([&] {
+    DecodeJpegRegion(truncated, "cut.jpg", 1, {0, 400, 640, 80});
+  });
+  EXPECT_NE(message.find("cut.jpg"), std::string::npos) << message;
+  // Garbage after a valid start.
+  std::vector<std::uint8_t> garbage(bytes.begin(), bytes.begin() + 200);
+  std::mt19937 rng(1);
+  for (int i = 0; i < 5000; ++i) garbage.push_back(std::uint8_t(rng()));
+  EXPECT_THROW(DecodeJpegRegion(garbage, "g.jpg", 1, {0, 0, 640, 480}), Error);
+  // A region outside the image decodes to nothing.
+  EXPECT_TRUE(DecodeJpegRegion(bytes, "x.jpg", 1, {700, 500, 10, 10}).rgb.empty());
+}
+
+}  // namespace
+}  // namespace lfcam
