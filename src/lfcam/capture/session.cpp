@@ -2,9 +2,14 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
 #include <set>
 
 #include "lfcam/core/error.h"
+#include "lfcam/core/image_header.h"
+#include "lfcam/core/image_io.h"
 #include "lfcam/core/input_file.h"
 #include "lfcam/core/json_input.h"
 #include "lfcam/core/limits.h"
@@ -143,11 +148,83 @@ CaptureManifest ManifestFromJson(const nlohmann::json& j, const std::string& whe
   return m;
 }
 
+namespace {
+
+// (row, col) from "cam_RR_CC.ext", or nullopt.
+std::optional<std::pair<int, int>> CameraOfFileName(const std::string& name) {
+  int row = -1, col = -1, used = 0;
+  if (std::sscanf(name.c_str(), "cam_%d_%d%n", &row, &col, &used) != 2 || row < 0 || col < 0 ||
+      row >= kMaxViewsPerSide || col >= kMaxViewsPerSide)
+    return std::nullopt;
+  std::string ext = name.substr(std::size_t(used));
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (ext != ".jpg" && ext != ".jpeg" && ext != ".png") return std::nullopt;
+  return std::pair{row, col};
+}
+
+// The camera images directly in `folder` (relative to the session), sorted by name.
+std::vector<ShotImage> ScanShotFolder(const std::filesystem::path& dir, const std::string& folder) {
+  std::vector<ShotImage> images;
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator(dir / folder, ec)) {
+    const std::string name = entry.path().filename().string();
+    if (const auto camera = CameraOfFileName(name); camera && entry.is_regular_file(ec))
+      images.push_back({camera->first, camera->second, folder + "/" + name});
+  }
+  std::sort(images.begin(), images.end(),
+            [](const ShotImage& a, const ShotImage& b) { return a.file < b.file; });
+  return images;
+}
+
+}  // namespace
+
+CaptureManifest ScanSessionLayout(const std::filesystem::path& dir) {
+  namespace fs = std::filesystem;
+  CaptureManifest m;
+  std::error_code ec;
+  std::vector<std::string> shot_folders;
+  for (const auto& entry : fs::directory_iterator(dir / "calib" / "intrinsics", ec))
+    if (entry.is_directory(ec)) shot_folders.push_back(entry.path().filename().string());
+  std::sort(shot_folders.begin(), shot_folders.end());
+  for (const std::string& name : shot_folders) {
+    Shot shot{ShotKind::kIntrinsics, name, ScanShotFolder(dir, "calib/intrinsics/" + name)};
+    if (!shot.images.empty()) m.shots.push_back(std::move(shot));
+  }
+  Shot world{ShotKind::kWorld, "world", ScanShotFolder(dir, "calib/world")};
+  if (!world.images.empty()) m.shots.push_back(std::move(world));
+  Shot scene{ShotKind::kScene, "scene", ScanShotFolder(dir, "scene")};
+  if (!scene.images.empty()) m.shots.push_back(std::move(scene));
+  if (m.shots.empty())
+    throw Error(
+        fmt::format("{}: no {} and no camera images in the capture layout (calib/intrinsics/SHOT/, "
+                    "calib/world/, scene/ holding cam_RR_CC.jpg; docs/capture-layout.md)",
+                    dir.string(), kManifestName));
+  m.rows = m.cols = 0;
+  for (const Shot& shot : m.shots)
+    for (const ShotImage& image : shot.images) {
+      m.rows = std::max(m.rows, image.row + 1);
+      m.cols = std::max(m.cols, image.col + 1);
+    }
+  const ShotImage& first = m.shots.front().images.front();
+  const auto bytes = ReadFileBytes(dir / first.file, kMaxEncodedImageBytes, "image file");
+  ImageHeader header;
+  try {
+    header = ProbeImageHeader(bytes);
+  } catch (const Error& e) {
+    throw Error(fmt::format("{}: {}", (dir / first.file).string(), e.what()));
+  }
+  m.sensor_width = header.width;
+  m.sensor_height = header.height;
+  m.source = {{"manifest", "read from the folder layout (no manifest.json)"}};
+  return m;
+}
+
 CaptureManifest ReadManifest(const std::filesystem::path& dir) {
   const auto path = dir / kManifestName;
   std::error_code ec;
   if (!std::filesystem::is_directory(dir, ec))
     throw Error(fmt::format("{}: not a capture session directory", dir.string()));
+  if (!std::filesystem::exists(path, ec)) return ScanSessionLayout(dir);
   const auto bytes = ReadFileBytes(path, kMaxJsonBytes, "capture manifest");
   const std::string text(bytes.begin(), bytes.end());
   return ManifestFromJson(ParseJsonBounded(text, path.string()), path.string());

@@ -56,7 +56,15 @@ nlohmann::json ManifestToJson(const CaptureManifest& manifest);
 // the session (no "..", no absolute paths); each camera appears at most once per shot; row and
 // col are inside the grid.
 CaptureManifest ManifestFromJson(const nlohmann::json& j, const std::string& where);
-// Reads DIR/manifest.json (bounded, regular file). Throws lfcam::Error naming the file.
+// Reads DIR/manifest.json (bounded, regular file). Throws lfcam::Error naming the file. When the
+// session has no manifest.json, the manifest is read from the layout instead (ScanSessionLayout).
 CaptureManifest ReadManifest(const std::filesystem::path& session_dir);
+
+// A manifest from the folder and file names alone, for a session written by another tool:
+// calib/intrinsics/*/cam_RR_CC.{jpg,jpeg,png} (one shot per folder, in name order),
+// calib/world/cam_RR_CC.*, scene/cam_RR_CC.*. The grid is the largest row and column found, the
+// sensor size the first image's, the pitch 28 mm; no boards (give them as flags). Throws
+// lfcam::Error when there is no such layout.
+CaptureManifest ScanSessionLayout(const std::filesystem::path& session_dir);
 
 }  // namespace lfcam

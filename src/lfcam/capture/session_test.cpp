@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <opencv2/imgcodecs.hpp>
 
 #include "lfcam/core/error.h"
 #include "lfcam/core/test_support.h"
@@ -72,6 +73,40 @@ TEST(CaptureSession, ReadManifestNamesTheFile) {
   EXPECT_NE(testing::ErrorOf([&] { ReadManifest(dir / "none"); }).find("none"), std::string::npos);
   std::ofstream(dir / kManifestName) << "{\"format\": \"lfcam-capture\", \"version\": 1";
   EXPECT_NE(testing::ErrorOf([&] { ReadManifest(dir); }).find("manifest.json"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace lfcam
+
+namespace lfcam {
+namespace {
+
+TEST(CaptureSession, WithoutAManifestTheLayoutIsTheManifest) {
+  const auto dir = testing::MakeScratchDir("layout");
+  const cv::Mat image(30, 40, CV_8UC3, cv::Scalar(10, 20, 30));
+  for (const char* folder :
+       {"calib/intrinsics/shot_00", "calib/intrinsics/shot_01", "calib/world", "scene"})
+    std::filesystem::create_directories(dir / folder);
+  for (int r = 0; r < 2; ++r)
+    for (int c = 0; c < 3; ++c) {
+      cv::imwrite((dir / "calib/intrinsics/shot_00" / CameraFileName(r, c)).string(), image);
+      cv::imwrite((dir / "scene" / CameraFileName(r, c)).string(), image);
+    }
+  cv::imwrite((dir / "calib/intrinsics/shot_01/cam_01_02.jpg").string(), image);
+  cv::imwrite((dir / "calib/world/cam_00_00.jpg").string(), image);
+  std::ofstream(dir / "scene/notes.txt") << "not an image";
+  const CaptureManifest m = ReadManifest(dir);
+  EXPECT_EQ(m.rows, 2);
+  EXPECT_EQ(m.cols, 3);
+  EXPECT_EQ(m.sensor_width, 40);
+  EXPECT_EQ(m.sensor_height, 30);
+  ASSERT_EQ(m.shots_of(ShotKind::kIntrinsics).size(), 2u);
+  EXPECT_EQ(m.shots_of(ShotKind::kIntrinsics)[1]->images.size(), 1u);
+  EXPECT_EQ(m.shots_of(ShotKind::kScene)[0]->images.size(), 6u);
+  EXPECT_FALSE(m.intrinsics_board);
+  const auto empty = testing::MakeScratchDir("layout-empty");
+  EXPECT_NE(testing::ErrorOf([&] { ReadManifest(empty); }).find("capture layout"),
+            std::string::npos);
 }
 
 }  // namespace

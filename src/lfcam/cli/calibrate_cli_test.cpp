@@ -149,4 +149,18 @@ TEST_F(CalibrateCli, BuildRefusesBadFlagsAndMismatches) {
   EXPECT_FALSE(fs::exists(Path("t3.lf")));
 }
 
+TEST_F(CalibrateCli, ASessionWithoutAManifestIsReadFromItsLayout) {
+  fs::copy(Path("session"), Path("bare"), fs::copy_options::recursive);
+  fs::remove(Path("bare/manifest.json"));
+  CommandResult run = Lfcam("calibrate " + Path("bare") + " --quiet --out " + Path("bare.json"));
+  EXPECT_EQ(run.status, 2) << run.output;  // the boards are not known
+  EXPECT_NE(run.output.find("--intrinsics-board"), std::string::npos) << run.output;
+  run = Lfcam("calibrate " + Path("bare") + " --intrinsics-board 10x7@30 --world-board 11x10@50" +
+              " --quiet --out " + Path("bare.json"));
+  ASSERT_EQ(run.status, 0) << run.output;
+  run = Lfcam("build " + Path("bare") + " --calibration " + Path("bare.json") +
+              " --st-res 32x29 --quiet --out " + Path("bare.lf"));
+  EXPECT_EQ(run.status, 0) << run.output;
+}
+
 }  // namespace
