@@ -14,6 +14,7 @@
 #include "lfcam/core/json_input.h"
 #include "lfcam/core/test_support.h"
 #include "lfcam/sim/capture_simulation.h"
+#include "lfcam/sim/test_capture.h"
 
 namespace lfcam {
 namespace {
@@ -23,21 +24,21 @@ namespace fs = std::filesystem;
 class ArrayCalibrationTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    const fs::path scratch =
-        fs::temp_directory_path() / ("calibration_" + std::to_string(::getpid()));
-    fs::remove_all(scratch);
-    fs::create_directories(scratch);
-    dir_ = new fs::path(scratch / "session");
     CaptureSimulationOptions o;
     o.rows = o.cols = 3;
     o.sensor_width = 648;
     o.sensor_height = 486;
     o.seed = 5;
-    SimulateCapture(MakePaperScene(), o, *dir_);
+    dir_ = new fs::path(testing::SharedTestCapture("calibration-3x3", o));
+    scratch_ =
+        new fs::path(fs::temp_directory_path() / ("calibration_" + std::to_string(::getpid())));
+    fs::remove_all(*scratch_);
+    fs::create_directories(*scratch_);
   }
   static void TearDownTestSuite() {
     std::error_code ec;
-    fs::remove_all(dir_->parent_path(), ec);
+    fs::remove_all(*scratch_, ec);
+    delete scratch_;
     delete dir_;
   }
 
@@ -47,15 +48,17 @@ class ArrayCalibrationTest : public ::testing::Test {
   }
   // A copy of the session to break.
   static fs::path CopySession(const std::string& name) {
-    const fs::path copy = dir_->parent_path() / name;
+    const fs::path copy = *scratch_ / name;
     fs::remove_all(copy);
     fs::copy(*dir_, copy, fs::copy_options::recursive);
     return copy;
   }
 
-  static fs::path* dir_;
+  static fs::path* dir_;      // the shared session: read only
+  static fs::path* scratch_;  // this process's copies
 };
 fs::path* ArrayCalibrationTest::dir_ = nullptr;
+fs::path* ArrayCalibrationTest::scratch_ = nullptr;
 
 TEST_F(ArrayCalibrationTest, JointCalibrationMatchesTheTruthAndBeatsPerCameraCalibration) {
   const CaptureManifest manifest = ReadManifest(*dir_);
@@ -167,6 +170,7 @@ TEST_F(ArrayCalibrationTest, ImagesOfMixedSizesAreRefusedNamingTheFile) {
   const std::string message = testing::ErrorOf([&] { CalibrateArray(s, ReadManifest(s), {}); });
   EXPECT_NE(message.find("cam_01_01.jpg"), std::string::npos) << message;
   EXPECT_NE(message.find("mixed sizes"), std::string::npos) << message;
+  fs::remove_all(other.parent_path());
 }
 
 TEST_F(ArrayCalibrationTest, NoWorldBoardMeansNoPlacement) {

@@ -15,6 +15,7 @@
 #include "lfcam/core/lightfield_file.h"
 #include "lfcam/core/test_support.h"
 #include "lfcam/sim/capture_simulation.h"
+#include "lfcam/sim/test_capture.h"
 
 namespace lfcam {
 namespace {
@@ -33,7 +34,7 @@ class LightFieldBuildTest : public ::testing::Test {
     o.sensor_width = 648;
     o.sensor_height = 486;
     o.seed = 11;
-    SimulateCapture(MakePaperScene(), o, session());
+    session_ = new fs::path(testing::SharedTestCapture("build-3x3", o));
     const CaptureManifest manifest = ReadManifest(session());
     const ArrayCalibration a = CalibrateArray(session(), manifest, {});
     nlohmann::json j = CalibrationToJson(a);
@@ -46,8 +47,9 @@ class LightFieldBuildTest : public ::testing::Test {
     fs::remove_all(*scratch_, ec);
     delete scratch_;
     delete calibration_;
+    delete session_;
   }
-  static fs::path session() { return *scratch_ / "session"; }
+  static fs::path session() { return *session_; }
   static BuildOptions Small() {
     BuildOptions o;
     o.n_s = 150;
@@ -55,8 +57,10 @@ class LightFieldBuildTest : public ::testing::Test {
     return o;
   }
   static fs::path* scratch_;
+  static fs::path* session_;  // shared between test processes: read only
   static CalibrationFile* calibration_;
 };
+fs::path* LightFieldBuildTest::session_ = nullptr;
 fs::path* LightFieldBuildTest::scratch_ = nullptr;
 CalibrationFile* LightFieldBuildTest::calibration_ = nullptr;
 

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "lfcam/cli/cli_test_support.h"
+#include "lfcam/sim/test_capture.h"
 
 namespace {
 
@@ -22,11 +23,15 @@ class CalibrateCli : public ::testing::Test {
                         ("lfcam_calibrate_cli_" + std::to_string(::getpid())));
     fs::remove_all(*dir_);
     fs::create_directories(*dir_);
-    const CommandResult run = Lfcam(
-        "simulate capture --grid 2x2 --sensor 648x486 --shots 8 "
-        "--quiet --out " +
-        Path("session"));
-    ASSERT_EQ(run.status, 0) << run.output;
+    // One session for every test process (simulated once per build), copied in: some tests
+    // change their copy.
+    lfcam::CaptureSimulationOptions o;
+    o.rows = o.cols = 2;
+    o.sensor_width = 648;
+    o.sensor_height = 486;
+    o.intrinsics_shots = 8;
+    fs::copy(lfcam::testing::SharedTestCapture("cli-2x2", o), Path("session"),
+             fs::copy_options::recursive);
   }
   static void TearDownTestSuite() {
     fs::remove_all(*dir_);
@@ -53,6 +58,24 @@ TEST_F(CalibrateCli, WritesTheCalibrationAndItsPicture) {
   EXPECT_TRUE(fs::exists(Path("session/calib/world/cam_00_01.jpg")));
   EXPECT_TRUE(fs::exists(Path("session/scene/cam_01_00.jpg")));
   EXPECT_TRUE(fs::exists(Path("session/ground_truth.json")));
+}
+
+TEST_F(CalibrateCli, SimulateCaptureWritesTheLayout) {
+  const CommandResult run = Lfcam(
+      "simulate capture --grid 1x2 --sensor 160x120 --shots 2 --quiet "
+      "--seed 3 --out " +
+      Path("tiny"));
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("8 images"), std::string::npos) << run.output;
+  for (const char* file :
+       {"manifest.json", "ground_truth.json", "calib/intrinsics/shot_01/cam_00_01.jpg",
+        "calib/world/cam_00_00.jpg", "scene/cam_00_01.jpg"})
+    EXPECT_TRUE(fs::exists(Path("tiny") + "/" + file)) << file;
+  // Nothing is left beside it: the session was written under a temporary name and renamed.
+  int entries = 0;
+  for (const auto& entry : fs::directory_iterator(*dir_))
+    entries += entry.path().filename().string().rfind("tiny", 0) == 0;
+  EXPECT_EQ(entries, 1);
 }
 
 TEST_F(CalibrateCli, CalibratesOneModuleFromItsImages) {
