@@ -150,6 +150,10 @@ CaptureSimulationResult SimulateCapture(const Scene& scene, const CaptureSimulat
 
   // Stage everything in a sibling directory; rename it into place at the end.
   const fs::path out = out_dir.has_filename() ? out_dir : out_dir.parent_path();
+  std::error_code exists_ec;
+  if (fs::exists(out, exists_ec) &&
+      (!fs::is_directory(out, exists_ec) || !fs::is_empty(out, exists_ec)))
+    throw Error(fmt::format("{}: exists and is not an empty directory", out.string()));
   RemoveStalePartials(out);
   const fs::path staging = out.string() + fmt::format(".partial-{}", ::getpid());
   std::error_code ec;
