@@ -74,6 +74,26 @@ ArrayCalibration CalibrateArray(const std::filesystem::path& dir, const CaptureM
   out.detection_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   out.intrinsics_shots = found.intrinsics_shot_names;
+  // A board found nowhere is most likely not the board named: say so, not camera by camera.
+  std::size_t intrinsics_found = 0, world_found = 0, intrinsics_images = 0, world_images = 0;
+  for (const CameraDetections& d : found.cameras) {
+    intrinsics_found += d.intrinsics.size();
+    world_found += d.world ? 1 : 0;
+  }
+  for (const Shot& shot : manifest.shots) {
+    if (shot.kind == ShotKind::kIntrinsics) intrinsics_images += shot.images.size();
+    if (shot.kind == ShotKind::kWorld) world_images += shot.images.size();
+  }
+  if (intrinsics_found == 0)
+    throw Error(fmt::format(
+        "the intrinsics board {} was found in none of the {} intrinsics images: is that the "
+        "board in the photographs? (--intrinsics-board COLSxROWS@MM counts inner corners)",
+        out.intrinsics_board.spec(), intrinsics_images));
+  if (world_found == 0)
+    throw Error(fmt::format(
+        "the world board {} was found in none of the {} world images: is that the board in the "
+        "photographs? (--world-board COLSxROWS@MM counts inner corners)",
+        out.world_board.spec(), world_images));
   const int shots = found.intrinsics_shots;
   out.cameras.resize(found.cameras.size());
   for (std::size_t i = 0; i < found.cameras.size(); ++i) {

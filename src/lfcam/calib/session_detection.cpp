@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
+#include <atomic>
 #include <mutex>
 
 #include "lfcam/core/error.h"
@@ -90,18 +91,50 @@ SessionDetections DetectSessionBoards(const std::filesystem::path& dir,
     }
   });
   // Second pass, thorough, where a miss hurts: the world board of every camera that missed it,
-  // and every missed intrinsics image of a camera left with too few views.
-  std::vector<std::size_t> retry;
+  // and every missed intrinsics image of a camera left with too few views. When a board was
+  // found in no image at all, the board is most likely not the one named (a wrong SPEC): a
+  // sample of images is tried thoroughly first, and the rest only if the sample finds it.
+  auto found_any = [&](bool intrinsics) {
+    for (std::size_t i = 0; i < jobs.size(); ++i)
+      if ((jobs[i].intrinsics_shot >= 0) == intrinsics && !missed[i]) return true;
+    return false;
+  };
+  const bool intrinsics_found = found_any(true), world_found = found_any(false);
+  std::vector<std::size_t> retry, sample;
   for (std::size_t i = 0; i < jobs.size(); ++i) {
     if (!missed[i]) continue;
+    const bool intrinsics = jobs[i].intrinsics_shot >= 0;
     const CameraDetections& camera =
         out.camera(jobs[i].image->row, jobs[i].image->col, manifest.cols);
-    if (jobs[i].intrinsics_shot < 0 || int(camera.intrinsics.size()) < min_views)
+    if (intrinsics && int(camera.intrinsics.size()) >= min_views) continue;
+    if (intrinsics ? intrinsics_found : world_found)
       retry.push_back(i);
+    else
+      sample.push_back(i);
   }
-  tbb::parallel_for(std::size_t(0), retry.size(), [&](std::size_t r) {
-    if (search(jobs[retry[r]], true)) missed[retry[r]] = 0;
-  });
+  // The sample: a few images of each kind, spread over the session.
+  constexpr std::size_t kSample = 6;
+  std::vector<std::size_t> sampled, rest;
+  for (const bool intrinsics : {true, false}) {
+    std::vector<std::size_t> kind;
+    for (const std::size_t i : sample)
+      if ((jobs[i].intrinsics_shot >= 0) == intrinsics) kind.push_back(i);
+    for (std::size_t k = 0; k < kind.size(); ++k)
+      (k % std::max<std::size_t>(1, kind.size() / kSample) == 0 ? sampled : rest)
+          .push_back(kind[k]);
+  }
+  auto retry_all = [&](const std::vector<std::size_t>& list) {
+    std::atomic<int> found{0};
+    tbb::parallel_for(std::size_t(0), list.size(), [&](std::size_t r) {
+      if (search(jobs[list[r]], true)) {
+        missed[list[r]] = 0;
+        ++found;
+      }
+    });
+    return found.load();
+  };
+  retry_all(retry);
+  if (retry_all(sampled) > 0) retry_all(rest);
   for (std::size_t i = 0; i < jobs.size(); ++i)
     if (missed[i])
       out.camera(jobs[i].image->row, jobs[i].image->col, manifest.cols)

@@ -3,8 +3,10 @@
 // each test in its own process, so a fixture's SetUpTestSuite would otherwise simulate the same
 // session once per test. The session lives in the temporary directory under a name made of
 // `name` and the test binary's identity (size and time), so a rebuilt binary simulates afresh;
-// sessions of other builds are removed. Processes racing to create it are safe: the simulator
-// renames a complete session into place, and the loser uses the winner's.
+// sessions of other builds are removed. Processes that need it at once take turns (a lock file):
+// the first simulates it, the others wait and use it.
+#include <fcntl.h>
+#include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -28,13 +30,20 @@ inline std::filesystem::path SharedTestCapture(const std::string& name,
   std::error_code ec;
   if (fs::exists(dir / "manifest.json", ec)) return dir;
   fs::create_directories(dir.parent_path(), ec);
-  for (const auto& entry : fs::directory_iterator(root, ec))  // other builds' sessions
-    if (entry.path().filename() != build) fs::remove_all(entry.path(), ec);
-  try {
-    SimulateCapture(MakePaperScene(), options, dir);
-  } catch (const Error&) {
-    if (!fs::exists(dir / "manifest.json", ec)) throw;  // not a lost race: a real failure
+  // One process at a time from here: the lock is released when the descriptor is closed.
+  struct Lock {
+    int fd;
+    ~Lock() {
+      if (fd >= 0) ::close(fd);
+    }
+  } lock{::open((root / (build + ".lock")).c_str(), O_CREAT | O_RDWR | O_CLOEXEC, 0644)};
+  if (lock.fd >= 0) ::flock(lock.fd, LOCK_EX);
+  if (fs::exists(dir / "manifest.json", ec)) return dir;        // another process made it meanwhile
+  for (const auto& entry : fs::directory_iterator(root, ec)) {  // other builds' sessions
+    const std::string entry_name = entry.path().filename().string();
+    if (entry_name != build && entry_name != build + ".lock") fs::remove_all(entry.path(), ec);
   }
+  SimulateCapture(MakePaperScene(), options, dir);
   return dir;
 }
 
