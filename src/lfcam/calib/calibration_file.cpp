@@ -35,12 +35,7 @@ PhotometricCorrection PhotometryFromJson(const nlohmann::json& j, const std::str
 }
 
 CalibrationFile CalibrationFromJson(const nlohmann::json& j, const std::string& where) {
-  if (!j.is_object() || JsonString(j, "format", where) != "lfcam-calibration")
-    throw Error(fmt::format("{}: not an lfcam calibration (format \"lfcam-calibration\")", where));
-  const auto version = JsonInteger(j, "version", 1, 1000000, where);
-  if (version > kCalibrationVersion)
-    throw Error(fmt::format("{}: calibration version {} is newer than this lfcam reads ({})", where,
-                            version, kCalibrationVersion));
+  JsonFormatVersion(j, "lfcam-calibration", kCalibrationVersion, "calibration", where);
   CalibrationFile c;
   const auto& grid = JsonField(j, "grid", where);
   c.rows = int(JsonInteger(grid, "rows", 1, kMaxViewsPerSide, where + ": grid"));

@@ -91,13 +91,7 @@ void CheckRelativeName(const std::string& file, const std::string& where) {
 }  // namespace
 
 CaptureManifest ManifestFromJson(const nlohmann::json& j, const std::string& where) {
-  if (!j.is_object()) throw Error(fmt::format("{}: not a capture manifest (an object)", where));
-  if (JsonString(j, "format", where) != "lfcam-capture")
-    throw Error(fmt::format("{}: format is not \"lfcam-capture\"", where));
-  const auto version = JsonInteger(j, "version", 1, 1000000, where);
-  if (version > kManifestVersion)
-    throw Error(fmt::format("{}: manifest version {} is newer than this lfcam reads ({})", where,
-                            version, kManifestVersion));
+  JsonFormatVersion(j, "lfcam-capture", kManifestVersion, "capture manifest", where);
   CaptureManifest m;
   const auto& grid = JsonField(j, "grid", where);
   m.rows = int(JsonInteger(grid, "rows", 1, kMaxViewsPerSide, where + ": grid"));

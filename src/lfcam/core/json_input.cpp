@@ -131,4 +131,16 @@ Vec3 JsonVec3(const nlohmann::json& j, const char* key, const std::string& where
   return {JsonNumber(v[0], "", name), JsonNumber(v[1], "", name), JsonNumber(v[2], "", name)};
 }
 
+std::int64_t JsonFormatVersion(const nlohmann::json& j, const std::string& format,
+                               std::int64_t newest, const std::string& what,
+                               const std::string& where) {
+  if (!j.is_object() || JsonString(j, "format", where) != format)
+    throw Error(fmt::format("{}: not an lfcam {} (format \"{}\")", where, what, format));
+  const auto version = JsonInteger(j, "version", 1, 1000000, where);
+  if (version > newest)
+    throw Error(fmt::format("{}: {} version {} is newer than this lfcam reads ({})", where, what,
+                            version, newest));
+  return version;
+}
+
 }  // namespace lfcam

@@ -38,4 +38,11 @@ Vec3 JsonVec3(const nlohmann::json& j, const char* key, const std::string& where
 // j[key], which must be present (and an object when `object` is set).
 const nlohmann::json& JsonField(const nlohmann::json& j, const char* key, const std::string& where);
 
+// Checks a document's {"format": FORMAT, "version": N} header: an object of that format, of a
+// version 1..newest. Returns the version; throws lfcam::Error naming `where` and `what` (for
+// example "calibration") otherwise.
+std::int64_t JsonFormatVersion(const nlohmann::json& j, const std::string& format,
+                               std::int64_t newest, const std::string& what,
+                               const std::string& where);
+
 }  // namespace lfcam

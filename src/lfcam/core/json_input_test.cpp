@@ -90,3 +90,20 @@ TEST(JsonInput, RandomDocumentsParseOrAreRefusedCleanly) {
 
 }  // namespace
 }  // namespace lfcam
+
+namespace lfcam {
+namespace {
+
+TEST(JsonInput, FormatAndVersionHeadersAreChecked) {
+  EXPECT_EQ(JsonFormatVersion({{"format", "lfcam-x"}, {"version", 2}}, "lfcam-x", 3, "x", "f"), 2);
+  EXPECT_THROW(JsonFormatVersion({{"format", "other"}, {"version", 1}}, "lfcam-x", 3, "x", "f"),
+               Error);
+  EXPECT_THROW(JsonFormatVersion({{"format", "lfcam-x"}, {"version", 4}}, "lfcam-x", 3, "x", "f"),
+               Error);
+  EXPECT_THROW(JsonFormatVersion({{"format", "lfcam-x"}, {"version", 0}}, "lfcam-x", 3, "x", "f"),
+               Error);
+  EXPECT_THROW(JsonFormatVersion(nlohmann::json::array(), "lfcam-x", 3, "x", "f"), Error);
+}
+
+}  // namespace
+}  // namespace lfcam
