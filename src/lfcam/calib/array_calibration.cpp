@@ -87,12 +87,14 @@ ArrayCalibration CalibrateArray(const std::filesystem::path& dir, const CaptureM
   if (intrinsics_found == 0)
     throw Error(fmt::format(
         "the intrinsics board {} was found in none of the {} intrinsics images: is that the "
-        "board in the photographs? (--intrinsics-board COLSxROWS@MM counts inner corners)",
+        "board in the photographs? (--intrinsics-board: a chessboard COLSxROWS@MM counts inner "
+        "corners, a ChArUco board charuco:SXxSY@SQUARE/MARKER squares)",
         out.intrinsics_board.spec(), intrinsics_images));
   if (world_found == 0)
     throw Error(fmt::format(
         "the world board {} was found in none of the {} world images: is that the board in the "
-        "photographs? (--world-board COLSxROWS@MM counts inner corners)",
+        "photographs? (--world-board: a chessboard COLSxROWS@MM counts inner corners, a ChArUco "
+        "board charuco:SXxSY@SQUARE/MARKER squares)",
         out.world_board.spec(), world_images));
   const int shots = found.intrinsics_shots;
   out.cameras.resize(found.cameras.size());

@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <fstream>
+#include <map>
 
 #include "lfcam/capture/session.h"
 #include "lfcam/core/error.h"
@@ -184,6 +185,47 @@ TEST_F(ArrayCalibrationTest, NoWorldBoardMeansNoPlacement) {
   std::erase_if(m.shots, [](const Shot& shot) { return shot.kind == ShotKind::kWorld; });
   EXPECT_NE(testing::ErrorOf([&] { CalibrateArray(s, m, {}); }).find("world shot"),
             std::string::npos);
+}
+
+// A ChArUco intrinsics board (2x2 modules of 1296x972, so that a marker cell is about 5 px):
+// views of a board partly out of a camera's image count, so each camera uses more shots than
+// those in which it saw the whole board, and the calibration holds to the same bounds.
+TEST(ArrayCalibrationCharuco, PartialViewsCountAndTheCalibrationHolds) {
+  CaptureSimulationOptions o;
+  o.rows = o.cols = 2;
+  o.sensor_width = 1296;
+  o.sensor_height = 972;
+  o.seed = 7;
+  o.intrinsics_shots = 10;
+  o.intrinsics_board = ParseBoardSpec("charuco:11x8@30/22");
+  const fs::path dir = testing::SharedTestCapture("calibration-charuco-2x2", o);
+  const CaptureManifest manifest = ReadManifest(dir);
+  ASSERT_TRUE(manifest.intrinsics_board && manifest.intrinsics_board->charuco());
+  const ArrayCalibration a = CalibrateArray(dir, manifest, {});
+  ASSERT_EQ(a.calibrated_count(), 4);
+  const auto bytes = ReadFileBytes(dir / "ground_truth.json", kMaxJsonBytes, "truth");
+  const nlohmann::json truth = ParseJsonBounded(std::string(bytes.begin(), bytes.end()), "truth");
+  std::map<std::pair<int, int>, int> whole;  // shots in which a camera saw the whole board
+  for (const auto& shot : truth["intrinsics_shots"])
+    for (const auto& rc : shot["cameras_seeing_whole_board"])
+      ++whole[{rc[0].get<int>(), rc[1].get<int>()}];
+  int partial_used = 0;
+  Vec3 mean_error = Vec3::Zero();
+  std::vector<Vec3> errors;
+  for (const auto& t : truth["cameras"]) {
+    const int row = t["row"].get<int>(), col = t["col"].get<int>();
+    const CameraCalibration& c = a.camera(row, col);
+    const CameraIntrinsics k = IntrinsicsFromJson(t["intrinsics"], "truth");
+    EXPECT_NEAR(c.intrinsics.fx / k.fx, 1.0, 0.003);
+    EXPECT_LT(c.rms_px, 0.2);
+    partial_used += int(c.shots_used.size()) - whole[{row, col}];
+    errors.push_back(c.world_from_camera.translation - JsonVec3(t, "center", "truth"));
+    mean_error += errors.back() / 4.0;
+  }
+  EXPECT_GT(partial_used, 0);
+  for (const Vec3& e : errors) EXPECT_LT((e - mean_error).norm(), 0.3);
+  EXPECT_LT(a.bundle_adjustment.final_rms_px, 0.2);
+  EXPECT_EQ(CalibrationToJson(a)["boards"]["intrinsics"]["type"], "charuco");
 }
 
 }  // namespace

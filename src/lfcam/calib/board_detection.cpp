@@ -5,6 +5,8 @@
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "lfcam/calib/charuco.h"
+
 namespace lfcam {
 namespace {
 
@@ -18,6 +20,26 @@ double PatchMean(const cv::Mat& gray, cv::Point2f p, int radius) {
 }
 
 }  // namespace
+
+DetectionCopy MakeDetectionCopy(const cv::Mat& gray, const BoardDetectionOptions& options) {
+  DetectionCopy copy{gray, 1.0};
+  const int long_side = std::max(gray.cols, gray.rows);
+  if (options.detect_long_side > 0 && long_side > options.detect_long_side) {
+    copy.scale = double(options.detect_long_side) / long_side;
+    cv::resize(gray, copy.image, cv::Size(), copy.scale, copy.scale, cv::INTER_AREA);
+  }
+  return copy;
+}
+
+int FoundCornerCount(const std::vector<cv::Point2f>& corners) {
+  return int(std::count_if(corners.begin(), corners.end(), CornerFound));
+}
+
+std::optional<std::vector<cv::Point2f>> DetectBoard(const cv::Mat& gray, const BoardSpec& board,
+                                                    const BoardDetectionOptions& options) {
+  return board.charuco() ? DetectCharuco(gray, board, options)
+                         : DetectChessboard(gray, board, options);
+}
 
 std::vector<cv::Point2f> OrderBoardCorners(const std::vector<cv::Point2f>& corners,
                                            const BoardSpec& board, const cv::Mat& gray) {
@@ -52,12 +74,8 @@ std::optional<std::vector<cv::Point2f>> DetectChessboard(const cv::Mat& gray,
                                                          const BoardDetectionOptions& options) {
   CV_Assert(gray.type() == CV_8UC1);
   const cv::Size pattern(board.cols, board.rows);
-  const int long_side = std::max(gray.cols, gray.rows);
-  const double scale = options.detect_long_side > 0 && long_side > options.detect_long_side
-                           ? double(options.detect_long_side) / long_side
-                           : 1.0;
-  cv::Mat small = gray;
-  if (scale < 1.0) cv::resize(gray, small, cv::Size(), scale, scale, cv::INTER_AREA);
+  const DetectionCopy copy = MakeDetectionCopy(gray, options);
+  const cv::Mat& small = copy.image;
   std::vector<cv::Point2f> corners;
   bool found = cv::findChessboardCorners(small, pattern, corners, cv::CALIB_CB_FAST_CHECK);
   if (!found && options.thorough) {
@@ -71,8 +89,7 @@ std::optional<std::vector<cv::Point2f>> DetectChessboard(const cv::Mat& gray,
     found = cv::findChessboardCornersSB(small, pattern, corners, cv::CALIB_CB_NORMALIZE_IMAGE);
   }
   if (!found || int(corners.size()) != board.corner_count()) return std::nullopt;
-  for (auto& p : corners)
-    p = (p + cv::Point2f(0.5f, 0.5f)) * float(1.0 / scale) - cv::Point2f(0.5f, 0.5f);
+  for (auto& p : corners) p = copy.FullResolution(p);
   // Refine at full resolution, with a window well inside one square.
   double min_step = 1e30;
   for (int j = 0; j < board.rows; ++j)

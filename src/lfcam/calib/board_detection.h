@@ -1,7 +1,8 @@
 #pragma once
-// Finding a chessboard's inner corners in a photograph: detected on a downscaled copy (fast),
-// refined at full resolution (accurate), and put in the board's own point order
-// (calib/board.h), so that every camera numbers the corners of a shared board pose alike.
+// Finding a board's inner corners in a photograph: detected on a downscaled copy (fast), refined
+// at full resolution (accurate), and put in the board's own point order (calib/board.h), so that
+// every camera numbers the corners of a shared board pose alike. A chessboard is found whole or
+// not at all; a ChArUco board (calib/charuco.h) also in part, its missing corners NaN.
 #include <opencv2/core.hpp>
 #include <optional>
 #include <vector>
@@ -17,7 +18,29 @@ struct BoardDetectionOptions {
   // on an image without the whole board), for images the plain one missed but that should
   // hold the board.
   bool thorough = false;
+  // ChArUco: a view needs at least this many corners (or the whole board, if it has fewer).
+  int min_partial_corners = 8;
 };
+
+// The copy boards are searched on: `gray` scaled so that its longer side is at most
+// `options.detect_long_side`, and the scale used (1 when not reduced).
+struct DetectionCopy {
+  cv::Mat image;
+  double scale = 1.0;
+  // A point found in the copy, in the full-resolution image's pixels.
+  cv::Point2f FullResolution(cv::Point2f p) const {
+    return (p + cv::Point2f(0.5f, 0.5f)) * float(1.0 / scale) - cv::Point2f(0.5f, 0.5f);
+  }
+};
+DetectionCopy MakeDetectionCopy(const cv::Mat& gray, const BoardDetectionOptions& options);
+
+// Whether a detected corner is there (a partial ChArUco view has NaN for the ones not found).
+inline bool CornerFound(const cv::Point2f& p) { return p.x == p.x && p.y == p.y; }
+int FoundCornerCount(const std::vector<cv::Point2f>& corners);
+
+// The corners of `board` (either kind) in `gray`: DetectChessboard or DetectCharuco.
+std::optional<std::vector<cv::Point2f>> DetectBoard(const cv::Mat& gray, const BoardSpec& board,
+                                                    const BoardDetectionOptions& options = {});
 
 // The corners of `board` in `gray` (CV_8UC1, full resolution) in the board's point order, or
 // nullopt when the whole board is not found. The board must be seen from its front.

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <thread>
 
+#include "lfcam/calib/board_detection.h"
 #include "lfcam/core/error.h"
 
 namespace lfcam {
@@ -86,17 +87,32 @@ Rigid3 UnpackRigid(const std::array<double, kBoardBlock>& b) {
   return {RotationFromAngleAxis(Vec3(b[0], b[1], b[2])), Vec3(b[3], b[4], b[5])};
 }
 
+// The sum of squared reprojection errors over the corners found, and their number.
+struct SquaredError {
+  double sum = 0;
+  int count = 0;
+};
+
+SquaredError Reprojection(const CameraIntrinsics& intrinsics, const Rigid3& camera_from_board,
+                          const std::vector<Vec3>& points,
+                          const std::vector<cv::Point2f>& corners) {
+  SquaredError e;
+  for (std::size_t i = 0; i < points.size() && i < corners.size(); ++i) {
+    if (!CornerFound(corners[i])) continue;
+    const auto p = intrinsics.Project(camera_from_board * points[i]);
+    e.sum += p ? (*p - Vec2(corners[i].x, corners[i].y)).squaredNorm()
+               : std::numeric_limits<double>::infinity();
+    ++e.count;
+  }
+  return e;
+}
+
 }  // namespace
 
 double ReprojectionRms(const CameraIntrinsics& intrinsics, const Rigid3& camera_from_board,
                        const std::vector<Vec3>& points, const std::vector<cv::Point2f>& corners) {
-  double sum = 0;
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    const auto p = intrinsics.Project(camera_from_board * points[i]);
-    if (!p) return std::numeric_limits<double>::infinity();
-    sum += (*p - Vec2(corners[i].x, corners[i].y)).squaredNorm();
-  }
-  return std::sqrt(sum / std::max<std::size_t>(1, points.size()));
+  const SquaredError e = Reprojection(intrinsics, camera_from_board, points, corners);
+  return std::sqrt(e.sum / std::max(1, e.count));
 }
 
 BundleAdjustmentReport BundleAdjustArray(std::vector<RigCamera>& cameras,
@@ -120,6 +136,7 @@ BundleAdjustmentReport BundleAdjustArray(std::vector<RigCamera>& cameras,
   const auto world_points = world_board.corners();
   BundleAdjustmentReport report;
   auto add = [&](double* camera, double* board, const Vec3& point, const cv::Point2f& pixel) {
+    if (!CornerFound(pixel)) return;  // not in a partial ChArUco view
     auto* cost = new ceres::AutoDiffCostFunction<CornerResidual, 2, kCameraBlock, kBoardBlock>(
         new CornerResidual{point.x(), point.y(), pixel.x, pixel.y});
     problem.AddResidualBlock(cost, &loss, camera, board);
@@ -185,17 +202,17 @@ BundleAdjustmentReport BundleAdjustArray(std::vector<RigCamera>& cameras,
     int n = 0;
     for (const BoardView& view : *c.views) {
       if (!shot_known[std::size_t(view.shot)]) continue;
-      const double rms = ReprojectionRms(
-          c.intrinsics, c.camera_from_world * world_from_board[std::size_t(view.shot)],
-          intrinsics_points, view.corners);
-      sum += rms * rms * double(intrinsics_points.size());
-      n += int(intrinsics_points.size());
+      const SquaredError e =
+          Reprojection(c.intrinsics, c.camera_from_world * world_from_board[std::size_t(view.shot)],
+                       intrinsics_points, view.corners);
+      sum += e.sum;
+      n += e.count;
     }
     if (c.world && *c.world) {
-      const double rms =
-          ReprojectionRms(c.intrinsics, c.camera_from_world, world_points, **c.world);
-      sum += rms * rms * double(world_points.size());
-      n += int(world_points.size());
+      const SquaredError e =
+          Reprojection(c.intrinsics, c.camera_from_world, world_points, **c.world);
+      sum += e.sum;
+      n += e.count;
     }
     c.rms_px = n ? std::sqrt(sum / n) : 0;
     c.corners = n;

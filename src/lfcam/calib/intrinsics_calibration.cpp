@@ -4,16 +4,32 @@
 
 #include <opencv2/calib3d.hpp>
 
+#include "lfcam/calib/board_detection.h"
 #include "lfcam/calib/bundle_adjustment.h"
 #include "lfcam/core/error.h"
 
 namespace lfcam {
 namespace {
 
-std::vector<cv::Point3f> ObjectPoints(const BoardSpec& board) {
-  std::vector<cv::Point3f> points;
-  for (const Vec3& p : board.corners()) points.emplace_back(float(p.x()), float(p.y()), 0.f);
-  return points;
+// The board points and image points of the corners found in one view (all of a chessboard's,
+// those of a partial ChArUco view).
+struct ViewPoints {
+  std::vector<cv::Point3f> object;
+  std::vector<cv::Point2f> image;
+};
+
+ViewPoints FoundPoints(const BoardSpec& board, const std::vector<cv::Point2f>& corners) {
+  const auto points = board.corners();
+  if (corners.size() != points.size())
+    throw Error(fmt::format("a view has {} corners; board {} has {}", corners.size(), board.spec(),
+                            points.size()));
+  ViewPoints v;
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (CornerFound(corners[i])) {
+      v.object.emplace_back(float(points[i].x()), float(points[i].y()), 0.f);
+      v.image.push_back(corners[i]);
+    }
+  return v;
 }
 
 Rigid3 FromRvecTvec(const cv::Mat& rvec, const cv::Mat& tvec) {
@@ -40,11 +56,17 @@ SingleCameraCalibration CalibrateSingleCamera(const std::vector<std::vector<cv::
   if (views.size() < 3)
     throw Error(
         fmt::format("intrinsics need the board in at least 3 views, found in {}", views.size()));
-  const std::vector<std::vector<cv::Point3f>> objects(views.size(), ObjectPoints(board));
+  std::vector<std::vector<cv::Point3f>> objects;
+  std::vector<std::vector<cv::Point2f>> images;
+  for (const auto& view : views) {
+    ViewPoints v = FoundPoints(board, view);
+    objects.push_back(std::move(v.object));
+    images.push_back(std::move(v.image));
+  }
   cv::Mat K, dist;
   std::vector<cv::Mat> rvecs, tvecs;
   const double rms = cv::calibrateCamera(
-      objects, views, cv::Size(width, height), K, dist, rvecs, tvecs, 0,
+      objects, images, cv::Size(width, height), K, dist, rvecs, tvecs, 0,
       cv::TermCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 100, 1e-12));
   SingleCameraCalibration out;
   out.rms_px = rms;
@@ -67,10 +89,12 @@ SingleCameraCalibration CalibrateSingleCamera(const std::vector<std::vector<cv::
 
 Rigid3 BoardPose(const CameraIntrinsics& intrinsics, const BoardSpec& board,
                  const std::vector<cv::Point2f>& corners) {
+  const ViewPoints v = FoundPoints(board, corners);
+  if (v.image.size() < 4)
+    throw Error(fmt::format("the board's pose needs at least 4 corners, found {}", v.image.size()));
   cv::Mat rvec, tvec;
-  if (!cv::solvePnP(ObjectPoints(board), corners, KMat(intrinsics),
-                    DistortionMat(intrinsics.distortion), rvec, tvec, false,
-                    cv::SOLVEPNP_ITERATIVE))
+  if (!cv::solvePnP(v.object, v.image, KMat(intrinsics), DistortionMat(intrinsics.distortion), rvec,
+                    tvec, false, cv::SOLVEPNP_ITERATIVE))
     throw Error("the board's pose could not be found (solvePnP failed)");
   return FromRvecTvec(rvec, tvec);
 }

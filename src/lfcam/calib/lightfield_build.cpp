@@ -86,7 +86,7 @@ DecodedRegion DecodeRegion(std::span<const std::uint8_t> bytes, const std::strin
 
 // Resamples one camera's image into its view. Returns the decode reduction used.
 int BuildView(const ViewJob& job, const Slab& slab, int n_s, int n_t, bool correct,
-              std::uint8_t* view, ViewStats* stats, double* decode_seconds) {
+              Resampling resampling, std::uint8_t* view, ViewStats* stats, double* decode_seconds) {
   const CameraIntrinsics& k = job.camera->intrinsics;
   const Rigid3 camera_from_world = job.camera->world_from_camera.inverse();
   const Mat3& r = camera_from_world.rotation;
@@ -144,8 +144,8 @@ int BuildView(const ViewJob& job, const Slab& slab, int n_s, int n_t, bool corre
       }
     }
   }
-  // A margin for the bilinear lookup and the prefilter.
-  const int margin = 4 + int(std::ceil(footprint / reduction));
+  // A margin for the interpolation kernel (Lanczos reaches 4 pixels) and the prefilter.
+  const int margin = 5 + int(std::ceil(footprint / reduction));
   const cv::Rect wanted =
       x_hi < x_lo
           ? cv::Rect()
@@ -189,7 +189,10 @@ int BuildView(const ViewJob& job, const Slab& slab, int n_s, int n_t, bool corre
     }
     map_x -= float(roi.x);
     map_y -= float(roi.y);
-    cv::remap(linear, sampled, map_x, map_y, cv::INTER_LINEAR, cv::BORDER_CONSTANT,
+    const int interpolation = resampling == Resampling::kLinear  ? cv::INTER_LINEAR
+                              : resampling == Resampling::kCubic ? cv::INTER_CUBIC
+                                                                 : cv::INTER_LANCZOS4;
+    cv::remap(linear, sampled, map_x, map_y, interpolation, cv::BORDER_CONSTANT,
               cv::Scalar(0, 0, 0));
     map_x += float(roi.x);
     map_y += float(roi.y);
@@ -258,6 +261,25 @@ ColourSpread Spread(const std::vector<ViewStats>& stats, const std::vector<bool>
 }
 
 }  // namespace
+
+Resampling ResamplingFromString(const std::string& name) {
+  if (name == "linear") return Resampling::kLinear;
+  if (name == "cubic") return Resampling::kCubic;
+  if (name == "lanczos4") return Resampling::kLanczos4;
+  throw Error(fmt::format("'{}' is not a resampling kernel (linear, cubic, lanczos4)", name));
+}
+
+std::string ToString(Resampling resampling) {
+  switch (resampling) {
+    case Resampling::kLinear:
+      return "linear";
+    case Resampling::kCubic:
+      return "cubic";
+    case Resampling::kLanczos4:
+      return "lanczos4";
+  }
+  return "?";
+}
 
 LightField BuildLightField(const std::filesystem::path& dir, const CaptureManifest& manifest,
                            const CalibrationFile& cal, const BuildOptions& o,
@@ -328,7 +350,7 @@ LightField BuildLightField(const std::filesystem::path& dir, const CaptureManife
     s.after.assign(cells, Vec3::Zero());
     s.before.assign(cells, Vec3::Zero());
     double decode = 0;
-    const int reduction = BuildView(job, slab, o.n_s, o.n_t, o.photometric_correction,
+    const int reduction = BuildView(job, slab, o.n_s, o.n_t, o.photometric_correction, o.resampling,
                                     lf.mutable_view_data(job.row, job.col), &s, &decode);
     std::lock_guard lock(mutex);
     decode_seconds += decode;
@@ -395,6 +417,7 @@ LightField BuildLightField(const std::filesystem::path& dir, const CaptureManife
                              {"photometry", PhotometryToJson(*camera.photometry)}});
   lf.metadata() = {{"source", "built"},
                    {"shot", o.shot},
+                   {"resampling", ToString(o.resampling)},
                    {"session", manifest.source},
                    {"calibration", cal.summary},
                    {"color_correction",

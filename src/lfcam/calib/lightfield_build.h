@@ -16,8 +16,14 @@
 
 namespace lfcam {
 
+// How a camera image is read between its pixels (OpenCV's kernels, in linear light).
+enum class Resampling { kLinear, kCubic, kLanczos4 };
+Resampling ResamplingFromString(const std::string& name);  // throws lfcam::Error
+std::string ToString(Resampling resampling);
+
 struct BuildOptions {
   int n_s = 1248, n_t = 1152;
+  Resampling resampling = Resampling::kCubic;
   std::optional<StDomain> st_domain;  // default: the calibration's (the world board, [0, 1]^2)
   bool allow_missing = false;  // fill cameras without an image or calibration from neighbours
   bool photometric_correction = true;  // when the calibration has it

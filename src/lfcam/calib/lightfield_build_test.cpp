@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cstring>
 #include <fstream>
 
 #include "lfcam/calib/array_calibration.h"
@@ -64,22 +65,17 @@ fs::path* LightFieldBuildTest::session_ = nullptr;
 fs::path* LightFieldBuildTest::scratch_ = nullptr;
 CalibrationFile* LightFieldBuildTest::calibration_ = nullptr;
 
-// The world board's squares, read from a built light field of the world shot, are black and
-// white where the board says: the views are where the calibration puts them.
-TEST_F(LightFieldBuildTest, TheWorldBoardLandsOnItsOwnSquares) {
-  BuildOptions o = Small();
-  o.shot = "world";
-  BuildReport report;
-  const LightField lf =
-      BuildLightField(session(), ReadManifest(session()), *calibration_, o, &report);
+// The share of a world-shot light field's samples well inside the world board's squares that are
+// black or white as the board says.
+double BoardSamplesRight(const LightField& lf) {
   const auto& board = lf.slab().st;
   const BoardSpec spec{11, 10, 50.0};
-  ASSERT_NEAR(board.width_mm, spec.width_mm(), 1e-9);
+  EXPECT_NEAR(board.width_mm, spec.width_mm(), 1e-9);
   int right = 0, total = 0;
-  for (int row = 0; row < 3; ++row)
-    for (int col = 0; col < 3; ++col)
-      for (int l = 0; l < o.n_t; ++l)
-        for (int k = 0; k < o.n_s; ++k) {
+  for (int row = 0; row < lf.dims().rows; ++row)
+    for (int col = 0; col < lf.dims().cols; ++col)
+      for (int l = 0; l < lf.dims().n_t; ++l)
+        for (int k = 0; k < lf.dims().n_s; ++k) {
           const double x = lf.s_of(k) * board.width_mm, y = lf.t_of(l) * board.height_mm;
           // Only samples well inside a square (a fifth of a square from its edges).
           const double fx = std::fmod(x, 50.0), fy = std::fmod(y, 50.0);
@@ -88,7 +84,19 @@ TEST_F(LightFieldBuildTest, TheWorldBoardLandsOnItsOwnSquares) {
           right += spec.black_at(x, y) ? value < 0.2 : value > 0.4;
           ++total;
         }
-  EXPECT_GT(double(right) / total, 0.995) << right << " of " << total;
+  return double(right) / std::max(1, total);
+}
+
+// The world board's squares, read from a built light field of the world shot, are black and
+// white where the board says: the views are where the calibration puts them.
+TEST_F(LightFieldBuildTest, TheWorldBoardLandsOnItsOwnSquares) {
+  BuildOptions o = Small();
+  o.shot = "world";
+  BuildReport report;
+  const LightField lf =
+      BuildLightField(session(), ReadManifest(session()), *calibration_, o, &report);
+  EXPECT_GT(BoardSamplesRight(lf), 0.995);
+  EXPECT_EQ(lf.metadata()["resampling"], "cubic");
   // Colour: the modules' spread (about 15%) is corrected to within 2% on the board at this small
   // size (its square edges are a few pixels wide and blur differently in each camera); full-size
   // figures are in docs/fidelity.md.
@@ -105,6 +113,25 @@ TEST_F(LightFieldBuildTest, TheWorldBoardLandsOnItsOwnSquares) {
   ASSERT_EQ(back.measured_poses().size(), 9u);
   EXPECT_EQ(back.camera_center(2, 1), lf.camera_center(2, 1));
   EXPECT_EQ(back.metadata()["color_correction"]["applied"], true);
+}
+
+// Each kernel puts the board in the same place and is recorded; they differ only between pixels.
+TEST_F(LightFieldBuildTest, EveryResamplingKernelPutsTheBoardInPlace) {
+  BuildOptions o = Small();
+  o.shot = "world";
+  std::vector<LightField> built;
+  for (const Resampling r : {Resampling::kLinear, Resampling::kCubic, Resampling::kLanczos4}) {
+    o.resampling = r;
+    built.push_back(BuildLightField(session(), ReadManifest(session()), *calibration_, o));
+    EXPECT_GT(BoardSamplesRight(built.back()), 0.995) << ToString(r);
+    EXPECT_EQ(built.back().metadata()["resampling"], ToString(r));
+    EXPECT_EQ(ResamplingFromString(ToString(r)), r);
+  }
+  const std::size_t bytes = built[0].total_bytes();
+  EXPECT_NE(std::memcmp(built[0].data(), built[1].data(), bytes), 0);
+  EXPECT_NE(std::memcmp(built[1].data(), built[2].data(), bytes), 0);
+  EXPECT_NE(testing::ErrorOf([] { ResamplingFromString("nearest"); }).find("linear, cubic"),
+            std::string::npos);
 }
 
 TEST_F(LightFieldBuildTest, MissingCamerasAreRefusedOrFilledAndRecorded) {

@@ -62,7 +62,7 @@ SessionDetections DetectSessionBoards(const std::filesystem::path& dir,
         const BoardSpec& board = job.intrinsics_shot >= 0 ? intrinsics_board : world_board;
         BoardDetectionOptions options;
         options.thorough = thorough;
-        corners = DetectChessboard(gray, board, options);
+        corners = DetectBoard(gray, board, options);
         not_found = !corners;
       }
     } catch (const Error& e) {

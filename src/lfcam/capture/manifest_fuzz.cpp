@@ -1,10 +1,12 @@
 // libFuzzer target: a capture session's manifest (the first file calibrate and build read from
-// a session someone else wrote), and the board SPEC strings of flags and manifests.
+// a session someone else wrote), and the board SPEC strings of flags and manifests (a ChArUco
+// board's layout too).
 #include <cstdint>
 #include <string>
 #include <string_view>
 
 #include "lfcam/calib/board.h"
+#include "lfcam/calib/charuco.h"
 #include "lfcam/capture/session.h"
 #include "lfcam/core/error.h"
 #include "lfcam/core/json_input.h"
@@ -19,6 +21,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   try {
     const auto board = lfcam::ParseBoardSpec(std::string(text.substr(0, 64)));
     (void)board.corners();
+    if (board.charuco()) (void)lfcam::MakeCharucoLayout(board);
   } catch (const lfcam::Error&) {
   }
   return 0;

@@ -23,7 +23,7 @@ void AddBuildCommand(CLI::App& app) {
       app.add_subcommand("build", "Build the light field of a calibrated capture session");
   struct Flags {
     std::string session, calibration, out, st_res = "1248x1152", st_domain, compression = "none",
-                                           shot = "scene";
+                                           shot = "scene", resampling = "cubic";
     bool allow_missing = false, no_color = false, json = false, quiet = false;
   };
   auto flags = std::make_shared<Flags>();
@@ -37,6 +37,10 @@ void AddBuildCommand(CLI::App& app) {
                       "Sampled st domain S0,T0,S1,T1 (view-window units; default 0,0,1,1)");
   command->add_option("--compress", flags->compression, "none or zstd")->capture_default_str();
   command->add_option("--shot", flags->shot, "The session's shot to build (scene, or world)")
+      ->capture_default_str();
+  command
+      ->add_option("--resampling", flags->resampling,
+                   "Kernel between camera pixels: cubic (sharper), linear (faster) or lanczos4")
       ->capture_default_str();
   command->add_flag("--allow-missing", flags->allow_missing,
                     "Fill cameras without an image or calibration from their nearest neighbours "
@@ -56,6 +60,8 @@ void AddBuildCommand(CLI::App& app) {
       throw UsageError(fmt::format("--compress: '{}' is not none or zstd", flags->compression));
     o.allow_missing = flags->allow_missing;
     o.shot = flags->shot;
+    o.resampling =
+        FlagValue("--resampling", [&] { return ResamplingFromString(flags->resampling); });
     o.photometric_correction = !flags->no_color;
     RequireWritableOutput(flags->out, "--out");
     const CaptureManifest manifest = ReadManifest(flags->session);

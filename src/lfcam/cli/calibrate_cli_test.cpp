@@ -98,7 +98,12 @@ TEST_F(CalibrateCli, BadFlagsAreUsageErrors) {
         "calibrate " + Path("session"),
         "calibrate intrinsics " + Path("nothing.jpg") + " --board 10x7 --out " + Path("c.json"),
         "simulate capture --out " + Path("s2") + " --defects some",
-        "simulate capture --out " + Path("s2") + " --board charuco",
+        "simulate capture --out " + Path("s2") + " --board aruco",
+        "simulate capture --out " + Path("s2") + " --board charuco --intrinsics-board 10x7@30",
+        "simulate capture --out " + Path("s2") + " --intrinsics-board charuco:11x8@30/22",
+        "simulate capture --out " + Path("s2") +
+            " --board charuco --intrinsics-board "
+            "charuco:11x8@30/29",
         "simulate capture --out " + Path("s2") + " --sensor 20x20",
         "simulate capture --out " + Path("session")}) {  // exists and is not empty
     const CommandResult run = Lfcam(args);

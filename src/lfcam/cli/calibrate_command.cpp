@@ -58,7 +58,7 @@ void PrintSummary(const ArrayCalibration& a, const std::string& out) {
 
 void AddIntrinsicsSubcommand(CLI::App& calibrate) {
   auto* command = calibrate.add_subcommand(
-      "intrinsics", "Calibrate one camera module from its photographs of a chessboard");
+      "intrinsics", "Calibrate one camera module from its photographs of a board");
   struct Flags {
     std::vector<std::string> images;
     std::string board, out;
@@ -67,7 +67,9 @@ void AddIntrinsicsSubcommand(CLI::App& calibrate) {
   auto flags = std::make_shared<Flags>();
   command->add_option("images", flags->images, "Photographs of the board (PNG or JPEG)")
       ->required();
-  command->add_option("--board", flags->board, "Chessboard COLSxROWS@MM (inner corners)")
+  command
+      ->add_option("--board", flags->board,
+                   "Chessboard COLSxROWS@MM (inner corners) or charuco:SXxSY@SQUARE/MARKER")
       ->required();
   command->add_option("--out", flags->out, "Camera file to write (.json)")->required();
   command->add_flag("--json", flags->json, "Print the result as JSON on stdout");
@@ -88,7 +90,7 @@ void AddIntrinsicsSubcommand(CLI::App& calibrate) {
       }
       BoardDetectionOptions thorough;
       thorough.thorough = true;
-      if (auto corners = DetectChessboard(gray, board, thorough)) {
+      if (auto corners = DetectBoard(gray, board, thorough)) {
         views.push_back(std::move(*corners));
         used.push_back(path);
       } else {

@@ -12,13 +12,20 @@
 #include "lfcam/sim/capture_simulation.h"
 
 namespace lfcam::cli {
+namespace {
+
+// Both 11 x 8 squares of 30 mm (10 x 7 inner corners).
+constexpr const char* kDefaultChessboard = "10x7@30";
+constexpr const char* kDefaultCharuco = "charuco:11x8@30/22";
+
+}  // namespace
 
 void AddSimulateCaptureCommand(CLI::App& simulate) {
   auto* command = simulate.add_subcommand(
       "capture", "Write the raw capture session a simulated Pi camera array takes");
   struct Flags {
     std::string scene = "paper", out, grid = "10x10", sensor = "2592x1944", defects = "realistic",
-                board = "chessboard", intrinsics_board = "10x7@30";
+                board = "chessboard", intrinsics_board;
     std::uint64_t seed = 1;
     int shots = 14, supersampling = 2;
     bool no_noise = false, quiet = false;
@@ -34,12 +41,15 @@ void AddSimulateCaptureCommand(CLI::App& simulate) {
   command->add_option("--defects", flags->defects, "realistic or none")->capture_default_str();
   command->add_option("--seed", flags->seed, "Seed of the defects, board poses and noise")
       ->capture_default_str();
-  command->add_option("--board", flags->board, "Calibration board kind: chessboard")
-      ->capture_default_str();
   command
-      ->add_option("--intrinsics-board", flags->intrinsics_board,
-                   "Intrinsics board COLSxROWS@MM (inner corners, square mm)")
+      ->add_option("--board", flags->board,
+                   "Intrinsics board kind: chessboard or charuco (the world board is a "
+                   "chessboard)")
       ->capture_default_str();
+  command->add_option("--intrinsics-board", flags->intrinsics_board,
+                      fmt::format("Intrinsics board: COLSxROWS@MM (inner corners, square mm) or "
+                                  "charuco:SXxSY@SQUARE/MARKER[:DICT] [default: {} or {}]",
+                                  kDefaultChessboard, kDefaultCharuco));
   command->add_option("--shots", flags->shots, "Intrinsics board poses")
       ->capture_default_str()
       ->check(CLI::Range(1, 16));
@@ -60,12 +70,16 @@ void AddSimulateCaptureCommand(CLI::App& simulate) {
       o.defects = ModuleDefects::kNone;
     else
       throw UsageError(fmt::format("--defects: '{}' is not realistic or none", flags->defects));
-    if (flags->board != "chessboard")
-      throw UsageError(fmt::format(
-          "--board: '{}' is not supported; this version simulates plain chessboards only",
-          flags->board));
-    o.intrinsics_board =
-        FlagValue("--intrinsics-board", [&] { return ParseBoardSpec(flags->intrinsics_board); });
+    if (flags->board != "chessboard" && flags->board != "charuco")
+      throw UsageError(fmt::format("--board: '{}' is not chessboard or charuco", flags->board));
+    const bool charuco = flags->board == "charuco";
+    const std::string spec = !flags->intrinsics_board.empty() ? flags->intrinsics_board
+                             : charuco                        ? kDefaultCharuco
+                                                              : kDefaultChessboard;
+    o.intrinsics_board = FlagValue("--intrinsics-board", [&] { return ParseBoardSpec(spec); });
+    if (o.intrinsics_board.charuco() != charuco)
+      throw UsageError(fmt::format("--intrinsics-board {} is not a {} (--board {})", spec,
+                                   flags->board, flags->board));
     o.seed = flags->seed;
     o.intrinsics_shots = flags->shots;
     o.scene_supersampling = flags->supersampling;

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
+
+#include "lfcam/calib/charuco.h"
 
 namespace lfcam {
 namespace {
@@ -34,6 +37,8 @@ PixelRadiance BoardInFrontOf(const BoardSpec& board, const Rigid3& world_from_bo
                              const Scene& scene, const BoardAppearance& look) {
   const Rigid3 board_from_world = world_from_board.inverse();
   const double margin = look.margin_squares * board.square_mm;
+  std::shared_ptr<const CharucoLayout> charuco;
+  if (board.charuco()) charuco = std::make_shared<const CharucoLayout>(MakeCharucoLayout(board));
   return [=, &scene](const Ray& ray, const Vec3& dx, const Vec3& dy, const Vec3* behind) -> Vec3 {
     auto background = [&] { return behind ? *behind : scene.Radiance(ray); };
     // Everything in board coordinates: the board is the plane z = 0.
@@ -63,7 +68,8 @@ PixelRadiance BoardInFrontOf(const BoardSpec& board, const Rigid3& world_from_bo
     const double oy = std::max(0.0, std::min(y1, by1) - std::max(y0, by0));
     const double on_board = std::min(1.0, ox * oy / std::max(1e-300, (x1 - x0) * (y1 - y0)));
     if (on_board <= 0) return background();
-    const double black = BlackAreaFraction(board, x0, x1, y0, y1);
+    const double black = charuco ? CharucoBlackAreaFraction(*charuco, x0, x1, y0, y1)
+                                 : BlackAreaFraction(board, x0, x1, y0, y1);
     const double value = look.black * black + look.white * (on_board - black);
     Vec3 out = Vec3::Constant(value);
     if (on_board < 1) out += (1 - on_board) * background();

@@ -1,8 +1,9 @@
 #pragma once
-// A chessboard held in front of a scene, rendered analytically: each pixel gets the exact
+// A calibration board held in front of a scene, rendered analytically: each pixel gets the exact
 // share of black and white under its footprint, approximated by the board-aligned rectangle
 // with the footprint's extent along the board's axes (the box filter's integral of a checker is
-// separable: a triangle wave per axis). No supersampling, and corners stay where they are.
+// separable: a triangle wave per axis; a ChArUco board's marker cells are rectangles too,
+// calib/charuco.h). No supersampling, and corners stay where they are.
 #include "lfcam/calib/board.h"
 #include "lfcam/sim/camera_module.h"
 #include "lfcam/sim/scene.h"
@@ -14,7 +15,8 @@ struct BoardAppearance {
   double margin_squares = 1.0;        // the white border around the squared area, in squares
 };
 
-// The share of the rectangle [x0, x1] x [y0, y1] (board mm) that is black squares.
+// The share of the rectangle [x0, x1] x [y0, y1] (board mm) that is black squares (a
+// chessboard).
 double BlackAreaFraction(const BoardSpec& board, double x0, double x1, double y0, double y1);
 
 // Pixel radiance of `board` at `world_from_board` before `scene`, which shows where the board is
