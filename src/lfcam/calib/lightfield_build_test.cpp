@@ -11,8 +11,10 @@
 #include "lfcam/calib/array_calibration.h"
 #include "lfcam/calib/calibration_file.h"
 #include "lfcam/calib/photometry.h"
+#include "lfcam/core/atomic_file.h"
 #include "lfcam/core/color.h"
 #include "lfcam/core/error.h"
+#include "lfcam/core/json_input.h"
 #include "lfcam/core/lightfield_file.h"
 #include "lfcam/core/test_support.h"
 #include "lfcam/sim/capture_simulation.h"
@@ -36,12 +38,21 @@ class LightFieldBuildTest : public ::testing::Test {
     o.sensor_height = 486;
     o.seed = 11;
     session_ = new fs::path(testing::SharedTestCapture("build-3x3", o));
-    const CaptureManifest manifest = ReadManifest(session());
-    const ArrayCalibration a = CalibrateArray(session(), manifest, {});
-    nlohmann::json j = CalibrationToJson(a);
-    AddPhotometryToCalibration(
-        j, EstimatePhotometry(session(), manifest, CalibrationFromJson(j, "cal"), a.world_board));
-    calibration_ = new CalibrationFile(CalibrationFromJson(j, "cal"));
+    // Calibrated once for every test process of the build (a minute under the sanitizers).
+    const fs::path calibration = testing::SharedTestArtifact(
+        "build-3x3-calibration", "calibration.json", [](const fs::path& dir) {
+          const CaptureManifest manifest = ReadManifest(session());
+          const ArrayCalibration a = CalibrateArray(session(), manifest, {});
+          nlohmann::json j = CalibrationToJson(a);
+          AddPhotometryToCalibration(
+              j, EstimatePhotometry(session(), manifest, CalibrationFromJson(j, "cal"),
+                                    a.world_board));
+          fs::create_directories(dir);
+          const std::string text = JsonToText(j);
+          WriteFileAtomically(dir / "calibration.json",
+                              {reinterpret_cast<const std::uint8_t*>(text.data()), text.size()});
+        });
+    calibration_ = new CalibrationFile(ReadCalibration(calibration / "calibration.json"));
   }
   static void TearDownTestSuite() {
     std::error_code ec;
