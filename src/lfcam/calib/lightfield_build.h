@@ -23,7 +23,7 @@ std::string ToString(Resampling resampling);
 
 struct BuildOptions {
   int n_s = 1248, n_t = 1152;
-  Resampling resampling = Resampling::kCubic;
+  Resampling resampling = Resampling::kLinear;
   std::optional<StDomain> st_domain;  // default: the calibration's (the world board, [0, 1]^2)
   bool allow_missing = false;  // fill cameras without an image or calibration from neighbours
   bool photometric_correction = true;  // when the calibration has it

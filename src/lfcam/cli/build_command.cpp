@@ -23,7 +23,7 @@ void AddBuildCommand(CLI::App& app) {
       app.add_subcommand("build", "Build the light field of a calibrated capture session");
   struct Flags {
     std::string session, calibration, out, st_res = "1248x1152", st_domain, compression = "none",
-                                           shot = "scene", resampling = "cubic";
+                                           shot = "scene", resampling = "linear";
     bool allow_missing = false, no_color = false, json = false, quiet = false;
   };
   auto flags = std::make_shared<Flags>();
@@ -40,7 +40,8 @@ void AddBuildCommand(CLI::App& app) {
       ->capture_default_str();
   command
       ->add_option("--resampling", flags->resampling,
-                   "Kernel between camera pixels: cubic (sharper), linear (faster) or lanczos4")
+                   "Kernel between camera pixels: linear (closest to the truth sample by sample), cubic "
+                   "(sharper renders) or lanczos4")
       ->capture_default_str();
   command->add_flag("--allow-missing", flags->allow_missing,
                     "Fill cameras without an image or calibration from their nearest neighbours "
