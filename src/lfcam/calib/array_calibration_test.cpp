@@ -205,7 +205,7 @@ TEST(ArrayCalibrationCharuco, PartialViewsCountAndTheCalibrationHolds) {
   o.sensor_width = 1296;
   o.sensor_height = 972;
   o.seed = 7;
-  o.intrinsics_shots = 10;
+  o.intrinsics_shots = 6;
   o.intrinsics_board = ParseBoardSpec("charuco:11x8@30/22");
   const fs::path dir = testing::SharedTestCapture("calibration-charuco-2x2", o);
   const CaptureManifest manifest = ReadManifest(dir);
