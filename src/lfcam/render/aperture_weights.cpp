@@ -1,0 +1,108 @@
+#include "lfcam/render/aperture_weights.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+
+namespace lfcam {
+namespace {
+
+// Camera `i`'s weight at x along one axis of an n-camera grid (see the header).
+double AxisWeight(double x, int i, int n) {
+  if (x < -0.5 || x > n - 0.5) return 0.0;
+  if (n == 1) return 1.0;
+  if ((i == 0 && x <= 0.0) || (i == n - 1 && x >= n - 1)) return 1.0;
+  return std::max(0.0, 1.0 - std::abs(x - i));
+}
+
+// Where AxisWeight(., i, n) has a kink or a jump; it is linear between them.
+std::array<double, 7> AxisKinks(int i, int n) {
+  std::array<double, 7> k = {-0.5, n - 0.5, i - 1.0, double(i), i + 1.0, 0.0, n - 1.0};
+  for (double& x : k) x = std::clamp(x, -0.5, n - 0.5);
+  std::sort(k.begin(), k.end());
+  return k;
+}
+
+// The integral of AxisWeight(., i, n) from -infinity to y: exact, since the weight is linear
+// between kinks and the midpoint rule integrates a linear function exactly.
+double AxisCumulative(double y, int i, int n, const std::array<double, 7>& kinks) {
+  double sum = 0.0;
+  for (std::size_t p = 0; p + 1 < kinks.size(); ++p) {
+    const double a = kinks[p], b = std::min(kinks[p + 1], y);
+    if (b <= a) continue;
+    sum += (b - a) * AxisWeight(0.5 * (a + b), i, n);
+  }
+  return sum;
+}
+
+// Gauss-Legendre, 8 points on [-1, 1].
+constexpr std::array<double, 4> kNodes = {0.1834346424956498, 0.5255324099163290,
+                                          0.7966664774136267, 0.9602898564975363};
+constexpr std::array<double, 4> kWeights = {0.3626837833783620, 0.3137066458778873,
+                                            0.2223810344533745, 0.1012285362903763};
+
+}  // namespace
+
+double DiskCameraIntegral(double radius, double cx, double cy, int col, int row, int cols,
+                          int rows) {
+  if (!(radius > 0.0)) return 0.0;
+  const auto x_kinks = AxisKinks(col, cols), y_kinks = AxisKinks(row, rows);
+  // The disk swept along x: x = cx + R sin(theta), half-height R cos(theta). The integrand is
+  // smooth in theta between the thetas where x crosses a kink of the x weight or cy +- R cos
+  // crosses a kink of the y weight.
+  std::vector<double> cuts = {-0.5 * std::numbers::pi, 0.5 * std::numbers::pi};
+  for (const double k : x_kinks)
+    if (std::abs(k - cx) < radius) cuts.push_back(std::asin((k - cx) / radius));
+  for (const double k : y_kinks)
+    if (std::abs(k - cy) < radius) {
+      const double theta = std::acos(std::abs(k - cy) / radius);
+      cuts.push_back(theta);
+      cuts.push_back(-theta);
+    }
+  std::sort(cuts.begin(), cuts.end());
+  auto integrand = [&](double theta) {
+    const double x = cx + radius * std::sin(theta), h = radius * std::cos(theta);
+    const double wx = AxisWeight(x, col, cols);
+    if (wx == 0.0) return 0.0;
+    const double wy =
+        AxisCumulative(cy + h, row, rows, y_kinks) - AxisCumulative(cy - h, row, rows, y_kinks);
+    return wx * wy * h;  // dx = R cos(theta) dtheta = h dtheta
+  };
+  double sum = 0.0;
+  for (std::size_t p = 0; p + 1 < cuts.size(); ++p) {
+    const double mid = 0.5 * (cuts[p] + cuts[p + 1]), half = 0.5 * (cuts[p + 1] - cuts[p]);
+    if (half <= 0.0) continue;
+    double piece = 0.0;
+    for (std::size_t q = 0; q < kNodes.size(); ++q)
+      piece +=
+          kWeights[q] * (integrand(mid - half * kNodes[q]) + integrand(mid + half * kNodes[q]));
+    sum += half * piece;
+  }
+  return sum;
+}
+
+std::vector<GridCameraWeight> DiskCameraWeights(double radius, double cx, double cy, int cols,
+                                                int rows) {
+  std::vector<GridCameraWeight> out;
+  const double reach = std::max(0.0, radius) + 1.0;
+  const int c0 = std::max(0, int(std::floor(cx - reach))),
+            c1 = std::min(cols - 1, int(std::ceil(cx + reach)));
+  const int r0 = std::max(0, int(std::floor(cy - reach))),
+            r1 = std::min(rows - 1, int(std::ceil(cy + reach)));
+  double total = 0.0;
+  for (int r = r0; r <= r1; ++r)
+    for (int c = c0; c <= c1; ++c) {
+      const double w = radius > 0.0 ? DiskCameraIntegral(radius, cx, cy, c, r, cols, rows)
+                                    : AxisWeight(cx, c, cols) * AxisWeight(cy, r, rows);
+      if (w > 0.0) {
+        out.push_back({c, r, w});
+        total += w;
+      }
+    }
+  if (!(total > 0.0)) return {};
+  for (auto& w : out) w.weight /= total;
+  return out;
+}
+
+}  // namespace lfcam
