@@ -73,6 +73,14 @@ TEST_F(Cli, RenderAndOracleAgreeAndCompareReportsIt) {
   EXPECT_GT(j["psnr_db"].get<double>(), 20.0);
   EXPECT_GT(j["ssim"].get<double>(), 0.5);
   EXPECT_EQ(j["pixels"], 48 * 48);
+  // The cameras integrator too, and it says how many cameras a pixel it read.
+  const CommandResult cameras =
+      Lfcam("render " + Path("small.lf") + camera + "--integrator cameras --out " + Path("c.png"));
+  ASSERT_EQ(cameras.status, 0) << cameras.output;
+  EXPECT_NE(cameras.output.find("cameras a pixel"), std::string::npos) << cameras.output;
+  const auto c =
+      nlohmann::json::parse(Lfcam("compare --json " + Path("c.png") + " " + Path("o.png")).output);
+  EXPECT_GT(c["psnr_db"].get<double>(), 20.0);
 }
 
 TEST_F(Cli, MontageLaysImagesOutOnASheet) {
@@ -164,6 +172,7 @@ TEST_F(Cli, HelpListsTheCommandsAndExitCodesAreConsistent) {
       {"render " + lf + out + " --threads 4294967297", 2, "--threads"},
       {"render " + lf + out + " --focus-distance 100", 2, "--focus-distance"},
       {"render " + lf + out + " --interpolation cubic", 2, "--interpolation"},
+      {"render " + lf + out + " --integrator exact", 2, "--integrator"},
       {"render " + lf + out + " --eye 1,2,3 --look-at 1,2,3", 2, "coincide"},
       {"oracle --scene nowhere" + out, 2, "--scene"},
       {"oracle" + out + " --samples 100000000", 2, "--samples"},

@@ -2,6 +2,7 @@
 // The CPU light field renderer: the paper's virtual camera (§6) over a light field,
 // multithreaded with oneTBB. It is the readable reference the GPU path is checked against.
 #include <opencv2/core.hpp>
+#include <string>
 
 #include "lfcam/core/lightfield.h"
 #include "lfcam/core/progress.h"
@@ -10,17 +11,26 @@
 
 namespace lfcam {
 
+// How a pixel integrates over the aperture.
+enum class Integrator {
+  kLensSamples,  // the paper's: the average over n_ls lens samples (with either lookup)
+  kCameras,      // the limit of lens samples with the focal-plane lookup (camera_integrator.h)
+};
+std::string ToString(Integrator integrator);
+Integrator IntegratorFromString(const std::string& name);  // throws lfcam::Error
+
 struct CpuRenderOptions {
   int threads = 0;  // 0: all cores; 1: the paper's single-threaded CPU column
-  Interpolation interpolation = Interpolation::kQuadrilinear;  // the paper's
+  Interpolation interpolation = Interpolation::kQuadrilinear;  // the paper's (lens samples)
   ProgressCallback progress;  // told the pixels done, tile by tile (may be empty)
+  Integrator integrator = Integrator::kLensSamples;
 };
 
 struct RenderResult {
   cv::Mat image;           // linear RGB, CV_32FC3, row 0 at the top
   cv::Mat hit_mask;        // CV_8UC1: 255 where at least one ray hit the slab
-  long long rays = 0;      // rays cast
-  long long rays_hit = 0;  // rays that met both windows
+  long long rays = 0;      // rays cast (cameras integrator: camera reads)
+  long long rays_hit = 0;  // rays that met both windows (cameras integrator: camera reads)
 };
 
 RenderResult RenderLightFieldCpu(const LightField& lf, const VirtualCamera& camera,

@@ -43,6 +43,9 @@ class LightFieldSampler {
  public:
   explicit LightFieldSampler(const LightField& lf);
 
+  int rows() const { return rows_; }
+  int cols() const { return cols_; }
+
   // Radiance along the line (origin, direction); false when it misses the slab (the hot-path
   // twin of Slab::intersect + Slab::contains, with the plane constants precomputed). With
   // kFocalPlane, `p_o` is the point in focus on the line.
@@ -62,6 +65,15 @@ class LightFieldSampler {
     else
       FetchFocused(u, v, p_o, rgb);
     return true;
+  }
+
+  // Whether the line (origin, direction) meets the st-plane inside the sampled st domain.
+  bool MeetsStDomain(const Vec3& origin, const Vec3& direction) const {
+    const double n_st = n_st_.dot(direction);
+    if (n_st == 0.0) return false;
+    const Vec3 at_st = origin + (n_st_.dot(st_origin_ - origin) / n_st) * direction - st_origin_;
+    const double s = at_st.dot(s_scaled_), t = at_st.dot(t_scaled_);
+    return s >= s0_ && s <= s1_ && t >= t0_ && t <= t1_;
   }
 
   // Quadrilinear fetch at window coordinates (u, v) and st-plane coordinates (s, t).
@@ -84,19 +96,24 @@ class LightFieldSampler {
     const AxisLerp c = AxisLerp::At(u * cols_ - 0.5, cols_);
     const AxisLerp r = AxisLerp::At(v * rows_ - 0.5, rows_);
     float acc[3] = {0, 0, 0};
-    ForNearestCameras(c, r, [&](int row, int col, float w) {
-      const Vec3& center = camera_centers_[std::size_t(row) * cols_ + col];
-      const Vec3 d = p_o - center;
-      const double n_st = n_st_.dot(d);
-      if (n_st == 0.0) return;
-      const Vec3 at_st = center + (n_st_.dot(st_origin_ - center) / n_st) * d - st_origin_;
-      const AxisLerp k = AxisLerp::At((at_st.dot(s_scaled_) - s0_) * s_to_k_ - 0.5, n_s_);
-      const AxisLerp l = AxisLerp::At((at_st.dot(t_scaled_) - t0_) * t_to_l_ - 0.5, n_t_);
-      AccumulateView(row, col, k, l, w, acc);
-    });
+    ForNearestCameras(c, r,
+                      [&](int row, int col, float w) { AccumulateFocused(row, col, p_o, w, acc); });
     rgb[0] = acc[0];
     rgb[1] = acc[1];
     rgb[2] = acc[2];
+  }
+
+  // acc += w * camera (row, col) read where its own ray toward p_o meets the st-plane
+  // (bilinearly, clamped to the sampled domain).
+  void AccumulateFocused(int row, int col, const Vec3& p_o, float w, float acc[3]) const {
+    const Vec3& center = camera_centers_[std::size_t(row) * cols_ + col];
+    const Vec3 d = p_o - center;
+    const double n_st = n_st_.dot(d);
+    if (n_st == 0.0) return;
+    const Vec3 at_st = center + (n_st_.dot(st_origin_ - center) / n_st) * d - st_origin_;
+    const AxisLerp k = AxisLerp::At((at_st.dot(s_scaled_) - s0_) * s_to_k_ - 0.5, n_s_);
+    const AxisLerp l = AxisLerp::At((at_st.dot(t_scaled_) - t0_) * t_to_l_ - 0.5, n_t_);
+    AccumulateView(row, col, k, l, w, acc);
   }
 
  private:

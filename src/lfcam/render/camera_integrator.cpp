@@ -1,0 +1,158 @@
+#include "lfcam/render/camera_integrator.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "lfcam/render/aperture_weights.h"
+
+namespace lfcam {
+namespace {
+
+constexpr int kPerPitch = 8;              // lattice nodes a camera pitch, along each axis
+constexpr double kRadiusStep = 1.0 / 16;  // between radius levels (grid units)
+constexpr double kParallelTolerance = 1e-9;
+
+}  // namespace
+
+CameraIntegratorFrame::CameraIntegratorFrame(const LightField& lf, const VirtualCamera& camera)
+    : camera_(camera), rows_(lf.dims().rows), cols_(lf.dims().cols) {
+  const ArrayPlane& uv = lf.slab().uv;
+  pitch_ = uv.pitch_mm;
+  p_ca_ = uv.p_ca;
+  u_ca_ = uv.u_ca;
+  v_ca_ = uv.v_ca;
+  n_ca_ = uv.n_ca;
+  exact_ = std::abs(n_ca_.dot(camera.u_c())) < kParallelTolerance &&
+           std::abs(n_ca_.dot(camera.v_c())) < kParallelTolerance;
+
+  // Every pixel's footprint: the range of centres and radii the table must cover.
+  double r_lo = 1e300, r_hi = -1e300;
+  double x_lo = 1e300, x_hi = -1e300, y_lo = 1e300, y_hi = -1e300;
+  for (int j = 0; j < camera.height(); ++j)
+    for (int i = 0; i < camera.width(); ++i) {
+      const Footprint f = FootprintOf(i, j);
+      if (!f.valid) continue;
+      // Centres farther than the radius plus a pitch from the window have no weights.
+      if (f.cx < -1.5 - f.radius || f.cx > cols_ + 0.5 + f.radius || f.cy < -1.5 - f.radius ||
+          f.cy > rows_ + 0.5 + f.radius)
+        continue;
+      r_lo = std::min(r_lo, f.radius);
+      r_hi = std::max(r_hi, f.radius);
+      x_lo = std::min(x_lo, f.cx);
+      x_hi = std::max(x_hi, f.cx);
+      y_lo = std::min(y_lo, f.cy);
+      y_hi = std::max(y_hi, f.cy);
+    }
+  if (r_lo > r_hi) return;  // no pixel reaches the array
+  std::vector<double> radii;
+  if (r_hi - r_lo < 1e-9) {
+    radii = {r_lo};
+  } else {
+    const int steps = std::max(1, int(std::ceil((r_hi - r_lo) / kRadiusStep)));
+    for (int k = 0; k <= steps; ++k) radii.push_back(r_lo + (r_hi - r_lo) * k / steps);
+  }
+  const int x0 = int(std::floor(x_lo * kPerPitch)) - 1, x1 = int(std::ceil(x_hi * kPerPitch)) + 1;
+  const int y0 = int(std::floor(y_lo * kPerPitch)) - 1, y1 = int(std::ceil(y_hi * kPerPitch)) + 1;
+  const std::size_t cameras = std::size_t(rows_) * std::size_t(cols_);
+  for (const double radius : radii) {
+    Level level;
+    level.radius = radius;
+    level.x0 = x0;
+    level.y0 = y0;
+    level.nx = x1 - x0 + 1;
+    level.ny = y1 - y0 + 1;
+    level.weights.assign(std::size_t(level.nx) * std::size_t(level.ny) * cameras, 0.0f);
+    levels_.push_back(std::move(level));
+  }
+  for (Level& level : levels_)
+    tbb::parallel_for(0, level.nx * level.ny, [&](int node) {
+      const int a = node % level.nx, b = node / level.nx;
+      const double cx = double(level.x0 + a) / kPerPitch, cy = double(level.y0 + b) / kPerPitch;
+      float* out = level.weights.data() + std::size_t(node) * cameras;
+      for (const GridCameraWeight& w : DiskCameraWeights(level.radius, cx, cy, cols_, rows_))
+        out[std::size_t(w.row * cols_ + w.col)] = float(w.weight);
+    });
+}
+
+Footprint CameraIntegratorFrame::FootprintOf(int i, int j) const {
+  Footprint f;
+  const Vec3 direction = camera_.pixel_direction(i, j);
+  const Vec3 p_o = camera_.focus_point(direction);
+  const Vec3 e = camera_.e_c();
+  const double h_e = n_ca_.dot(e - p_o);
+  if (std::abs(h_e) < 1e-12) return f;
+  // U(x) = p_o + lambda(x) (x - p_o), lambda(x) = n.(p_ca - p_o) / n.(x - p_o).
+  const double lambda = n_ca_.dot(p_ca_ - p_o) / h_e;
+  const Vec3 centre = p_o + lambda * (e - p_o) - p_ca_;
+  f.cx = centre.dot(u_ca_) / pitch_ - 0.5;
+  f.cy = centre.dot(v_ca_) / pitch_ - 0.5;
+  // The Jacobian of U over the lens disk at its centre (mm of uv-plane per mm of lens), and the
+  // disk of the same area.
+  const double r = 0.5 * camera_.params().aperture_mm;
+  auto d_u = [&](const Vec3& axis) {
+    const double d_lambda = -lambda * n_ca_.dot(axis) / h_e;
+    return Vec3(lambda * axis + d_lambda * (e - p_o));
+  };
+  const Vec3 du = d_u(camera_.u_c()), dv = d_u(camera_.v_c());
+  const double det = du.dot(u_ca_) * dv.dot(v_ca_) - du.dot(v_ca_) * dv.dot(u_ca_);
+  f.radius = r * std::sqrt(std::abs(det)) / pitch_;
+  f.valid = std::isfinite(f.cx) && std::isfinite(f.cy) && std::isfinite(f.radius);
+  return f;
+}
+
+void CameraIntegratorFrame::AddNode(const Level& level, int a, int b, float w, float* out) const {
+  a = std::clamp(a, 0, level.nx - 1);
+  b = std::clamp(b, 0, level.ny - 1);
+  const std::size_t cameras = std::size_t(rows_) * std::size_t(cols_);
+  const float* node = level.weights.data() + (std::size_t(b) * level.nx + a) * cameras;
+  for (std::size_t c = 0; c < cameras; ++c) out[c] += w * node[c];
+}
+
+void CameraIntegratorFrame::AddLevel(const Level& level, double cx, double cy, float w,
+                                     float* out) const {
+  const double x = cx * kPerPitch - level.x0, y = cy * kPerPitch - level.y0;
+  const int a = int(std::floor(x)), b = int(std::floor(y));
+  const float fx = float(x - a), fy = float(y - b);
+  AddNode(level, a, b, w * (1 - fx) * (1 - fy), out);
+  AddNode(level, a + 1, b, w * fx * (1 - fy), out);
+  AddNode(level, a, b + 1, w * (1 - fx) * fy, out);
+  AddNode(level, a + 1, b + 1, w * fx * fy, out);
+}
+
+void CameraIntegratorFrame::Weights(const Footprint& f, float* weights) const {
+  const std::size_t cameras = std::size_t(rows_) * std::size_t(cols_);
+  std::fill(weights, weights + cameras, 0.0f);
+  if (!f.valid || levels_.empty()) return;
+  // A footprint that does not meet the window has no weights (its lattice neighbours may).
+  const double dx = std::max({-0.5 - f.cx, f.cx - (cols_ - 0.5), 0.0});
+  const double dy = std::max({-0.5 - f.cy, f.cy - (rows_ - 0.5), 0.0});
+  if (dx * dx + dy * dy >= f.radius * f.radius && (dx > 0 || dy > 0)) return;
+  if (levels_.size() == 1) {
+    AddLevel(levels_[0], f.cx, f.cy, 1.0f, weights);
+  } else {
+    // Linear between the two radius levels around the footprint's.
+    const double step = levels_[1].radius - levels_[0].radius;
+    const double x =
+        std::clamp((f.radius - levels_[0].radius) / step, 0.0, double(levels_.size() - 1));
+    const int k = std::min(int(x), int(levels_.size()) - 2);
+    const float t = float(x - k);
+    AddLevel(levels_[std::size_t(k)], f.cx, f.cy, 1 - t, weights);
+    AddLevel(levels_[std::size_t(k) + 1], f.cx, f.cy, t, weights);
+  }
+  // Renormalised: next to the window's edge a lattice neighbour may miss the window (no
+  // weights) while the footprint itself meets it.
+  float total = 0.0f;
+  for (std::size_t c = 0; c < cameras; ++c) total += weights[c];
+  if (total > 0.0f)
+    for (std::size_t c = 0; c < cameras; ++c) weights[c] /= total;
+}
+
+std::size_t CameraIntegratorFrame::table_nodes() const {
+  std::size_t n = 0;
+  for (const Level& level : levels_) n += std::size_t(level.nx) * std::size_t(level.ny);
+  return n;
+}
+
+}  // namespace lfcam

@@ -1,0 +1,66 @@
+#pragma once
+// The cameras integrator (`lfcam render --integrator cameras`): the limit, as the lens sampling
+// rate grows, of the paper's lens-sample estimator with the focal-plane lookup
+// (../shared/DESIGN.md, "The aperture integral"). Each camera under the aperture's footprint on
+// the uv-plane is read once, along its own ray through the pixel's point in focus p_o, weighted
+// by the share of the footprint its bilinear hat receives (render/aperture_weights.h). No lens
+// samples: noise-free, no lens-sample aliasing, the cost grows with the cameras under the
+// aperture.
+//
+// The footprint is the lens disk projected through p_o onto the uv-plane. When the lens is
+// parallel to the array (the camera looks along -n_ca, wherever the eye is) it is a disk, and
+// the weights are exact. A lens turned away from the array's plane projects to a slightly
+// elliptical (projective) footprint, taken here as the disk of the same area at the same
+// centre: close, not exact (the tests measure the gap).
+//
+// The weights are tabulated once per frame on a lattice of footprint centres (8 a pitch) and
+// radii, over the part of the lattice the frame's pixels reach, and interpolated between.
+#include <vector>
+
+#include "lfcam/core/lightfield.h"
+#include "lfcam/render/virtual_camera.h"
+
+namespace lfcam {
+
+// Where one pixel's aperture footprint lies on the uv-plane, in grid units (camera (col, row)
+// at the integer point (col, row)).
+struct Footprint {
+  double cx = 0, cy = 0, radius = 0;
+  bool valid = false;  // false when the lens's lines through p_o run parallel to the array
+};
+
+class CameraIntegratorFrame {
+ public:
+  // Sets up the frame: every pixel's footprint, and the weights for all of them. `camera` must
+  // outlive the frame.
+  CameraIntegratorFrame(const LightField& lf, const VirtualCamera& camera);
+
+  // Pixel (i, j)'s footprint (j bottom-up, as VirtualCamera counts).
+  Footprint FootprintOf(int i, int j) const;
+  // The weights of every camera (row-major, rows x cols) for a footprint; sums to 1, or all 0
+  // when the footprint misses the window.
+  void Weights(const Footprint& footprint, float* weights) const;
+
+  bool exact() const { return exact_; }  // the lens is parallel to the array
+  std::size_t table_nodes() const;       // footprint centres tabulated, over all radii
+
+ private:
+  const VirtualCamera& camera_;
+  int rows_, cols_;
+  double pitch_;
+  Vec3 p_ca_, u_ca_, v_ca_, n_ca_;
+  bool exact_ = true;
+  // Radius levels; each a lattice of centres with a dense weight vector per node.
+  struct Level {
+    double radius = 0;
+    int x0 = 0, y0 = 0, nx = 0, ny = 0;  // lattice nodes (x0 + a) / kPerPitch, (y0 + b) / ...
+    std::vector<float> weights;          // nx * ny * rows * cols
+  };
+  std::vector<Level> levels_;  // increasing radius
+
+  // Adds (w times) the weights of lattice node (a, b) of `level` to `out`.
+  void AddNode(const Level& level, int a, int b, float w, float* out) const;
+  void AddLevel(const Level& level, double cx, double cy, float w, float* out) const;
+};
+
+}  // namespace lfcam
