@@ -88,7 +88,7 @@ BoardSpec ParseBoardSpec(const std::string& text) {
   const std::string usage =
       charuco ? fmt::format(
                     "'{}' is not a ChArUco board charuco:SXxSY@SQUARE/MARKER[:DICTIONARY] "
-                    "(squares, square and marker sizes in mm, for example charuco:11x8@30/22)",
+                    "(squares, square and marker sizes in mm, for example charuco:11x9@30/22)",
                     text)
               : fmt::format(
                     "'{}' is not a chessboard COLSxROWS@MM (inner corners, square size in mm, "

@@ -53,7 +53,7 @@ struct BoardSpec {
 // Parses "COLSxROWS@MM" (for example "10x7@30"): 2..200 inner corners a side, one count odd
 // and the other even, a square of 0.1..10000 mm. Or, for a ChArUco board, OpenCV's own way of
 // sizing it, by squares: "charuco:SXxSY@SQUARE/MARKER[:DICTIONARY]" (for example
-// "charuco:11x8@30/22", which has 10x7 inner corners; the dictionary defaults to 5X5_100 and
+// "charuco:11x9@30/22", which has 10x8 inner corners; the dictionary defaults to 5X5_100 and
 // must hold a marker for every white square). Throws lfcam::Error saying what is wrong.
 BoardSpec ParseBoardSpec(const std::string& text);
 

@@ -39,9 +39,10 @@ void AddBuildCommand(CLI::App& app) {
   command->add_option("--shot", flags->shot, "The session's shot to build (scene, or world)")
       ->capture_default_str();
   command
-      ->add_option("--resampling", flags->resampling,
-                   "Kernel between camera pixels: linear (closest to the truth sample by sample), cubic "
-                   "(sharper renders) or lanczos4")
+      ->add_option(
+          "--resampling", flags->resampling,
+          "Kernel between camera pixels: linear (closest to the truth sample by sample), cubic "
+          "(sharper renders) or lanczos4")
       ->capture_default_str();
   command->add_flag("--allow-missing", flags->allow_missing,
                     "Fill cameras without an image or calibration from their nearest neighbours "

@@ -14,9 +14,10 @@
 namespace lfcam::cli {
 namespace {
 
-// Both 11 x 8 squares of 30 mm (10 x 7 inner corners).
+// 30 mm squares: a chessboard of 10 x 7 inner corners; a ChArUco board of 11 x 9 squares (an
+// odd row count: OpenCV 4.6 lays out boards of an even row count unlike other versions).
 constexpr const char* kDefaultChessboard = "10x7@30";
-constexpr const char* kDefaultCharuco = "charuco:11x8@30/22";
+constexpr const char* kDefaultCharuco = "charuco:11x9@30/22";
 
 }  // namespace
 
