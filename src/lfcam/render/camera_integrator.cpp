@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "lfcam/render/aperture_weights.h"
 
 namespace lfcam {
 namespace {
@@ -46,6 +45,10 @@ CameraIntegratorFrame::CameraIntegratorFrame(const LightField& lf, const Virtual
       y_hi = std::max(y_hi, f.cy);
     }
   if (r_lo > r_hi) return;  // no pixel reaches the array
+  if (exact_ && x_hi - x_lo < 1e-9 && y_hi - y_lo < 1e-9 && r_hi - r_lo < 1e-9) {
+    uniform_ = DiskCameraWeights(r_lo, x_lo, y_lo, cols_, rows_);
+    if (!uniform_.empty()) return;
+  }
   std::vector<double> radii;
   if (r_hi - r_lo < 1e-9) {
     radii = {r_lo};
@@ -124,7 +127,13 @@ void CameraIntegratorFrame::AddLevel(const Level& level, double cx, double cy, f
 void CameraIntegratorFrame::Weights(const Footprint& f, float* weights) const {
   const std::size_t cameras = std::size_t(rows_) * std::size_t(cols_);
   std::fill(weights, weights + cameras, 0.0f);
-  if (!f.valid || levels_.empty()) return;
+  if (!f.valid) return;
+  if (!uniform_.empty()) {
+    for (const GridCameraWeight& c : uniform_)
+      weights[std::size_t(c.row * cols_ + c.col)] = float(c.weight);
+    return;
+  }
+  if (levels_.empty()) return;
   // A footprint that does not meet the window has no weights (its lattice neighbours may).
   const double dx = std::max({-0.5 - f.cx, f.cx - (cols_ - 0.5), 0.0});
   const double dy = std::max({-0.5 - f.cy, f.cy - (rows_ - 0.5), 0.0});

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "lfcam/core/lightfield.h"
+#include "lfcam/render/aperture_weights.h"
 #include "lfcam/render/virtual_camera.h"
 
 namespace lfcam {
@@ -42,6 +43,9 @@ class CameraIntegratorFrame {
   void Weights(const Footprint& footprint, float* weights) const;
 
   bool exact() const { return exact_; }  // the lens is parallel to the array
+  // When every pixel has the same footprint (the eye on the array's plane, looking along its
+  // normal: each footprint is the lens itself), its cameras and weights, else empty.
+  const std::vector<GridCameraWeight>& uniform_weights() const { return uniform_; }
   std::size_t table_nodes() const;       // footprint centres tabulated, over all radii
 
  private:
@@ -57,6 +61,7 @@ class CameraIntegratorFrame {
     std::vector<float> weights;          // nx * ny * rows * cols
   };
   std::vector<Level> levels_;  // increasing radius
+  std::vector<GridCameraWeight> uniform_;
 
   // Adds (w times) the weights of lattice node (a, b) of `level` to `out`.
   void AddNode(const Level& level, int a, int b, float w, float* out) const;

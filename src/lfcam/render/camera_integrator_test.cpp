@@ -110,7 +110,14 @@ TEST(CameraIntegrator, FootprintsAreTheLensSeenThroughThePointInFocus) {
     EXPECT_NEAR(f.cy, 4.5, 1e-9);
     EXPECT_NEAR(f.radius, 2.0, 1e-9);
   }
-  EXPECT_LE(on.table_nodes(), 16u);
+  // The same footprint for every pixel: one set of weights, no table.
+  EXPECT_EQ(on.table_nodes(), 0u);
+  double sum = 0;
+  for (const auto& c : on.uniform_weights()) sum += c.weight;
+  EXPECT_NEAR(sum, 1.0, 1e-12);
+  // The hats a disk of radius 2 around (4.5, 4.5) meets: cameras 2..7 each way, less the four
+  // corners (their hats end 2.12 pitches from the centre).
+  EXPECT_EQ(on.uniform_weights().size(), 32u);
   // 1000 mm behind the array, focused 4000 mm ahead: the lens shrinks by 3000 / 4000 on its way
   // to the array, and the footprint follows the pixel's point in focus a quarter of the way.
   p.eye = Vec3(300, 275, 4600);

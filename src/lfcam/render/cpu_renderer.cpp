@@ -36,9 +36,15 @@ int RenderPixelCameras(const Frame& frame, int i, int j, float* weights, float o
   // The lens samples' lines through p_o that leave the sampled st domain miss; here the pixel's
   // central line decides for the whole pixel (the same away from the domain's edges).
   if (!frame.sampler.MeetsStDomain(camera.e_c(), direction)) return 0;
-  frame.cameras->Weights(frame.cameras->FootprintOf(i, j), weights);
   float sum[3] = {0, 0, 0};
   int read = 0;
+  if (const auto& uniform = frame.cameras->uniform_weights(); !uniform.empty()) {
+    for (const GridCameraWeight& c : uniform)
+      frame.sampler.AccumulateFocused(c.row, c.col, p_o, float(c.weight), sum);
+    for (int k = 0; k < 3; ++k) out[k] = sum[k];
+    return int(uniform.size());
+  }
+  frame.cameras->Weights(frame.cameras->FootprintOf(i, j), weights);
   const int cols = frame.sampler.cols();
   for (int c = 0; c < frame.view_count; ++c) {
     if (!(weights[c] > 0.0f)) continue;
