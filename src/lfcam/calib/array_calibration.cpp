@@ -84,18 +84,17 @@ ArrayCalibration CalibrateArray(const std::filesystem::path& dir, const CaptureM
     if (shot.kind == ShotKind::kIntrinsics) intrinsics_images += shot.images.size();
     if (shot.kind == ShotKind::kWorld) world_images += shot.images.size();
   }
-  if (intrinsics_found == 0)
-    throw Error(fmt::format(
-        "the intrinsics board {} was found in none of the {} intrinsics images: is that the "
-        "board in the photographs? (--intrinsics-board: a chessboard COLSxROWS@MM counts inner "
-        "corners, a ChArUco board charuco:SXxSY@SQUARE/MARKER squares)",
-        out.intrinsics_board.spec(), intrinsics_images));
-  if (world_found == 0)
-    throw Error(fmt::format(
-        "the world board {} was found in none of the {} world images: is that the board in the "
-        "photographs? (--world-board: a chessboard COLSxROWS@MM counts inner corners, a ChArUco "
+  // A board found nowhere: most likely not the board the flag or manifest names.
+  auto found_nowhere = [](const std::string& kind, const BoardSpec& board, std::size_t images) {
+    return Error(fmt::format(
+        "the {} board {} was found in none of the {} {} images: is that the board in the "
+        "photographs? (--{}-board: a chessboard COLSxROWS@MM counts inner corners, a ChArUco "
         "board charuco:SXxSY@SQUARE/MARKER squares)",
-        out.world_board.spec(), world_images));
+        kind, board.spec(), images, kind, kind));
+  };
+  if (intrinsics_found == 0)
+    throw found_nowhere("intrinsics", out.intrinsics_board, intrinsics_images);
+  if (world_found == 0) throw found_nowhere("world", out.world_board, world_images);
   const int shots = found.intrinsics_shots;
   out.cameras.resize(found.cameras.size());
   for (std::size_t i = 0; i < found.cameras.size(); ++i) {

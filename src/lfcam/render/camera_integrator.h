@@ -46,7 +46,7 @@ class CameraIntegratorFrame {
   // When every pixel has the same footprint (the eye on the array's plane, looking along its
   // normal: each footprint is the lens itself), its cameras and weights, else empty.
   const std::vector<GridCameraWeight>& uniform_weights() const { return uniform_; }
-  std::size_t table_nodes() const;       // footprint centres tabulated, over all radii
+  std::size_t table_nodes() const;  // footprint centres tabulated, over all radii
 
  private:
   const VirtualCamera& camera_;
