@@ -11,6 +11,8 @@ packages=(
   # ChArUco boards (the aruco module); Debian's package also brings VTK and Open MPI along.
   libopencv-contrib-dev
   libceres-dev libjpeg62-turbo-dev
+  # The vectorised CPU renderer (Google Highway: portable SIMD, dispatched at run time).
+  libhwy-dev
   libgtest-dev libgmock-dev
 )
 # scripts/fuzz.sh: clang and its libFuzzer runtime.

@@ -289,9 +289,11 @@ TEST_F(Cli, ProgressIsDrawnOnlyOnATerminal) {
     GTEST_SKIP() << "util-linux `script` is not installed: no terminal to test with";
   // Under a pseudo-terminal the bar is drawn; --quiet silences it.
   const std::string tty = "script -qec '" + std::string(LFCAM_CLI_PATH) + " ";
-  run = Lfcam("x >/dev/null; " + tty + render + Path("q.png") + " --repeat 40' /dev/null");
+  run = Lfcam("x >/dev/null; " + tty + render + Path("q.png") +
+              " --repeat 40 --reference' /dev/null");
   EXPECT_NE(run.output.find("rendering"), std::string::npos) << run.output;
-  run = Lfcam("x >/dev/null; " + tty + render + Path("q.png") + " --repeat 40 --quiet' /dev/null");
+  run = Lfcam("x >/dev/null; " + tty + render + Path("q.png") +
+              " --repeat 40 --reference --quiet' /dev/null");
   EXPECT_EQ(run.output.find("rendering"), std::string::npos) << run.output;
 }
 

@@ -47,13 +47,15 @@ void AddRenderCommand(CLI::App& app) {
     CameraFlags camera;
     int threads = 0, repeat = 1;
     std::string interpolation = "quadrilinear", integrator = "lens-samples";
-    bool quiet = false;
+    bool quiet = false, reference = false;
   };
   auto flags = std::make_shared<Flags>();
   render->add_option("lightfield", flags->input, "Light field file (.lf)")->required();
   render->add_option("--out", flags->out, "Image to write (.png or .jpg)")->required();
   flags->camera.AddTo(*render);
-  render->add_option("--threads", flags->threads, "Worker threads (0 = all cores, 1 = reference)")
+  render
+      ->add_option("--threads", flags->threads,
+                   "Worker threads (0 = all cores; 1 = the paper's single-threaded CPU column)")
       ->capture_default_str()
       ->check(CLI::Range(0, kMaxThreads));
   render->add_option("--repeat", flags->repeat, "Render this many times and report the median")
@@ -75,10 +77,15 @@ void AddRenderCommand(CLI::App& app) {
                    "noisy at low --lens-rate) or focal-plane (each camera read along its own ray "
                    "through the point in focus; Isaksen et al. 2000)")
       ->capture_default_str();
+  render->add_flag("--reference", flags->reference,
+                   "Use the scalar reference renderer (one pixel at a time, every ray in double "
+                   "precision; the definition the vectorised renderer is tested against) instead "
+                   "of the vectorised one");
   render->callback([flags] {
     // Every flag and output is checked before the light field is read.
     CpuRenderOptions options;
     options.threads = flags->threads;
+    options.reference = flags->reference;
     options.interpolation =
         FlagValue("--interpolation", [&] { return InterpolationFromString(flags->interpolation); });
     options.integrator =
@@ -123,13 +130,14 @@ void AddRenderCommand(CLI::App& app) {
                  "image is black; check --eye and --look-at against `lfcam info {}`\n",
                  flags->input);
     fmt::print(
-        "wrote {}: {}; {:.1f} ms (median of {}), {:.1f}% of rays hit the slab\n", flags->out,
+        "wrote {}: {}; {:.1f} ms (median of {}, {} renderer), {:.1f}% of rays hit the slab\n",
+        flags->out,
         DescribeCamera(
             camera, options.integrator == Integrator::kCameras
                         ? fmt::format("cameras integrator, {:.1f} cameras a pixel",
                                       double(result.rays_hit) / (camera.width() * camera.height()))
                         : fmt::format("{} lens samples", camera.lens_samples().size())),
-        times_ms[times_ms.size() / 2], flags->repeat,
+        times_ms[times_ms.size() / 2], flags->repeat, result.path,
         100.0 * double(result.rays_hit) / double(std::max(1LL, result.rays)));
   });
 }

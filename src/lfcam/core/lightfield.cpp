@@ -23,9 +23,10 @@ SampleType SampleTypeFromString(const std::string& name) {
 std::size_t BytesPerChannel(SampleType type) { return type == SampleType::kSrgb8 ? 1 : 2; }
 
 SampleBuffer SampleBuffer::Allocate(std::size_t size) {
-  std::shared_ptr<std::uint8_t[]> owned(new std::uint8_t[size]);
+  std::shared_ptr<std::uint8_t[]> owned(new std::uint8_t[size + kReadableBefore]);
+  std::fill_n(owned.get(), kReadableBefore, std::uint8_t{0});
   SampleBuffer b;
-  b.data_ = owned.get();
+  b.data_ = owned.get() + kReadableBefore;
   b.keep_alive_ = std::move(owned);
   b.size_ = size;
   b.writable_ = true;

@@ -42,9 +42,13 @@ struct LightFieldDims {
   bool operator==(const LightFieldDims&) const = default;
 };
 
-// A contiguous byte block that either owns its memory or keeps a file mapping alive.
+// A contiguous byte block that either owns its memory or keeps a file mapping alive. At least
+// kReadableBefore bytes before data() are readable too (the vectorised renderer reads each
+// sample as the 32-bit word that ends with it): an allocated buffer reserves them, a file
+// mapping has the file's header there.
 class SampleBuffer {
  public:
+  static constexpr std::size_t kReadableBefore = 16;
   SampleBuffer() = default;
   static SampleBuffer Allocate(std::size_t size);  // uninitialised
   static SampleBuffer Wrap(std::shared_ptr<void> keep_alive, std::uint8_t* data, std::size_t size,

@@ -1,6 +1,8 @@
 #include "lfcam/render/camera_integrator.h"
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 #include <algorithm>
 #include <cmath>
@@ -25,24 +27,47 @@ CameraIntegratorFrame::CameraIntegratorFrame(const LightField& lf, const Virtual
   exact_ = std::abs(n_ca_.dot(camera.u_c())) < kParallelTolerance &&
            std::abs(n_ca_.dot(camera.v_c())) < kParallelTolerance;
 
-  // Every pixel's footprint: the range of centres and radii the table must cover.
-  double r_lo = 1e300, r_hi = -1e300;
-  double x_lo = 1e300, x_hi = -1e300, y_lo = 1e300, y_hi = -1e300;
-  for (int j = 0; j < camera.height(); ++j)
-    for (int i = 0; i < camera.width(); ++i) {
-      const Footprint f = FootprintOf(i, j);
-      if (!f.valid) continue;
-      // Centres farther than the radius plus a pitch from the window have no weights.
-      if (f.cx < -1.5 - f.radius || f.cx > cols_ + 0.5 + f.radius || f.cy < -1.5 - f.radius ||
-          f.cy > rows_ + 0.5 + f.radius)
-        continue;
-      r_lo = std::min(r_lo, f.radius);
-      r_hi = std::max(r_hi, f.radius);
-      x_lo = std::min(x_lo, f.cx);
-      x_hi = std::max(x_hi, f.cx);
-      y_lo = std::min(y_lo, f.cy);
-      y_hi = std::max(y_hi, f.cy);
+  // The eye on the array's plane with the lens parallel to it: every footprint is the lens.
+  if (exact_ && std::abs(n_ca_.dot(camera.e_c() - p_ca_)) < kParallelTolerance * pitch_) {
+    const Footprint f = FootprintOf(0, 0);
+    if (f.valid) {
+      uniform_ = DiskCameraWeights(f.radius, f.cx, f.cy, cols_, rows_);
+      if (!uniform_.empty()) return;
     }
+  }
+  // Every pixel's footprint: the range of centres and radii the table must cover.
+  struct Range {
+    double r_lo = 1e300, r_hi = -1e300, x_lo = 1e300, x_hi = -1e300, y_lo = 1e300, y_hi = -1e300;
+    void Add(const Range& o) {
+      r_lo = std::min(r_lo, o.r_lo);
+      r_hi = std::max(r_hi, o.r_hi);
+      x_lo = std::min(x_lo, o.x_lo);
+      x_hi = std::max(x_hi, o.x_hi);
+      y_lo = std::min(y_lo, o.y_lo);
+      y_hi = std::max(y_hi, o.y_hi);
+    }
+  };
+  const Range range = tbb::parallel_reduce(
+      tbb::blocked_range<int>(0, camera.height()), Range{},
+      [&](const tbb::blocked_range<int>& rows, Range r) {
+        for (int j = rows.begin(); j != rows.end(); ++j)
+          for (int i = 0; i < camera.width(); ++i) {
+            const Footprint f = FootprintOf(i, j);
+            if (!f.valid) continue;
+            // Centres farther than the radius plus a pitch from the window have no weights.
+            if (f.cx < -1.5 - f.radius || f.cx > cols_ + 0.5 + f.radius || f.cy < -1.5 - f.radius ||
+                f.cy > rows_ + 0.5 + f.radius)
+              continue;
+            r.Add({f.radius, f.radius, f.cx, f.cx, f.cy, f.cy});
+          }
+        return r;
+      },
+      [](Range a, const Range& b) {
+        a.Add(b);
+        return a;
+      });
+  const double r_lo = range.r_lo, r_hi = range.r_hi, x_lo = range.x_lo, x_hi = range.x_hi,
+               y_lo = range.y_lo, y_hi = range.y_hi;
   if (r_lo > r_hi) return;  // no pixel reaches the array
   if (exact_ && x_hi - x_lo < 1e-9 && y_hi - y_lo < 1e-9 && r_hi - r_lo < 1e-9) {
     uniform_ = DiskCameraWeights(r_lo, x_lo, y_lo, cols_, rows_);

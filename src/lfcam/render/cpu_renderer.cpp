@@ -1,6 +1,7 @@
 #include "lfcam/render/cpu_renderer.h"
 
 #include <fmt/format.h>
+#include <tbb/blocked_range.h>
 #include <tbb/blocked_range2d.h>
 #include <tbb/combinable.h>
 #include <tbb/parallel_for.h>
@@ -12,6 +13,10 @@
 
 #include "lfcam/core/error.h"
 #include "lfcam/render/camera_integrator.h"
+#include "lfcam/render/ray_setup.h"
+#include "lfcam/render/separable_frame.h"
+#include "lfcam/render/separable_kernels.h"
+#include "lfcam/render/simd_kernels.h"
 
 namespace lfcam {
 namespace {
@@ -79,10 +84,26 @@ int RenderPixel(const Frame& frame, int i, int j, float out[3]) {
   return hits;
 }
 
-}  // namespace
+// Runs `work` on the options' thread count (all cores when 0).
+template <typename F>
+void RunWithThreads(int threads, const F& work) {
+  if (threads > 0) {
+    tbb::task_arena arena(threads);
+    arena.execute(work);
+  } else {
+    work();
+  }
+}
 
-RenderResult RenderLightFieldCpu(const LightField& lf, const VirtualCamera& camera,
-                                 const CpuRenderOptions& options) {
+RenderResult NewResult(const VirtualCamera& camera) {
+  RenderResult result;
+  result.image = cv::Mat(camera.height(), camera.width(), CV_32FC3);
+  result.hit_mask = cv::Mat(camera.height(), camera.width(), CV_8UC1);
+  return result;
+}
+
+RenderResult RenderReference(const LightField& lf, const VirtualCamera& camera,
+                             const CpuRenderOptions& options) {
   const LightFieldSampler sampler(lf);
   Frame frame{camera, sampler, {}, options.interpolation};
   for (const Vec2& disk : camera.lens_samples())
@@ -98,9 +119,7 @@ RenderResult RenderLightFieldCpu(const LightField& lf, const VirtualCamera& came
     }
   }
 
-  RenderResult result;
-  result.image = cv::Mat(camera.height(), camera.width(), CV_32FC3);
-  result.hit_mask = cv::Mat(camera.height(), camera.width(), CV_8UC1);
+  RenderResult result = NewResult(camera);
   tbb::combinable<long long> hits_per_thread(0);
   const auto render_tile = [&](const tbb::blocked_range2d<int>& tile) {
     long long hits_here = 0;
@@ -120,21 +139,150 @@ RenderResult RenderLightFieldCpu(const LightField& lf, const VirtualCamera& came
     if (options.progress)
       options.progress(std::int64_t(tile.rows().size()) * std::int64_t(tile.cols().size()));
   };
-  const auto render = [&] {
+  RunWithThreads(options.threads, [&] {
     tbb::parallel_for(tbb::blocked_range2d<int>(0, camera.height(), 16, 0, camera.width(), 16),
                       render_tile);
-  };
-  if (options.threads > 0) {
-    tbb::task_arena arena(options.threads);
-    arena.execute(render);
-  } else {
-    render();
-  }
+  });
   result.rays_hit = hits_per_thread.combine(std::plus<>());
+  result.path = "reference";
   result.rays = frame.cameras ? result.rays_hit
                               : static_cast<long long>(camera.width()) * camera.height() *
                                     static_cast<long long>(frame.lens_points.size());
   return result;
+}
+
+// A row's buffers for the vectorised kernels, one set per task.
+struct RowBuffers {
+  std::vector<float> r, g, b;
+  std::vector<std::int32_t> count;
+  std::vector<float> pixel_weights;  // [camera][pixel], the cameras integrator off-plane
+  std::vector<float> weights;        // one pixel's, every camera
+  std::vector<int> cameras;          // those with a weight somewhere in the row
+  explicit RowBuffers(int padded) : r(padded), g(padded), b(padded), count(padded) {}
+  RowOutput output() { return {r.data(), g.data(), b.data(), count.data()}; }
+};
+
+// The cameras integrator's per-pixel weights for row j (a footprint per pixel), camera-major.
+void FillPixelWeights(const CameraIntegratorFrame& frame, int views, int width, int j,
+                      RowBuffers& buffers) {
+  const int padded = PaddedRowWidth(width);
+  buffers.pixel_weights.assign(std::size_t(views) * padded, 0.0f);
+  buffers.weights.resize(std::size_t(views));
+  std::vector<char> used(std::size_t(views), 0);
+  for (int i = 0; i < width; ++i) {
+    frame.Weights(frame.FootprintOf(i, j), buffers.weights.data());
+    for (int c = 0; c < views; ++c) {
+      const float w = buffers.weights[std::size_t(c)];
+      if (!(w > 0.0f)) continue;
+      buffers.pixel_weights[std::size_t(c) * padded + i] = w;
+      used[std::size_t(c)] = 1;
+    }
+  }
+  buffers.cameras.clear();
+  for (int c = 0; c < views; ++c)
+    if (used[std::size_t(c)]) buffers.cameras.push_back(c);
+}
+
+// The separable frame: bands of rows, each a weighted sum of resized views.
+RenderResult RenderSeparable(const LightField& lf, const VirtualCamera& camera,
+                             const SeparableFrame& frame, const CpuRenderOptions& options) {
+  const RaySetup setup(lf, camera, false);
+  const int width = camera.width(), padded = PaddedRowWidth(width);
+  constexpr int kBandRows = 32;
+  RenderResult result = NewResult(camera);
+  tbb::combinable<long long> hits_per_thread(0);
+  const auto render_band = [&](const tbb::blocked_range<int>& band) {
+    const int j0 = band.begin(), j1 = band.end();
+    const std::size_t n = std::size_t(j1 - j0) * std::size_t(padded);
+    std::vector<float> r(n), g(n), b(n);
+    std::vector<std::int32_t> count(n);
+    RenderSeparableBand(frame, setup, j0, j1, {r.data(), g.data(), b.data(), count.data()});
+    long long hits_here = 0;
+    for (int j = j0; j < j1; ++j) {
+      const std::size_t at = std::size_t(j - j0) * std::size_t(padded);
+      const int row = camera.image_row(j);
+      auto* out = result.image.ptr<cv::Vec3f>(row);
+      auto* mask = result.hit_mask.ptr<std::uint8_t>(row);
+      for (int i = 0; i < width; ++i) {
+        const std::size_t k = at + std::size_t(i);
+        out[i] = {r[k], g[k], b[k]};
+        mask[i] = count[k] > 0 ? 255 : 0;
+        hits_here += count[k];
+      }
+    }
+    hits_per_thread.local() += hits_here;
+    if (options.progress) options.progress(std::int64_t(j1 - j0) * width);
+  };
+  RunWithThreads(options.threads, [&] {
+    tbb::parallel_for(tbb::blocked_range<int>(0, camera.height(), kBandRows), render_band);
+  });
+  result.rays_hit = hits_per_thread.combine(std::plus<>());
+  result.path = fmt::format("separable ({})", KernelTargetName());
+  result.rays = frame.eye >= 0 ? result.rays_hit
+                               : static_cast<long long>(width) * camera.height() *
+                                     static_cast<long long>(camera.lens_samples().size());
+  return result;
+}
+
+RenderResult RenderFast(const LightField& lf, const VirtualCamera& camera,
+                        const CpuRenderOptions& options) {
+  if (const auto separable = MakeSeparableFrame(lf, camera, options))
+    return RenderSeparable(lf, camera, *separable, options);
+  const bool lens_samples = options.integrator == Integrator::kLensSamples || camera.is_pinhole();
+  // A pinhole's limit under the cameras integrator is the focal-plane lookup itself.
+  const bool focal_plane = options.integrator == Integrator::kCameras ||
+                           options.interpolation == Interpolation::kFocalPlane;
+  const RaySetup setup(lf, camera, lens_samples);
+  std::optional<CameraIntegratorFrame> cameras;
+  if (!lens_samples) cameras.emplace(lf, camera);
+  const int views = lf.dims().rows * lf.dims().cols;
+  const int width = camera.width(), padded = PaddedRowWidth(width);
+
+  RenderResult result = NewResult(camera);
+  tbb::combinable<long long> hits_per_thread(0);
+  const auto render_rows = [&](const tbb::blocked_range<int>& rows) {
+    RowBuffers buffers(padded);
+    long long hits_here = 0;
+    for (int j = rows.begin(); j != rows.end(); ++j) {
+      if (lens_samples) {
+        RenderRowLensSamples(setup, focal_plane, j, buffers.output());
+      } else if (const auto& uniform = cameras->uniform_weights(); !uniform.empty()) {
+        RenderRowCameras(setup, uniform.data(), int(uniform.size()), nullptr, nullptr, 0, j,
+                         buffers.output());
+      } else {
+        FillPixelWeights(*cameras, views, width, j, buffers);
+        RenderRowCameras(setup, nullptr, 0, buffers.pixel_weights.data(), buffers.cameras.data(),
+                         int(buffers.cameras.size()), j, buffers.output());
+      }
+      const int row = camera.image_row(j);
+      auto* out = result.image.ptr<cv::Vec3f>(row);
+      auto* mask = result.hit_mask.ptr<std::uint8_t>(row);
+      for (int i = 0; i < width; ++i) {
+        out[i] = {buffers.r[std::size_t(i)], buffers.g[std::size_t(i)], buffers.b[std::size_t(i)]};
+        mask[i] = buffers.count[std::size_t(i)] > 0 ? 255 : 0;
+        hits_here += buffers.count[std::size_t(i)];
+      }
+    }
+    hits_per_thread.local() += hits_here;
+    if (options.progress) options.progress(std::int64_t(rows.size()) * width);
+  };
+  RunWithThreads(options.threads, [&] {
+    tbb::parallel_for(tbb::blocked_range<int>(0, camera.height(), 4), render_rows);
+  });
+  result.rays_hit = hits_per_thread.combine(std::plus<>());
+  result.path = fmt::format("rows ({})", KernelTargetName());
+  result.rays = lens_samples ? static_cast<long long>(width) * camera.height() *
+                                   static_cast<long long>(setup.lens_uv.size())
+                             : result.rays_hit;
+  return result;
+}
+
+}  // namespace
+
+RenderResult RenderLightFieldCpu(const LightField& lf, const VirtualCamera& camera,
+                                 const CpuRenderOptions& options) {
+  if (options.reference || !FastKernelsSupport(lf)) return RenderReference(lf, camera, options);
+  return RenderFast(lf, camera, options);
 }
 
 std::string ToString(Integrator integrator) {

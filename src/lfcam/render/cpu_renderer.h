@@ -1,6 +1,9 @@
 #pragma once
 // The CPU light field renderer: the paper's virtual camera (§6) over a light field,
-// multithreaded with oneTBB. It is the readable reference the GPU path is checked against.
+// multithreaded with oneTBB. Two implementations of one model: the scalar reference (one
+// pixel at a time, every ray intersected in double precision: the readable definition the
+// other paths are tested against) and the fast path (whole rows at a time from the frame's
+// projective ray set-up, vectorised with Highway: render/simd_kernels.h).
 #include <opencv2/core.hpp>
 #include <string>
 
@@ -24,6 +27,9 @@ struct CpuRenderOptions {
   Interpolation interpolation = Interpolation::kQuadrilinear;  // the paper's (lens samples)
   ProgressCallback progress;  // told the pixels done, tile by tile (may be empty)
   Integrator integrator = Integrator::kLensSamples;
+  // The scalar reference instead of the vectorised kernels (which also stand back for it where
+  // they cannot read the light field: see FastKernelsSupport).
+  bool reference = false;
 };
 
 struct RenderResult {
@@ -31,6 +37,10 @@ struct RenderResult {
   cv::Mat hit_mask;        // CV_8UC1: 255 where at least one ray hit the slab
   long long rays = 0;      // rays cast (cameras integrator: camera reads)
   long long rays_hit = 0;  // rays that met both windows (cameras integrator: camera reads)
+  // How it was rendered: "reference", or the vectorised kernels as "separable" (whole views
+  // resized: render/separable_frame.h) or "rows" (per-pixel rays), with the instruction set,
+  // for example "separable (AVX3)".
+  std::string path;
 };
 
 RenderResult RenderLightFieldCpu(const LightField& lf, const VirtualCamera& camera,

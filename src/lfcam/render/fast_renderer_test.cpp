@@ -1,0 +1,166 @@
+// The vectorised renderer against the scalar reference: the same model, the same sample
+// positions, float rounding only. Every case runs on every instruction set Highway compiled
+// that this machine can run (on an AVX-512 machine: AVX3, AVX2, SSE4, SSSE3 and the emulated
+// baseline), so a kernel bug on any of them fails here.
+#include <gtest/gtest.h>
+#include <hwy/targets.h>
+
+#include <iostream>
+#include <opencv2/core.hpp>
+#include <string>
+#include <vector>
+
+#include "lfcam/render/cpu_renderer.h"
+#include "lfcam/render/simd_kernels.h"
+#include "lfcam/sim/scene.h"
+#include "lfcam/sim/simulate_lightfield.h"
+
+namespace lfcam {
+namespace {
+
+// The paper scene, small: 6 x 7 cameras (rows x cols) of 96 x 88 samples, 8-bit sRGB, from
+// cameras a little off the ideal grid (as a calibrated array's are).
+const LightField& SmallPaperLightField() {
+  static const LightField lf = [] {
+    SimulateLightFieldOptions o;
+    o.rows = 6;
+    o.cols = 7;
+    o.n_s = 96;
+    o.n_t = 88;
+    o.st_domain = StDomain{-1.2, -1.2, 1.2, 1.2};
+    o.supersampling = 1;
+    const Scene scene = MakePaperScene();
+    LightField ideal = SimulateLightField(scene, o);
+    for (int r = 0; r < o.rows; ++r)
+      for (int c = 0; c < o.cols; ++c)
+        o.camera_centers.push_back(ideal.camera_center(r, c) + Vec3(0.7 * std::sin(r + 2.0 * c),
+                                                                    0.5 * std::cos(3.0 * r - c),
+                                                                    0));
+    return SimulateLightField(scene, o);
+  }();
+  return lf;
+}
+
+struct Case {
+  std::string name;
+  VirtualCameraParams camera;
+  Integrator integrator;
+  Interpolation interpolation;
+  std::string path;  // the fast path expected: "separable" or "rows"
+};
+
+std::vector<Case> Cases() {
+  const LightField& lf = SmallPaperLightField();
+  const Vec3 centre = lf.slab().uv.center();
+  VirtualCameraParams base;
+  base.width = 61;  // not a multiple of any vector length
+  base.height = 47;
+  base.eye = centre;
+  base.look_at = centre - Vec3(0, 0, 4000);
+  base.focal_length_mm = 300;
+  base.focus_distance_mm = 3900;
+  base.lens_rate = 2;
+  std::vector<Case> cases;
+  const auto add = [&](const std::string& name, VirtualCameraParams p, const std::string& path) {
+    for (const Integrator integrator : {Integrator::kLensSamples, Integrator::kCameras})
+      for (const Interpolation interpolation :
+           {Interpolation::kQuadrilinear, Interpolation::kFocalPlane}) {
+        if (integrator == Integrator::kCameras && interpolation == Interpolation::kQuadrilinear)
+          continue;  // the cameras integrator has one lookup
+        cases.push_back({name + " " + ToString(integrator) + " " + ToString(interpolation), p,
+                         integrator, interpolation, path});
+      }
+  };
+  VirtualCameraParams p = base;
+  add("pinhole at the centre", p, "separable");
+  p.aperture_mm = 90;
+  add("aperture at the centre", p, "separable");
+  p.breathing = false;
+  p.eye = centre + Vec3(-40, 23, 0);
+  p.look_at = p.eye - Vec3(0, 0, 1000);
+  add("aperture elsewhere on the array, no breathing", p, "separable");
+  // Wide enough that rays leave the st domain, and lens samples leave the array window.
+  p = base;
+  p.focal_length_mm = 60;
+  p.aperture_mm = 120;
+  p.eye = centre + Vec3(60, -50, 0);
+  p.look_at = p.eye - Vec3(0, 0, 1000);
+  add("wide, off-centre, past the edges", p, "separable");
+  p = base;
+  p.eye = centre + Vec3(30, -20, 700);
+  p.aperture_mm = 70;
+  add("aperture in front of the array", p, "rows");
+  p.look_at = centre + Vec3(250, 150, -3000);
+  add("aperture in front of the array, turned", p, "rows");
+  p.aperture_mm = 0;
+  add("pinhole turned", p, "rows");
+  p.breathing = false;
+  p.focal_length_mm = 80;
+  p.eye = centre + Vec3(0, 0, -500);
+  add("pinhole behind the array, wide, no breathing", p, "rows");
+  return cases;
+}
+
+// The instruction sets compiled in that this machine runs.
+std::vector<std::int64_t> Targets() {
+  std::vector<std::int64_t> targets;
+  for (std::int64_t t = 1; t != 0 && t <= HWY_TARGETS; t <<= 1)
+    if ((HWY_TARGETS & t) && (hwy::SupportedTargets() & t)) targets.push_back(t);
+  return targets;
+}
+
+TEST(FastRenderer, AgreesWithTheScalarReferenceOnEveryInstructionSet) {
+  const LightField& lf = SmallPaperLightField();
+  const std::vector<std::int64_t> targets = Targets();
+  ASSERT_FALSE(targets.empty());
+  std::cout << "instruction sets:";
+  for (const std::int64_t t : targets) std::cout << " " << hwy::TargetName(t);
+  std::cout << "\n";
+  double worst = 0;
+  for (const Case& c : Cases()) {
+    const VirtualCamera camera(c.camera);
+    CpuRenderOptions reference_options;
+    reference_options.integrator = c.integrator;
+    reference_options.interpolation = c.interpolation;
+    reference_options.reference = true;
+    reference_options.threads = 1;
+    const RenderResult reference = RenderLightFieldCpu(lf, camera, reference_options);
+    ASSERT_EQ(reference.path, "reference");
+    ASSERT_GT(reference.rays_hit, 0) << c.name;
+    CpuRenderOptions fast_options = reference_options;
+    fast_options.reference = false;
+    fast_options.threads = 0;
+    for (const std::int64_t target : targets) {
+      hwy::SetSupportedTargetsForTest(target);
+      const RenderResult fast = RenderLightFieldCpu(lf, camera, fast_options);
+      const std::string where = c.name + " on " + hwy::TargetName(target);
+      EXPECT_EQ(fast.path, c.path + " (" + hwy::TargetName(target) + ")") << where;
+      const double difference = cv::norm(fast.image, reference.image, cv::NORM_INF);
+      worst = std::max(worst, difference);
+      EXPECT_LE(difference, 1.0 / 255) << where;
+      EXPECT_EQ(cv::countNonZero(fast.hit_mask != reference.hit_mask), 0) << where;
+      EXPECT_EQ(fast.rays, reference.rays) << where;
+      EXPECT_EQ(fast.rays_hit, reference.rays_hit) << where;
+    }
+    hwy::SetSupportedTargetsForTest(0);
+  }
+  std::cout << "largest difference from the reference: " << worst * 255 << " / 255\n";
+}
+
+TEST(FastRenderer, LeavesHalfFloatLightFieldsToTheReference) {
+  SimulateLightFieldOptions o;
+  o.rows = o.cols = 3;
+  o.n_s = 24;
+  o.n_t = 22;
+  o.supersampling = 1;
+  o.sample_type = SampleType::kLinearF16;
+  const LightField lf = SimulateLightField(MakePaperScene(), o);
+  VirtualCameraParams p;
+  p.width = p.height = 16;
+  p.eye = lf.slab().uv.center();
+  p.look_at = p.eye - Vec3(0, 0, 1000);
+  EXPECT_EQ(RenderLightFieldCpu(lf, VirtualCamera(p)).path, "reference");
+}
+
+}  // namespace
+}  // namespace lfcam

@@ -1,0 +1,273 @@
+// Highway's dynamic dispatch: this file is compiled once per instruction set (foreach_target.h
+// includes it again for each), and HWY_DYNAMIC_DISPATCH picks the best the machine supports.
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "lfcam/render/simd_kernels.cpp"
+#include "lfcam/render/simd_kernels.h"
+
+#include <hwy/foreach_target.h>  // must come before highway.h
+#include <hwy/highway.h>
+
+HWY_BEFORE_NAMESPACE();
+namespace lfcam {
+namespace HWY_NAMESPACE {
+namespace {
+
+namespace hn = hwy::HWY_NAMESPACE;
+using DF = hn::ScalableTag<float>;
+using DI = hn::RebindToSigned<DF>;
+using VF = hn::Vec<DF>;
+using VI = hn::Vec<DI>;
+using MF = hn::Mask<DF>;
+
+// A plane's three functions of p_o for the chunk's pixels.
+struct ChunkPoints {
+  VF n, x, y;
+};
+
+// The functions of one row, at pixel 0 and per pixel, in float.
+struct RowAffine {
+  float at0, step;
+  VF At(const VF& i) const { return hn::MulAdd(hn::Set(DF(), step), i, hn::Set(DF(), at0)); }
+};
+struct RowPlane {
+  RowAffine n, x, y;
+  RowPlane(const PlaneAffines& p, int j)
+      : n{float(p.n.at00 + p.n.dj * j), float(p.n.di)},
+        x{float(p.x.at00 + p.x.dj * j), float(p.x.di)},
+        y{float(p.y.at00 + p.y.dj * j), float(p.y.di)} {}
+  ChunkPoints At(const VF& i) const { return {n.At(i), x.At(i), y.At(i)}; }
+};
+
+// An origin's constants, one per lane (the same in every lane, or gathered per camera).
+struct OriginLanes {
+  VF num, n_o, x_o, y_o, x0, y0;
+  static OriginLanes Broadcast(const OriginConstants& c) {
+    const DF d;
+    return {hn::Set(d, c.num), hn::Set(d, c.n_o), hn::Set(d, c.x_o),
+            hn::Set(d, c.y_o), hn::Set(d, c.x0),  hn::Set(d, c.y0)};
+  }
+  static OriginLanes Gather(const RaySetup& s, const VI& camera) {
+    const DF d;
+    return {
+        hn::GatherIndex(d, s.cam_num.data(), camera), hn::GatherIndex(d, s.cam_n_o.data(), camera),
+        hn::GatherIndex(d, s.cam_x_o.data(), camera), hn::GatherIndex(d, s.cam_y_o.data(), camera),
+        hn::GatherIndex(d, s.cam_x0.data(), camera),  hn::GatherIndex(d, s.cam_y0.data(), camera)};
+  }
+};
+
+// Plane coordinates of the lines from the origin through p_o; `valid` is false where a line
+// runs parallel to the plane (its coordinates are then 0, a safe index).
+struct PlaneHit {
+  VF x, y;
+  MF valid;
+};
+PlaneHit Project(const ChunkPoints& p, const OriginLanes& o) {
+  const DF d;
+  const VF den = hn::Sub(p.n, o.n_o);
+  const MF valid = hn::Ne(den, hn::Zero(d));
+  const VF lambda = hn::Div(o.num, hn::IfThenElse(valid, den, hn::Set(d, 1.0f)));
+  VF x = hn::MulAdd(lambda, hn::Sub(p.x, o.x_o), o.x0);
+  VF y = hn::MulAdd(lambda, hn::Sub(p.y, o.y_o), o.y0);
+  // Not a number (an infinite lambda times zero) reads as a miss too.
+  const MF finite = hn::And(hn::Eq(x, x), hn::Eq(y, y));
+  const MF ok = hn::And(valid, finite);
+  return {hn::IfThenElseZero(ok, x), hn::IfThenElseZero(ok, y), ok};
+}
+
+// Whether coordinates lie in [-0.5, n - 0.5] along both axes (the window or the st domain).
+MF Inside(const PlaneHit& h, int nx, int ny) {
+  const DF d;
+  const VF lo = hn::Set(d, -0.5f);
+  const MF in_x = hn::And(hn::Ge(h.x, lo), hn::Le(h.x, hn::Set(d, float(nx) - 0.5f)));
+  const MF in_y = hn::And(hn::Ge(h.y, lo), hn::Le(h.y, hn::Set(d, float(ny) - 0.5f)));
+  return hn::And(h.valid, hn::And(in_x, in_y));
+}
+
+// AxisLerp, per lane: x clamped to [0, n - 1], split into i0, the step to i1 (0 or 1) and w1.
+struct LerpLanes {
+  VI i0, step;
+  VF w1;
+};
+LerpLanes Lerp(const VF& x_in, int n) {
+  const DF d;
+  const DI di;
+  const VF x = hn::Min(hn::Max(x_in, hn::Zero(d)), hn::Set(d, float(n - 1)));
+  const VI i0 = hn::Max(hn::Min(hn::ConvertTo(di, x), hn::Set(di, n - 2)), hn::Zero(di));
+  const VI i1 = hn::Min(hn::Add(i0, hn::Set(di, 1)), hn::Set(di, n - 1));
+  return {i0, hn::Sub(i1, i0), hn::Sub(x, hn::ConvertTo(d, i0))};
+}
+
+struct Rgb {
+  VF r, g, b;
+};
+
+// Decodes one channel (the byte at bit `shift` of each word) through the table.
+template <int kShift>
+VF Channel(const float* decode, const VI& word) {
+  const DF d;
+  const DI di;
+  return hn::GatherIndex(d, decode, hn::And(hn::ShiftRight<kShift>(word), hn::Set(di, 0xFF)));
+}
+
+void AddTap(const RaySetup& s, const VI& offset, const VF& weight, Rgb& acc) {
+  // Each sample's R, G, B are the top three bytes of the word that ends at its B byte (the
+  // light field guarantees readable bytes before its first sample).
+  const VI word =
+      hn::GatherOffset(DI(), reinterpret_cast<const std::int32_t*>(s.samples - 1), offset);
+  acc.r = hn::MulAdd(weight, Channel<8>(s.decode, word), acc.r);
+  acc.g = hn::MulAdd(weight, Channel<16>(s.decode, word), acc.g);
+  acc.b = hn::MulAdd(weight, Channel<24>(s.decode, word), acc.b);
+}
+
+// acc += w * the bilinear st lookup at (k, l) in the views at byte offsets `view`.
+void AddView(const RaySetup& s, const VI& view, const LerpLanes& k, const LerpLanes& l, const VF& w,
+             Rgb& acc) {
+  const DF d;
+  const DI di;
+  const int row_bytes = s.n_s * 3;
+  const VI o00 =
+      hn::Add(view, hn::Add(hn::Mul(l.i0, hn::Set(di, row_bytes)), hn::Mul(k.i0, hn::Set(di, 3))));
+  const VI dk = hn::Mul(k.step, hn::Set(di, 3)), dl = hn::Mul(l.step, hn::Set(di, row_bytes));
+  const VF one = hn::Set(d, 1.0f);
+  const VF wk0 = hn::Sub(one, k.w1), wl0 = hn::Sub(one, l.w1);
+  const VF w_l0 = hn::Mul(w, wl0), w_l1 = hn::Mul(w, l.w1);
+  AddTap(s, o00, hn::Mul(w_l0, wk0), acc);
+  AddTap(s, hn::Add(o00, dk), hn::Mul(w_l0, k.w1), acc);
+  AddTap(s, hn::Add(o00, dl), hn::Mul(w_l1, wk0), acc);
+  AddTap(s, hn::Add(hn::Add(o00, dl), dk), hn::Mul(w_l1, k.w1), acc);
+}
+
+VI ViewOffset(const RaySetup& s, const VI& row, const VI& col) {
+  const DI di;
+  const VI index = hn::Add(hn::Mul(row, hn::Set(di, s.cols)), col);
+  return hn::Mul(index, hn::Set(di, int(s.view_bytes)));
+}
+
+// acc += w * camera `index`'s own line through p_o, read bilinearly (the focal-plane read).
+void AddFocused(const RaySetup& s, const ChunkPoints& st, const VI& index, const OriginLanes& cam,
+                const VF& w, Rgb& acc) {
+  const PlaneHit h = Project(st, cam);
+  const VI view = hn::Mul(index, hn::Set(DI(), int(s.view_bytes)));
+  AddView(s, view, Lerp(h.x, s.n_s), Lerp(h.y, s.n_t), hn::IfThenElseZero(h.valid, w), acc);
+}
+
+void StoreChunk(const RowOutput& out, int i, const Rgb& acc, const VI& count) {
+  const DF d;
+  hn::StoreU(acc.r, d, out.r + i);
+  hn::StoreU(acc.g, d, out.g + i);
+  hn::StoreU(acc.b, d, out.b + i);
+  hn::StoreU(count, DI(), out.count + i);
+}
+
+}  // namespace
+
+void RenderRowLensSamplesT(const RaySetup& s, bool focal_plane, int j, const RowOutput& out) {
+  const DF d;
+  const DI di;
+  const RowPlane uv(s.uv, j), st(s.st, j);
+  const int lanes = int(hn::Lanes(d));
+  const int padded = PaddedRowWidth(s.width);
+  for (int i = 0; i < padded; i += lanes) {
+    const VF pixel = hn::Iota(d, float(i));
+    const ChunkPoints p_uv = uv.At(pixel), p_st = st.At(pixel);
+    Rgb sum{hn::Zero(d), hn::Zero(d), hn::Zero(d)};
+    VI hits = hn::Zero(di);
+    for (std::size_t n = 0; n < s.lens_uv.size(); ++n) {
+      const PlaneHit at_uv = Project(p_uv, OriginLanes::Broadcast(s.lens_uv[n]));
+      const PlaneHit at_st = Project(p_st, OriginLanes::Broadcast(s.lens_st[n]));
+      const MF hit = hn::And(Inside(at_uv, s.cols, s.rows), Inside(at_st, s.n_s, s.n_t));
+      if (hn::AllFalse(d, hit)) continue;
+      hits = hn::Add(hits, hn::IfThenElseZero(hn::RebindMask(di, hit), hn::Set(di, 1)));
+      const LerpLanes c = Lerp(at_uv.x, s.cols), r = Lerp(at_uv.y, s.rows);
+      const VF one = hn::Set(d, 1.0f);
+      const VF wr[2] = {hn::IfThenElseZero(hit, hn::Sub(one, r.w1)), hn::IfThenElseZero(hit, r.w1)};
+      const VF wc[2] = {hn::Sub(one, c.w1), c.w1};
+      const VI rows[2] = {r.i0, hn::Add(r.i0, r.step)}, cols[2] = {c.i0, hn::Add(c.i0, c.step)};
+      if (!focal_plane) {
+        const LerpLanes k = Lerp(at_st.x, s.n_s), l = Lerp(at_st.y, s.n_t);
+        for (int a = 0; a < 2; ++a)
+          for (int b = 0; b < 2; ++b)
+            AddView(s, ViewOffset(s, rows[a], cols[b]), k, l, hn::Mul(wr[a], wc[b]), sum);
+      } else {
+        for (int a = 0; a < 2; ++a)
+          for (int b = 0; b < 2; ++b) {
+            const VI index = hn::Add(hn::Mul(rows[a], hn::Set(di, s.cols)), cols[b]);
+            AddFocused(s, p_st, index, OriginLanes::Gather(s, index), hn::Mul(wr[a], wc[b]), sum);
+          }
+      }
+    }
+    const MF any = hn::RebindMask(d, hn::Gt(hits, hn::Zero(di)));
+    const VF inv = hn::IfThenElseZero(any, hn::Div(hn::Set(d, 1.0f), hn::ConvertTo(d, hits)));
+    StoreChunk(out, i, {hn::Mul(sum.r, inv), hn::Mul(sum.g, inv), hn::Mul(sum.b, inv)}, hits);
+  }
+}
+
+void RenderRowCamerasT(const RaySetup& s, const GridCameraWeight* uniform, int uniform_count,
+                       const float* pixel_weights, const int* cameras, int camera_count, int j,
+                       const RowOutput& out) {
+  const DF d;
+  const DI di;
+  const RowPlane st(s.st, j);
+  const int lanes = int(hn::Lanes(d));
+  const int padded = PaddedRowWidth(s.width);
+  const OriginLanes eye = OriginLanes::Broadcast(s.eye_st);
+  for (int i = 0; i < padded; i += lanes) {
+    const VF pixel = hn::Iota(d, float(i));
+    const ChunkPoints p_st = st.At(pixel);
+    Rgb sum{hn::Zero(d), hn::Zero(d), hn::Zero(d)};
+    VI reads = hn::Zero(di);
+    // The pixel's central line decides whether the pixel meets the sampled st domain.
+    const MF in_domain = Inside(Project(p_st, eye), s.n_s, s.n_t);
+    if (!hn::AllFalse(d, in_domain)) {
+      if (uniform_count > 0) {
+        for (int n = 0; n < uniform_count; ++n) {
+          const int index = uniform[n].row * s.cols + uniform[n].col;
+          AddFocused(s, p_st, hn::Set(di, index), OriginLanes::Broadcast(s.camera_st(index)),
+                     hn::IfThenElseZero(in_domain, hn::Set(d, float(uniform[n].weight))), sum);
+        }
+        reads = hn::IfThenElseZero(hn::RebindMask(di, in_domain), hn::Set(di, uniform_count));
+      } else {
+        const int padded_width = PaddedRowWidth(s.width);
+        for (int n = 0; n < camera_count; ++n) {
+          const int index = cameras[n];
+          const VF w = hn::LoadU(d, pixel_weights + std::size_t(index) * padded_width + i);
+          const MF read = hn::And(in_domain, hn::Gt(w, hn::Zero(d)));
+          if (hn::AllFalse(d, read)) continue;
+          AddFocused(s, p_st, hn::Set(di, index), OriginLanes::Broadcast(s.camera_st(index)),
+                     hn::IfThenElseZero(read, w), sum);
+          reads = hn::Add(reads, hn::IfThenElseZero(hn::RebindMask(di, read), hn::Set(di, 1)));
+        }
+      }
+    }
+    StoreChunk(out, i, sum, reads);
+  }
+}
+
+const char* TargetNameT() { return hwy::TargetName(HWY_TARGET); }
+
+}  // namespace HWY_NAMESPACE
+}  // namespace lfcam
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace lfcam {
+
+HWY_EXPORT(RenderRowLensSamplesT);
+HWY_EXPORT(RenderRowCamerasT);
+HWY_EXPORT(TargetNameT);
+
+void RenderRowLensSamples(const RaySetup& setup, bool focal_plane, int j, const RowOutput& out) {
+  HWY_DYNAMIC_DISPATCH(RenderRowLensSamplesT)(setup, focal_plane, j, out);
+}
+
+void RenderRowCameras(const RaySetup& setup, const GridCameraWeight* uniform, int uniform_count,
+                      const float* pixel_weights, const int* cameras, int camera_count, int j,
+                      const RowOutput& out) {
+  HWY_DYNAMIC_DISPATCH(RenderRowCamerasT)
+  (setup, uniform, uniform_count, pixel_weights, cameras, camera_count, j, out);
+}
+
+std::string KernelTargetName() { return HWY_DYNAMIC_DISPATCH(TargetNameT)(); }
+
+}  // namespace lfcam
+#endif
