@@ -13,5 +13,6 @@ void AddOracleCommand(CLI::App& app);
 void AddInfoCommand(CLI::App& app);
 void AddCompareCommand(CLI::App& app);
 void AddMontageCommand(CLI::App& app);
+void AddBenchCommand(CLI::App& app);
 
 }  // namespace lfcam::cli

@@ -36,6 +36,8 @@ int Report(bool json, int status, const std::string& message) {
 }
 
 bool WantsJson(int argc, char** argv) {
+  // `bench --json FILE` names an output file; its messages stay text.
+  if (argc > 1 && std::strcmp(argv[1], "bench") == 0) return false;
   for (int i = 1; i < argc; ++i)
     if (std::strcmp(argv[i], "--json") == 0) return true;
   return false;
@@ -82,6 +84,7 @@ int main(int argc, char** argv) {
   lfcam::cli::AddInfoCommand(app);
   lfcam::cli::AddCompareCommand(app);
   lfcam::cli::AddMontageCommand(app);
+  lfcam::cli::AddBenchCommand(app);
   AddHelpCommand(app);
   if (argc <= 1) {
     fmt::print("{}", app.help());

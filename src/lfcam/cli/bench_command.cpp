@@ -1,0 +1,157 @@
+// `lfcam bench table1|table2`: the paper's Tables 1 and 2 on this machine, beside the paper's.
+#include <fmt/core.h>
+#include <tbb/info.h>
+
+#include <chrono>
+#include <fstream>
+#include <memory>
+#include <string>
+#include <thread>
+
+#include "lfcam/cli/commands.h"
+#include "lfcam/cli/parse.h"
+#include "lfcam/core/atomic_file.h"
+#include "lfcam/core/error.h"
+#include "lfcam/core/lightfield_file.h"
+#include "lfcam/core/progress.h"
+#include "lfcam/render/benchmark_tables.h"
+#include "lfcam/render/simd_kernels.h"
+#include "lfcam/sim/scene.h"
+#include "lfcam/sim/simulate_lightfield.h"
+
+namespace lfcam::cli {
+namespace {
+
+std::string CpuModel() {
+  std::ifstream in("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind("model name", 0) == 0) {
+      const auto colon = line.find(':');
+      if (colon != std::string::npos) return line.substr(colon + 2);
+    }
+  return "unknown CPU";
+}
+
+// The paper's light field: the `paper` scene seen by a 10 x 10 array, 1248 x 1152 samples a
+// view over the st domain [-1.2, 1.2]^2, one ray a sample.
+LightField PaperBenchLightField(bool quiet) {
+  SimulateLightFieldOptions o;
+  o.st_domain = StDomain{-1.2, -1.2, 1.2, 1.2};
+  o.supersampling = 1;
+  ProgressBar progress("simulating the 10x10x1248x1152 light field", 100, ProgressWanted(quiet));
+  if (const auto advance = progress.callback()) o.progress = [advance](int, int) { advance(1); };
+  LightField lf = SimulateLightField(MakePaperScene(), o);
+  progress.finish();
+  return lf;
+}
+
+std::string Ms(double ms) {
+  return ms < 10 ? fmt::format("{:.2f}", ms) : fmt::format("{:.1f}", ms);
+}
+
+}  // namespace
+
+void AddBenchCommand(CLI::App& app) {
+  auto* bench = app.add_subcommand(
+      "bench", "Time the renderer on the paper's Tables 1 and 2, beside the paper's figures");
+  struct Flags {
+    std::string table, lightfield, json, integrator = "lens-samples",
+                                         interpolation = "quadrilinear";
+    int min_runs = 5;
+    double min_seconds = 1.0;
+    bool reference = false, quiet = false;
+  };
+  auto flags = std::make_shared<Flags>();
+  bench
+      ->add_option("table", flags->table,
+                   "table1 (pinhole, 768^2 to 2048^2, one thread and all cores) or table2 "
+                   "(1024^2, f 444, d_o 4000, d_l 64..256 x gamma 1..16)")
+      ->required()
+      ->check(CLI::IsMember({"table1", "table2"}));
+  bench->add_option("--lightfield", flags->lightfield,
+                    "Light field to time on (default: simulate the paper's, 10x10 views of "
+                    "1248x1152 samples over [-1.2, 1.2]^2, in memory: about 12 s on 2 cores)");
+  bench->add_option("--json", flags->json, "Also write one record per cell to this JSON file");
+  bench
+      ->add_option("--integrator", flags->integrator,
+                   "table2: lens-samples (the paper's) or cameras (their limit; gamma plays no "
+                   "part, so one cell per aperture)")
+      ->capture_default_str();
+  bench
+      ->add_option("--interpolation", flags->interpolation,
+                   "table2 with lens-samples: quadrilinear (the paper's) or focal-plane")
+      ->capture_default_str();
+  bench->add_flag("--reference", flags->reference, "Time the scalar reference renderer instead");
+  bench
+      ->add_option("--min-runs", flags->min_runs, "Timed runs per cell, at least (after a warm-up)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1000));
+  bench
+      ->add_option("--min-seconds", flags->min_seconds,
+                   "Keep timing a cell until this many seconds are spent (at most 50 runs)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 600.0));
+  bench->add_flag("--quiet", flags->quiet, "No progress bar (it is drawn only on a terminal)");
+  bench->callback([flags] {
+    const Integrator integrator =
+        FlagValue("--integrator", [&] { return IntegratorFromString(flags->integrator); });
+    const Interpolation interpolation =
+        FlagValue("--interpolation", [&] { return InterpolationFromString(flags->interpolation); });
+    if (flags->table == "table1" &&
+        (integrator != Integrator::kLensSamples || interpolation != Interpolation::kQuadrilinear))
+      throw UsageError(
+          "--integrator/--interpolation: table1 is the paper's pinhole with its quadrilinear "
+          "lookup; they apply to table2");
+    if (!flags->json.empty()) RequireWritableOutput(flags->json, "--json");
+
+    const LightField lf = flags->lightfield.empty() ? PaperBenchLightField(flags->quiet)
+                                                    : ReadLightField(flags->lightfield);
+    const int cores = tbb::info::default_concurrency();
+    const std::string cpu = CpuModel();
+    fmt::print("machine: {}, {} cores, {} vectors; light field {}x{} views of {}x{} samples\n", cpu,
+               cores, KernelTargetName(), lf.dims().rows, lf.dims().cols, lf.dims().n_s,
+               lf.dims().n_t);
+    const std::vector<BenchCell> cells =
+        flags->table == "table1" ? Table1Cells() : Table2Cells(integrator, interpolation);
+    const TimingPolicy policy{flags->min_runs, std::max(50, flags->min_runs), flags->min_seconds};
+    nlohmann::json records = nlohmann::json::array();
+    if (flags->table == "table1")
+      fmt::print("{:>6} {:>8} {:>10} {:>5} | {:>12} {:>8} | {:>9} {:>8}\n", "image", "threads",
+                 "ms", "runs", "paper CPU 1t", "ratio", "paper GPU", "ratio");
+    else
+      fmt::print("{:>5} {:>6} {:>14} {:>10} {:>5} | {:>9} {:>8}\n", "d_l", "gamma", "integrator",
+                 "ms", "runs", "paper GPU", "ratio");
+    for (BenchCell cell : cells) {
+      const Timing t = TimeCell(lf, cell, flags->reference, policy);
+      if (cell.threads == 0) cell.threads = cores;
+      // ratio: the paper's time over ours (above 1: faster than the paper).
+      const double ratio = cell.paper_ms ? *cell.paper_ms / t.median_ms : 0;
+      if (cell.table == "table1")
+        fmt::print("{:>6} {:>8} {:>10} {:>5} | {:>12} {:>7.1f}x | {:>9} {:>7.2f}x\n",
+                   fmt::format("{}^2", cell.size), cell.threads, Ms(t.median_ms), t.runs,
+                   Ms(*cell.paper_ms), ratio, Ms(*cell.paper_gpu_ms),
+                   *cell.paper_gpu_ms / t.median_ms);
+      else
+        fmt::print("{:>5} {:>6} {:>14} {:>10} {:>5} | {:>9} {:>7.2f}x\n", cell.aperture_mm,
+                   cell.lens_rate ? fmt::format("{}", *cell.lens_rate) : std::string("-"),
+                   ToString(cell.integrator), Ms(t.median_ms), t.runs, Ms(*cell.paper_ms), ratio);
+      std::fflush(stdout);
+      records.push_back(CellRecord(cell, t));
+    }
+    fmt::print("ratio: the paper's time over this machine's (above 1: faster than the paper)\n");
+    if (!flags->json.empty()) {
+      nlohmann::json doc;
+      doc["machine"] = {{"cpu", cpu}, {"cores", cores}, {"vectors", KernelTargetName()}};
+      doc["light_field"] = flags->lightfield.empty() ? "simulated paper scene" : flags->lightfield;
+      doc["renderer"] = flags->reference ? "reference" : "fast";
+      doc["cells"] = std::move(records);
+      const std::string text = doc.dump(2) + "\n";
+      WriteFileAtomically(flags->json,
+                          {reinterpret_cast<const std::uint8_t*>(text.data()), text.size()});
+      fmt::print("wrote {}\n", flags->json);
+    }
+  });
+}
+
+}  // namespace lfcam::cli
