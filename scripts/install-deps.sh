@@ -15,6 +15,10 @@ packages=(
   libhwy-dev
   libgtest-dev libgmock-dev
 )
+# bench/peer.sh: the NumPy + OpenCV peer renderer.
+if [ "${LFCAM_PEER_DEPS:-0}" = 1 ]; then
+  packages+=(python3-numpy python3-opencv)
+fi
 # scripts/fuzz.sh: clang and its libFuzzer runtime.
 if [ "${LFCAM_FUZZ_DEPS:-0}" = 1 ]; then
   packages+=(clang-14 libclang-rt-14-dev)

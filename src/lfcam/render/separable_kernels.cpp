@@ -35,23 +35,26 @@ struct Planes {
   }
 };
 
-// Decodes `count` samples of one st row (RGB bytes from `bytes`) into linear planes.
+// Decodes `count` samples of one st row (RGB bytes from `bytes`) into linear planes: the bytes
+// are loaded in order (the prefetcher streams them) and decoded through the table.
 void DecodeRow(const RaySetup& s, const std::uint8_t* bytes, int count, float* r, float* g,
                float* b) {
   const DF d;
   const DI di;
+  const hn::Rebind<std::uint8_t, DF> d8;
   const int lanes = int(hn::Lanes(d));
-  const VI last = hn::Set(di, (count - 1) * 3);
-  // Each sample's bytes end the 32-bit word read one byte before it (readable: see
-  // SampleBuffer); lanes past the end read the last sample again.
-  const auto* words = reinterpret_cast<const std::int32_t*>(bytes - 1);
-  const VI mask = hn::Set(di, 0xFF);
+  std::uint8_t tail[3 * HWY_MAX_BYTES / 4] = {};
   for (int k = 0; k < count; k += lanes) {
-    const VI offset = hn::Min(hn::Mul(hn::Iota(di, k), hn::Set(di, 3)), last);
-    const VI word = hn::GatherOffset(di, words, offset);
-    hn::StoreU(hn::GatherIndex(d, s.decode, hn::And(hn::ShiftRight<8>(word), mask)), d, r + k);
-    hn::StoreU(hn::GatherIndex(d, s.decode, hn::And(hn::ShiftRight<16>(word), mask)), d, g + k);
-    hn::StoreU(hn::GatherIndex(d, s.decode, hn::And(hn::ShiftRight<24>(word), mask)), d, b + k);
+    const std::uint8_t* at = bytes + std::size_t(k) * 3;
+    if (k + lanes > count) {  // the last samples: never read past the row
+      std::copy_n(at, std::size_t(count - k) * 3, tail);
+      at = tail;
+    }
+    hn::Vec<decltype(d8)> v0, v1, v2;
+    hn::LoadInterleaved3(d8, at, v0, v1, v2);
+    hn::StoreU(hn::GatherIndex(d, s.decode, hn::PromoteTo(di, v0)), d, r + k);
+    hn::StoreU(hn::GatherIndex(d, s.decode, hn::PromoteTo(di, v1)), d, g + k);
+    hn::StoreU(hn::GatherIndex(d, s.decode, hn::PromoteTo(di, v2)), d, b + k);
   }
 }
 
