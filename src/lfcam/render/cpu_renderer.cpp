@@ -188,7 +188,6 @@ RenderResult RenderSeparable(const LightField& lf, const VirtualCamera& camera,
                              const SeparableFrame& frame, const CpuRenderOptions& options) {
   const RaySetup setup(lf, camera, false);
   const int width = camera.width(), padded = PaddedRowWidth(width);
-  constexpr int kBandRows = 32;
   RenderResult result = NewResult(camera);
   tbb::combinable<long long> hits_per_thread(0);
   const auto render_band = [&](const tbb::blocked_range<int>& band) {
@@ -214,7 +213,7 @@ RenderResult RenderSeparable(const LightField& lf, const VirtualCamera& camera,
     if (options.progress) options.progress(std::int64_t(j1 - j0) * width);
   };
   RunWithThreads(options.threads, [&] {
-    tbb::parallel_for(tbb::blocked_range<int>(0, camera.height(), kBandRows), render_band);
+    tbb::parallel_for(tbb::blocked_range<int>(0, camera.height(), frame.band_rows), render_band);
   });
   result.rays_hit = hits_per_thread.combine(std::plus<>());
   result.path = fmt::format("separable ({})", KernelTargetName());

@@ -8,37 +8,31 @@
 // the cameras integrator's footprint is the lens itself. What varies is only where each camera
 // is read on the st-plane, and with the plane of focus parallel to the st-plane and the axes
 // aligned, the sample column k depends on the pixel column alone and the sample row l on the
-// pixel row alone, both affinely. Every term of the estimate is then a view resized by a
-// bilinear filter whose taps are separable: each needed sample row is decoded once, resampled
-// along the row, and blended into the output rows, with no per-pixel gathers from the whole
-// light field (render/separable_kernels.cpp).
+// pixel row alone. Every term of the estimate is then a view resized by a bilinear filter
+// whose taps are separable: each needed sample row is decoded once, resampled along the row,
+// and blended into the output rows, with no per-pixel gathers from the whole light field
+// (render/separable_kernels.cpp).
 //
-// The maps are computed per pixel column and row in double precision, exactly as the scalar
-// reference computes each ray; the result agrees with it up to float rounding.
-#include <cstdint>
+// A calibrated light field is separable only nearly: its st-plane (the world board) is turned
+// a little against the array, so k also drifts with the pixel row and l with the column, by a
+// few hundredths of a sample across the frame. Each pixel then still reads its own l (the
+// blend across sample rows is per pixel), and each sample row is resampled along k once, as
+// the pixel row that reads it needs it; the other rows that read it lie within 1 / |dl/dj| of
+// that one, so their k is off by at most the drift over that many rows. Where that exceeds
+// kSeparableTolerance samples, the frame is rendered row by row instead.
 #include <optional>
 #include <vector>
 
 #include "lfcam/core/lightfield.h"
 #include "lfcam/render/cpu_renderer.h"
+#include "lfcam/render/ray_setup.h"
 #include "lfcam/render/virtual_camera.h"
 
 namespace lfcam {
 
-// One axis's bilinear read for every pixel along it (columns or rows), for one line origin.
-struct AxisMap {
-  std::vector<std::int32_t> i0, i1;  // the two samples read (i1 = i0 or i0 + 1)
-  std::vector<float> w0, w1;         // their weights, zero where the line leaves the domain
-  std::vector<float> inside;         // 1 where the line meets the sampled domain along this axis
-  int lo = 0, hi = 0;                // every sample read lies in [lo, hi]
-};
-
-// The lines from one origin (a lens sample, a camera centre, the eye) through every pixel's
-// point in focus, mapped on the st-plane.
-struct SeparableOrigin {
-  AxisMap k;  // over the pixel columns i (padded to PaddedRowWidth with zero weights)
-  AxisMap l;  // over the pixel rows j (bottom-up)
-};
+// The most (in samples) a resampled row's k may stray from a pixel's own: well inside one 8-bit
+// step (1/255 = 0.0039 of the range a sample apart can span).
+inline constexpr double kSeparableTolerance = 2e-3;
 
 // view * weight, read along the lines from origin `read`, counted where the lines from origin
 // `mask` meet the st domain.
@@ -49,7 +43,9 @@ struct SeparableTerm {
 };
 
 struct SeparableFrame {
-  std::vector<SeparableOrigin> origins;
+  // The line origins (lens samples, camera centres, the eye) against the st-plane, and p_o.
+  std::vector<OriginConstants> origins;
+  PlaneAffines st;
   std::vector<SeparableTerm> terms;
   // Lens samples: the pixel is the mean over these origins (each a lens sample whose rays meet
   // the array window) of their terms, counted where each meets the st domain. The cameras
@@ -58,11 +54,13 @@ struct SeparableFrame {
   int eye = -1;
   int reads_per_pixel = 0;  // the cameras integrator: cameras read where the eye's line hits
   int width = 0, height = 0;
+  int band_rows = 32;    // pixel rows rendered together (a task)
+  double map_error = 0;  // samples: the most a resampled row's k strays from a pixel's own
 };
 
 // The separable form of the frame, or nothing when the frame is not separable (an eye off the
-// array's plane, a turned camera, a tilted st-plane) or the light field cannot be read by the
-// fast kernels.
+// array's plane, a turned camera, an st-plane turned too far) or the light field cannot be read
+// by the fast kernels.
 std::optional<SeparableFrame> MakeSeparableFrame(const LightField& lf, const VirtualCamera& camera,
                                                  const CpuRenderOptions& options);
 
