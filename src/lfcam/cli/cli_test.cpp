@@ -83,6 +83,46 @@ TEST_F(Cli, RenderAndOracleAgreeAndCompareReportsIt) {
   EXPECT_GT(c["psnr_db"].get<double>(), 20.0);
 }
 
+TEST_F(Cli, BenchTimesThePapersTablesBesideItsFigures) {
+  const std::string fast = " --lightfield " + Path("small.lf") + " --min-runs 1 --min-seconds 0";
+  CommandResult run = Lfcam("bench table1" + fast + " --json " + Path("t1.json"));
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("510.4"), std::string::npos) << run.output;  // the paper's 1024^2
+  std::ifstream t1_file(Path("t1.json"));
+  const auto t1 = nlohmann::json::parse(t1_file);
+  ASSERT_EQ(t1["cells"].size(), 8u);
+  for (const auto& cell : t1["cells"]) {
+    for (const char* field : {"table", "size", "threads", "integrator", "aperture_mm", "lens_rate",
+                              "median_ms", "paper_ms"})
+      EXPECT_TRUE(cell.contains(field)) << field;
+    EXPECT_EQ(cell["table"], "table1");
+    EXPECT_GT(cell["median_ms"].get<double>(), 0.0);
+    EXPECT_EQ(cell["aperture_mm"].get<double>(), 0.0);
+  }
+  EXPECT_EQ(t1["cells"][2]["size"], 1024);
+  EXPECT_EQ(t1["cells"][2]["threads"], 1);
+  EXPECT_DOUBLE_EQ(t1["cells"][2]["paper_ms"].get<double>(), 510.41);
+
+  run = Lfcam("bench table2 --integrator cameras" + fast + " --json " + Path("t2.json"));
+  ASSERT_EQ(run.status, 0) << run.output;
+  std::ifstream t2_file(Path("t2.json"));
+  const auto t2 = nlohmann::json::parse(t2_file);
+  ASSERT_EQ(t2["cells"].size(), 4u);  // one per aperture: gamma plays no part
+  EXPECT_EQ(t2["cells"][3]["aperture_mm"].get<double>(), 256.0);
+  EXPECT_TRUE(t2["cells"][3]["lens_rate"].is_null());
+  EXPECT_DOUBLE_EQ(t2["cells"][3]["paper_ms"].get<double>(), 87.38);
+  EXPECT_EQ(t2["cells"][3]["integrator"], "cameras");
+
+  // Bad flags are refused before any work.
+  EXPECT_EQ(Lfcam("bench table3" + fast).status, 2);
+  run = Lfcam("bench table1 --integrator cameras" + fast);
+  EXPECT_EQ(run.status, 2);
+  EXPECT_NE(run.output.find("table2"), std::string::npos) << run.output;
+  run = Lfcam("bench table1" + fast + " --json " + Path("no/such/dir/t.json"));
+  EXPECT_EQ(run.status, 2);
+  EXPECT_NE(run.output.find("--json"), std::string::npos) << run.output;
+}
+
 TEST_F(Cli, MontageLaysImagesOutOnASheet) {
   const std::string camera = " --size 40x30 ";
   ASSERT_EQ(Lfcam("render " + Path("small.lf") + camera + "--out " + Path("m1.png")).status, 0);
