@@ -25,7 +25,9 @@ inline CommandResult RunOnce(const std::string& command) {
 }
 
 inline CommandResult Lfcam(const std::string& args) {
-  const std::string command = std::string(LFCAM_CLI_PATH) + " " + args + " 2>&1";
+  // Appended, not concatenated: GCC 12 at -O3 warns falsely (-Warray-bounds) on the temporaries.
+  std::string command = LFCAM_CLI_PATH;
+  command.append(" ").append(args).append(" 2>&1");
   CommandResult run = RunOnce(command);
   // Under the asan preset, LeakSanitizer's own tracer now and then crashes at exit on a loaded
   // machine ("Tracer caught signal 11 ... LeakSanitizer has encountered a fatal error") after
