@@ -166,7 +166,13 @@ struct RowBuffers {
 void FillPixelWeights(const CameraIntegratorFrame& frame, int views, int width, int j,
                       RowBuffers& buffers) {
   const int padded = PaddedRowWidth(width);
-  buffers.pixel_weights.assign(std::size_t(views) * padded, 0.0f);
+  // Cleared once, then only where the previous row wrote.
+  if (buffers.pixel_weights.size() != std::size_t(views) * padded) {
+    buffers.pixel_weights.assign(std::size_t(views) * padded, 0.0f);
+  } else {
+    for (const int c : buffers.cameras)
+      std::fill_n(buffers.pixel_weights.begin() + std::ptrdiff_t(c) * padded, padded, 0.0f);
+  }
   buffers.weights.resize(std::size_t(views));
   std::vector<char> used(std::size_t(views), 0);
   for (int i = 0; i < width; ++i) {
@@ -245,13 +251,23 @@ RenderResult RenderFast(const LightField& lf, const VirtualCamera& camera,
     for (int j = rows.begin(); j != rows.end(); ++j) {
       if (lens_samples) {
         RenderRowLensSamples(setup, focal_plane, j, buffers.output());
-      } else if (const auto& uniform = cameras->uniform_weights(); !uniform.empty()) {
-        RenderRowCameras(setup, uniform.data(), int(uniform.size()), nullptr, nullptr, 0, j,
-                         buffers.output());
       } else {
-        FillPixelWeights(*cameras, views, width, j, buffers);
-        RenderRowCameras(setup, nullptr, 0, buffers.pixel_weights.data(), buffers.cameras.data(),
-                         int(buffers.cameras.size()), j, buffers.output());
+        // The cameras integrator: camera by camera through its few sample rows when they are
+        // few (the camera looks along the array's normal), else by gathers pixel by pixel.
+        const auto& uniform = cameras->uniform_weights();
+        const float* weights = nullptr;
+        if (uniform.empty()) {
+          FillPixelWeights(*cameras, views, width, j, buffers);
+          weights = buffers.pixel_weights.data();
+        }
+        const int n = int(uniform.empty() ? buffers.cameras.size() : uniform.size());
+        const GridCameraWeight* list = uniform.empty() ? nullptr : uniform.data();
+        const int* indices = uniform.empty() ? buffers.cameras.data() : nullptr;
+        const int listed = uniform.empty() ? 0 : n;
+        if (!RenderRowCamerasResampled(setup, list, listed, weights, indices,
+                                       uniform.empty() ? n : 0, j, buffers.output()))
+          RenderRowCameras(setup, list, listed, weights, indices, uniform.empty() ? n : 0, j,
+                           buffers.output());
       }
       const int row = camera.image_row(j);
       auto* out = result.image.ptr<cv::Vec3f>(row);

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <hwy/targets.h>
 
+#include <cmath>
 #include <iostream>
 #include <opencv2/core.hpp>
 #include <string>
@@ -118,6 +119,9 @@ std::vector<Case> Cases() {
   add("aperture in front of the array", p, "rows");
   p.look_at = centre + Vec3(250, 150, -3000);
   add("aperture in front of the array, turned", p, "rows");
+  p.up = Vec3(std::sin(0.7), std::cos(0.7), 0);  // rolled 40 degrees: l runs along the rows
+  add("aperture in front of the array, rolled", p, "rows");
+  p.up = Vec3::UnitY();
   p.aperture_mm = 0;
   add("pinhole turned", p, "rows");
   p.breathing = false;
