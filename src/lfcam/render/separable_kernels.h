@@ -7,7 +7,6 @@
 
 #include "lfcam/render/ray_setup.h"
 #include "lfcam/render/separable_frame.h"
-#include "lfcam/render/simd_kernels.h"
 
 namespace lfcam {
 
@@ -21,18 +20,5 @@ struct BandOutput {
 };
 void RenderSeparableBand(const SeparableFrame& frame, const RaySetup& source, int j0, int j1,
                          const BandOutput& out);
-
-// The most sample rows one camera's reads may span along a pixel row for
-// RenderRowCamerasResampled (a camera turned against the array spans more).
-inline constexpr int kMaxResampledRows = 4;
-
-// Pixel row j of the cameras integrator (the same arguments as RenderRowCameras in
-// simd_kernels.h), camera by camera with the separable frame's machinery: the few sample rows a
-// camera's reads span along the pixel row are decoded once and resampled along k, then each
-// pixel blends them around its own l with its own weight. Returns false, having written
-// nothing, when some camera's reads span more than kMaxResampledRows sample rows.
-bool RenderRowCamerasResampled(const RaySetup& setup, const GridCameraWeight* uniform,
-                               int uniform_count, const float* pixel_weights, const int* cameras,
-                               int camera_count, int j, const RowOutput& out);
 
 }  // namespace lfcam

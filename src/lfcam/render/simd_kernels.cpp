@@ -7,6 +7,8 @@
 #include <hwy/foreach_target.h>  // must come before highway.h
 #include <hwy/highway.h>
 
+#include "lfcam/render/sample_rows-inl.h"
+
 HWY_BEFORE_NAMESPACE();
 namespace lfcam {
 namespace HWY_NAMESPACE {
@@ -243,6 +245,100 @@ void RenderRowCamerasT(const RaySetup& s, const GridCameraWeight* uniform, int u
   }
 }
 
+bool RenderRowCamerasResampledT(const RaySetup& s, const GridCameraWeight* uniform,
+                                int uniform_count, const float* pixel_weights, const int* cameras,
+                                int camera_count, int j, const RowOutput& out) {
+  const DF d;
+  const DI di;
+  const int lanes = int(hn::Lanes(d));
+  const int padded = PaddedRowWidth(s.width);
+  const int count = uniform_count > 0 ? uniform_count : camera_count;
+  const auto camera_at = [&](int n) {
+    return uniform_count > 0 ? uniform[n].row * s.cols + uniform[n].col : cameras[n];
+  };
+  // Each camera's sample rows along the pixel row (l is monotonic along it: its ends decide).
+  const double last = s.width - 1;
+  std::vector<int> first_row(static_cast<std::size_t>(count)), last_row(first_row.size());
+  const int top = s.n_t - 1;
+  for (int n = 0; n < count; ++n) {
+    const OriginConstants c = s.camera_st(camera_at(n));
+    double k, l_a, l_b;
+    sample_rows::Coordinates(c, s.st, 0, j, &k, &l_a);
+    sample_rows::Coordinates(c, s.st, last, j, &k, &l_b);
+    const auto row_of = [&](double l) {
+      return std::isfinite(l) ? std::clamp(int(std::floor(std::clamp(l, 0.0, double(top)))), 0, top)
+                              : -1;
+    };
+    const int a = row_of(std::min(l_a, l_b)), b = row_of(std::max(l_a, l_b));
+    if (a < 0 || b < 0 || b + 1 - a >= kMaxResampledRows) return false;
+    first_row[std::size_t(n)] = a;
+    last_row[std::size_t(n)] = std::min(b + 1, top);
+  }
+
+  std::fill_n(out.r, padded, 0.0f);
+  std::fill_n(out.g, padded, 0.0f);
+  std::fill_n(out.b, padded, 0.0f);
+  // The pixel's central line decides whether it meets the sampled st domain.
+  const sample_rows::RowFunctions row(s.st, j);
+  std::vector<float> domain(static_cast<std::size_t>(padded)), reads(domain.size(), 0.0f);
+  for (int i = 0; i < padded; i += lanes) {
+    const VF pixel = hn::Iota(d, float(i));
+    const auto inside = hn::And(sample_rows::Project(s.eye_st, row, pixel, s.n_s, s.n_t).inside,
+                                hn::Lt(pixel, hn::Set(d, float(s.width))));
+    hn::StoreU(hn::IfThenElseZero(inside, hn::Set(d, 1.0f)), d, domain.data() + i);
+  }
+  sample_rows::Planes decoded, resampled;
+  sample_rows::TileMap k_map;
+  float* const acc[3] = {out.r, out.g, out.b};
+  const VF one = hn::Set(d, 1.0f), zero = hn::Zero(d), l_top = hn::Set(d, float(top));
+  for (int n = 0; n < count; ++n) {
+    const int view_index = camera_at(n);
+    const OriginConstants c = s.camera_st(view_index);
+    const float* weights =
+        uniform_count > 0 ? nullptr : pixel_weights + std::size_t(view_index) * padded;
+    const VF uniform_weight = hn::Set(d, uniform_count > 0 ? float(uniform[n].weight) : 0.0f);
+    const int l_lo = first_row[std::size_t(n)], l_hi = last_row[std::size_t(n)];
+    sample_rows::ComputeMap(c, s.st.n.at(0, j), s.st.n.di, s.st.x.at(0, j), s.st.x.di, s.width,
+                            padded, s.n_s, k_map);
+    const int k_count = k_map.hi - k_map.lo + 1;
+    decoded.Resize(1, std::size_t(k_count + lanes));
+    resampled.Resize(std::size_t(l_hi - l_lo + 1), std::size_t(padded));
+    const std::uint8_t* view = s.samples + std::size_t(view_index) * std::size_t(s.view_bytes);
+    for (int l = l_lo; l <= l_hi; ++l) {
+      sample_rows::DecodeRow(s, view + (std::size_t(l) * s.n_s + std::size_t(k_map.lo)) * 3,
+                             k_count, decoded.channel(0, 0), decoded.channel(0, 1),
+                             decoded.channel(0, 2));
+      for (int ch = 0; ch < 3; ++ch)
+        sample_rows::ResampleRow(k_map, decoded.channel(0, ch),
+                                 resampled.channel(std::size_t(l - l_lo), ch), padded);
+    }
+    for (int i = 0; i < padded; i += lanes) {
+      VF w = weights ? hn::LoadU(d, weights + i) : uniform_weight;
+      w = hn::Mul(w, hn::LoadU(d, domain.data() + i));
+      const auto read = hn::Gt(w, zero);
+      if (hn::AllFalse(d, read)) continue;
+      hn::StoreU(hn::Add(hn::LoadU(d, reads.data() + i), hn::IfThenElseZero(read, one)), d,
+                 reads.data() + i);
+      // A tent over the sample rows around each pixel's own l.
+      const VF lc = hn::Min(
+          hn::Max(sample_rows::Project(c, row, hn::Iota(d, float(i)), s.n_s, s.n_t).l, zero),
+          l_top);
+      VF sum[3] = {zero, zero, zero};
+      for (int l = l_lo; l <= l_hi; ++l) {
+        const VF tent = hn::Max(zero, hn::Sub(one, hn::Abs(hn::Sub(lc, hn::Set(d, float(l))))));
+        for (int ch = 0; ch < 3; ++ch)
+          sum[ch] = hn::MulAdd(tent, hn::LoadU(d, resampled.channel(std::size_t(l - l_lo), ch) + i),
+                               sum[ch]);
+      }
+      for (int ch = 0; ch < 3; ++ch)
+        hn::StoreU(hn::MulAdd(w, sum[ch], hn::LoadU(d, acc[ch] + i)), d, acc[ch] + i);
+    }
+  }
+  for (int i = 0; i < padded; ++i) out.count[i] = std::int32_t(reads[std::size_t(i)]);
+  (void)di;
+  return true;
+}
+
 const char* TargetNameT() { return hwy::TargetName(HWY_TARGET); }
 
 }  // namespace HWY_NAMESPACE
@@ -254,6 +350,7 @@ namespace lfcam {
 
 HWY_EXPORT(RenderRowLensSamplesT);
 HWY_EXPORT(RenderRowCamerasT);
+HWY_EXPORT(RenderRowCamerasResampledT);
 HWY_EXPORT(TargetNameT);
 
 void RenderRowLensSamples(const RaySetup& setup, bool focal_plane, int j, const RowOutput& out) {
@@ -265,6 +362,13 @@ void RenderRowCameras(const RaySetup& setup, const GridCameraWeight* uniform, in
                       const RowOutput& out) {
   HWY_DYNAMIC_DISPATCH(RenderRowCamerasT)
   (setup, uniform, uniform_count, pixel_weights, cameras, camera_count, j, out);
+}
+
+bool RenderRowCamerasResampled(const RaySetup& setup, const GridCameraWeight* uniform,
+                               int uniform_count, const float* pixel_weights, const int* cameras,
+                               int camera_count, int j, const RowOutput& out) {
+  return HWY_DYNAMIC_DISPATCH(RenderRowCamerasResampledT)(
+      setup, uniform, uniform_count, pixel_weights, cameras, camera_count, j, out);
 }
 
 std::string KernelTargetName() { return HWY_DYNAMIC_DISPATCH(TargetNameT)(); }

@@ -38,6 +38,19 @@ void RenderRowCameras(const RaySetup& setup, const GridCameraWeight* uniform, in
                       const float* pixel_weights, const int* cameras, int camera_count, int j,
                       const RowOutput& out);
 
+// The most sample rows one camera's reads may span along a pixel row for
+// RenderRowCamerasResampled (a camera turned against the array spans more).
+inline constexpr int kMaxResampledRows = 4;
+
+// Pixel row j of the cameras integrator, as RenderRowCameras, camera by camera with the
+// separable frame's machinery (render/sample_rows-inl.h): the few sample rows a
+// camera's reads span along the pixel row are decoded once and resampled along k, then each
+// pixel blends them around its own l with its own weight. Returns false, having written
+// nothing, when some camera's reads span more than kMaxResampledRows sample rows.
+bool RenderRowCamerasResampled(const RaySetup& setup, const GridCameraWeight* uniform,
+                               int uniform_count, const float* pixel_weights, const int* cameras,
+                               int camera_count, int j, const RowOutput& out);
+
 // The instruction set the kernels dispatch to on this machine (for example "AVX3").
 std::string KernelTargetName();
 
