@@ -151,6 +151,22 @@ RenderResult RenderReference(const LightField& lf, const VirtualCamera& camera,
   return result;
 }
 
+// Copies pixel row j (bottom-up) from planar kernel output into the result; returns the rays
+// that hit (or cameras read) along it.
+long long StoreRow(const VirtualCamera& camera, int j, const float* r, const float* g,
+                   const float* b, const std::int32_t* count, RenderResult& result) {
+  const int row = camera.image_row(j);
+  auto* out = result.image.ptr<cv::Vec3f>(row);
+  auto* mask = result.hit_mask.ptr<std::uint8_t>(row);
+  long long hits = 0;
+  for (int i = 0; i < camera.width(); ++i) {
+    out[i] = {r[i], g[i], b[i]};
+    mask[i] = count[i] > 0 ? 255 : 0;
+    hits += count[i];
+  }
+  return hits;
+}
+
 // A row's buffers for the vectorised kernels, one set per task.
 struct RowBuffers {
   std::vector<float> r, g, b;
@@ -205,15 +221,8 @@ RenderResult RenderSeparable(const LightField& lf, const VirtualCamera& camera,
     long long hits_here = 0;
     for (int j = j0; j < j1; ++j) {
       const std::size_t at = std::size_t(j - j0) * std::size_t(padded);
-      const int row = camera.image_row(j);
-      auto* out = result.image.ptr<cv::Vec3f>(row);
-      auto* mask = result.hit_mask.ptr<std::uint8_t>(row);
-      for (int i = 0; i < width; ++i) {
-        const std::size_t k = at + std::size_t(i);
-        out[i] = {r[k], g[k], b[k]};
-        mask[i] = count[k] > 0 ? 255 : 0;
-        hits_here += count[k];
-      }
+      hits_here += StoreRow(camera, j, r.data() + at, g.data() + at, b.data() + at,
+                            count.data() + at, result);
     }
     hits_per_thread.local() += hits_here;
     if (options.progress) options.progress(std::int64_t(j1 - j0) * width);
@@ -254,29 +263,20 @@ RenderResult RenderFast(const LightField& lf, const VirtualCamera& camera,
       } else {
         // The cameras integrator: camera by camera through its few sample rows when they are
         // few (the camera looks along the array's normal), else by gathers pixel by pixel.
+        // Either one weight list for every pixel, or per-pixel weights for the listed cameras.
         const auto& uniform = cameras->uniform_weights();
-        const float* weights = nullptr;
-        if (uniform.empty()) {
-          FillPixelWeights(*cameras, views, width, j, buffers);
-          weights = buffers.pixel_weights.data();
-        }
-        const int n = int(uniform.empty() ? buffers.cameras.size() : uniform.size());
-        const GridCameraWeight* list = uniform.empty() ? nullptr : uniform.data();
-        const int* indices = uniform.empty() ? buffers.cameras.data() : nullptr;
-        const int listed = uniform.empty() ? 0 : n;
-        if (!RenderRowCamerasResampled(setup, list, listed, weights, indices,
-                                       uniform.empty() ? n : 0, j, buffers.output()))
-          RenderRowCameras(setup, list, listed, weights, indices, uniform.empty() ? n : 0, j,
+        if (uniform.empty()) FillPixelWeights(*cameras, views, width, j, buffers);
+        const int uniform_count = int(uniform.size());
+        const int camera_count = uniform.empty() ? int(buffers.cameras.size()) : 0;
+        const float* weights = uniform.empty() ? buffers.pixel_weights.data() : nullptr;
+        const int* listed = uniform.empty() ? buffers.cameras.data() : nullptr;
+        if (!RenderRowCamerasResampled(setup, uniform.data(), uniform_count, weights, listed,
+                                       camera_count, j, buffers.output()))
+          RenderRowCameras(setup, uniform.data(), uniform_count, weights, listed, camera_count, j,
                            buffers.output());
       }
-      const int row = camera.image_row(j);
-      auto* out = result.image.ptr<cv::Vec3f>(row);
-      auto* mask = result.hit_mask.ptr<std::uint8_t>(row);
-      for (int i = 0; i < width; ++i) {
-        out[i] = {buffers.r[std::size_t(i)], buffers.g[std::size_t(i)], buffers.b[std::size_t(i)]};
-        mask[i] = buffers.count[std::size_t(i)] > 0 ? 255 : 0;
-        hits_here += buffers.count[std::size_t(i)];
-      }
+      hits_here += StoreRow(camera, j, buffers.r.data(), buffers.g.data(), buffers.b.data(),
+                            buffers.count.data(), result);
     }
     hits_per_thread.local() += hits_here;
     if (options.progress) options.progress(std::int64_t(rows.size()) * width);
