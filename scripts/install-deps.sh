@@ -13,6 +13,9 @@ packages=(
   libceres-dev libjpeg62-turbo-dev
   # The vectorised CPU renderer (Google Highway: portable SIMD, dispatched at run time).
   libhwy-dev
+  # The GL renderer: OpenGL 4.3+ compute through EGL, headless (libepoxy loads the entry points);
+  # Mesa's llvmpipe runs it where there is no GPU (CI).
+  libepoxy-dev libegl-dev libegl-mesa0 libgl1-mesa-dri
   libgtest-dev libgmock-dev
 )
 # bench/peer.sh: the NumPy + OpenCV peer renderer.

@@ -8,6 +8,7 @@
 #include <string>
 #include <thread>
 
+#include "lfcam/cli/backend_flags.h"
 #include "lfcam/cli/commands.h"
 #include "lfcam/cli/parse.h"
 #include "lfcam/core/atomic_file.h"
@@ -58,6 +59,7 @@ void AddBenchCommand(CLI::App& app) {
   struct Flags {
     std::string table, lightfield, json, integrator = "lens-samples",
                                          interpolation = "quadrilinear";
+    BackendFlags backend;
     int min_runs = 5;
     double min_seconds = 1.0;
     bool reference = false, quiet = false;
@@ -82,7 +84,9 @@ void AddBenchCommand(CLI::App& app) {
       ->add_option("--interpolation", flags->interpolation,
                    "table2 with lens-samples: quadrilinear (the paper's) or focal-plane")
       ->capture_default_str();
-  bench->add_flag("--reference", flags->reference, "Time the scalar reference renderer instead");
+  bench->add_flag("--reference", flags->reference,
+                  "cpu: time the scalar reference renderer instead");
+  flags->backend.AddTo(*bench);
   bench
       ->add_option("--min-runs", flags->min_runs, "Timed runs per cell, at least (after a warm-up)")
       ->capture_default_str()
@@ -103,7 +107,12 @@ void AddBenchCommand(CLI::App& app) {
       throw UsageError(
           "--integrator/--interpolation: table1 is the paper's pinhole with its quadrilinear "
           "lookup; they apply to table2");
+    FrameRenderOptions render_options;
+    render_options.reference = flags->reference;
+    const Backend backend = flags->backend.Validate(render_options);
     if (!flags->json.empty()) RequireWritableOutput(flags->json, "--json");
+    const std::unique_ptr<FrameRenderer> opened = BackendFlags::Open(backend);
+    const FrameRenderer& renderer = *opened;
 
     const LightField lf = flags->lightfield.empty() ? PaperBenchLightField(flags->quiet)
                                                     : ReadLightField(flags->lightfield);
@@ -112,8 +121,15 @@ void AddBenchCommand(CLI::App& app) {
     fmt::print("machine: {}, {} cores, {} vectors; light field {}x{} views of {}x{} samples\n", cpu,
                cores, KernelTargetName(), lf.dims().rows, lf.dims().cols, lf.dims().n_s,
                lf.dims().n_t);
-    const std::vector<BenchCell> cells =
+    fmt::print("renderer: {}{}\n", renderer.description(),
+               renderer.uses_gl()
+                   ? fmt::format(", work group {}x{}; ms: the GPU's (timer queries)",
+                                 render_options.workgroup_x, render_options.workgroup_y)
+                   : std::string());
+    std::vector<BenchCell> cells =
         flags->table == "table1" ? Table1Cells() : Table2Cells(integrator, interpolation);
+    // On the GPU the CPU's thread count plays no part: one cell per size.
+    if (renderer.uses_gl()) std::erase_if(cells, [](const BenchCell& c) { return c.threads == 1; });
     const TimingPolicy policy{flags->min_runs, std::max(50, flags->min_runs), flags->min_seconds};
     nlohmann::json records = nlohmann::json::array();
     if (flags->table == "table1")
@@ -123,13 +139,14 @@ void AddBenchCommand(CLI::App& app) {
       fmt::print("{:>5} {:>6} {:>14} {:>10} {:>5} | {:>9} {:>8}\n", "d_l", "gamma", "integrator",
                  "ms", "runs", "paper GPU", "ratio");
     for (BenchCell cell : cells) {
-      const Timing t = TimeCell(lf, cell, flags->reference, policy);
+      const Timing t = TimeCell(lf, cell, renderer, render_options, policy);
       if (cell.threads == 0) cell.threads = cores;
+      const std::string threads = renderer.uses_gl() ? "gpu" : fmt::format("{}", cell.threads);
       // ratio: the paper's time over ours (above 1: faster than the paper).
       const double ratio = cell.paper_ms ? *cell.paper_ms / t.median_ms : 0;
       if (cell.table == "table1")
         fmt::print("{:>6} {:>8} {:>10} {:>5} | {:>12} {:>7.1f}x | {:>9} {:>7.2f}x\n",
-                   fmt::format("{}^2", cell.size), cell.threads, Ms(t.median_ms), t.runs,
+                   fmt::format("{}^2", cell.size), threads, Ms(t.median_ms), t.runs,
                    Ms(*cell.paper_ms), ratio, Ms(*cell.paper_gpu_ms),
                    *cell.paper_gpu_ms / t.median_ms);
       else
@@ -137,7 +154,10 @@ void AddBenchCommand(CLI::App& app) {
                    cell.lens_rate ? fmt::format("{}", *cell.lens_rate) : std::string("-"),
                    ToString(cell.integrator), Ms(t.median_ms), t.runs, Ms(*cell.paper_ms), ratio);
       std::fflush(stdout);
-      records.push_back(CellRecord(cell, t));
+      nlohmann::json record = CellRecord(cell, t);
+      if (renderer.uses_gl()) record["threads"] = nullptr;
+      record["backend"] = renderer.uses_gl() ? "gl" : "cpu";
+      records.push_back(std::move(record));
     }
     fmt::print("ratio: the paper's time over this machine's (above 1: faster than the paper)\n");
     if (!flags->json.empty()) {
@@ -145,6 +165,12 @@ void AddBenchCommand(CLI::App& app) {
       doc["machine"] = {{"cpu", cpu}, {"cores", cores}, {"vectors", KernelTargetName()}};
       doc["light_field"] = flags->lightfield.empty() ? "simulated paper scene" : flags->lightfield;
       doc["renderer"] = flags->reference ? "reference" : "fast";
+      doc["backend"] = renderer.uses_gl() ? "gl" : "cpu";
+      if (const GlRenderer* gl = renderer.gl())
+        doc["gpu"] = {{"renderer", gl->device().renderer},
+                      {"vendor", gl->device().vendor},
+                      {"version", gl->device().version},
+                      {"workgroup", flags->backend.workgroup}};
       doc["cells"] = std::move(records);
       const std::string text = doc.dump(2) + "\n";
       WriteFileAtomically(flags->json,

@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -121,6 +122,50 @@ TEST_F(Cli, BenchTimesThePapersTablesBesideItsFigures) {
   run = Lfcam("bench table1" + fast + " --json " + Path("no/such/dir/t.json"));
   EXPECT_EQ(run.status, 2);
   EXPECT_NE(run.output.find("--json"), std::string::npos) << run.output;
+}
+
+TEST_F(Cli, RendersAndBenchesOnTheGlBackend) {
+  const std::string camera = " --size 48 --aperture 60 --integrator cameras ";
+  CommandResult run =
+      Lfcam("render " + Path("small.lf") + camera + "--backend gl --out " + Path("gl.png"));
+  if (run.status == 1 && run.output.find("--backend gl: no OpenGL") != std::string::npos) {
+    const char* required = std::getenv("LFCAM_REQUIRE_GL");
+    if (required != nullptr && std::string(required) == "1")
+      FAIL() << "LFCAM_REQUIRE_GL=1 but: " << run.output;
+    GTEST_SKIP() << run.output;
+  }
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("gl ("), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("ms on the GPU"), std::string::npos) << run.output;
+  ASSERT_EQ(Lfcam("render " + Path("small.lf") + camera + "--out " + Path("cpu.png")).status, 0);
+  const auto same = nlohmann::json::parse(
+      Lfcam("compare --json " + Path("gl.png") + " " + Path("cpu.png")).output);
+  EXPECT_GT(same["psnr_db"].get<double>(), 45.0);
+
+  const std::string fast = " --lightfield " + Path("small.lf") + " --min-runs 1 --min-seconds 0";
+  run = Lfcam("bench table1 --backend gl --workgroup 8x8" + fast + " --json " + Path("g1.json"));
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("work group 8x8"), std::string::npos) << run.output;
+  std::ifstream g1_file(Path("g1.json"));
+  const auto g1 = nlohmann::json::parse(g1_file);
+  ASSERT_EQ(g1["cells"].size(), 4u);  // one per size: threads play no part on the GPU
+  EXPECT_EQ(g1["backend"], "gl");
+  EXPECT_TRUE(g1["gpu"].contains("renderer"));
+  for (const auto& cell : g1["cells"]) {
+    EXPECT_TRUE(cell["threads"].is_null());
+    EXPECT_EQ(cell["backend"], "gl");
+    EXPECT_GT(cell["median_ms"].get<double>(), 0.0);
+  }
+
+  // The scalar reference is the CPU's; a bad backend or work group is bad usage.
+  EXPECT_EQ(Lfcam("render " + Path("small.lf") + " --backend gl --reference --out " + Path("x.png"))
+                .status,
+            2);
+  EXPECT_EQ(Lfcam("bench table1 --backend metal" + fast).status, 2);
+  run = Lfcam("render " + Path("small.lf") + " --backend gl --workgroup 4096x4096 --out " +
+              Path("x.png"));
+  EXPECT_EQ(run.status, 2);
+  EXPECT_NE(run.output.find("--workgroup"), std::string::npos) << run.output;
 }
 
 TEST_F(Cli, MontageLaysImagesOutOnASheet) {

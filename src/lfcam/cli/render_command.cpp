@@ -9,6 +9,7 @@
 #include <numbers>
 #include <vector>
 
+#include "lfcam/cli/backend_flags.h"
 #include "lfcam/cli/camera_flags.h"
 #include "lfcam/cli/commands.h"
 #include "lfcam/cli/parse.h"
@@ -45,6 +46,7 @@ void AddRenderCommand(CLI::App& app) {
   struct Flags {
     std::string input, out, hit_mask;
     CameraFlags camera;
+    BackendFlags backend;
     int threads = 0, repeat = 1;
     std::string interpolation = "quadrilinear", integrator = "lens-samples";
     bool quiet = false, reference = false;
@@ -77,13 +79,14 @@ void AddRenderCommand(CLI::App& app) {
                    "noisy at low --lens-rate) or focal-plane (each camera read along its own ray "
                    "through the point in focus; Isaksen et al. 2000)")
       ->capture_default_str();
+  flags->backend.AddTo(*render);
   render->add_flag("--reference", flags->reference,
                    "Use the scalar reference renderer (one pixel at a time, every ray in double "
                    "precision; the definition the vectorised renderer is tested against) instead "
                    "of the vectorised one");
   render->callback([flags] {
     // Every flag and output is checked before the light field is read.
-    CpuRenderOptions options;
+    FrameRenderOptions options;
     options.threads = flags->threads;
     options.reference = flags->reference;
     options.interpolation =
@@ -102,21 +105,25 @@ void AddRenderCommand(CLI::App& app) {
           std::filesystem::weakly_canonical(flags->out))
         throw UsageError("--hit-mask: must not be the same file as --out");
     }
+    const Backend backend = flags->backend.Validate(options);
+    const std::unique_ptr<FrameRenderer> renderer = BackendFlags::Open(backend);
     const LightField lf = ReadLightField(flags->input);
     const VirtualCamera camera = flags->camera.MakeCamera(lf.slab().uv);
     ProgressBar progress("rendering",
                          std::int64_t(flags->repeat) * camera.width() * camera.height(),
                          ProgressWanted(flags->quiet));
     options.progress = progress.callback();
-    std::vector<double> times_ms;
+    std::vector<double> times_ms, gpu_ms;
     RenderResult result;
     for (int i = 0; i < flags->repeat; ++i) {
       const auto start = std::chrono::steady_clock::now();
-      result = RenderLightFieldCpu(lf, camera, options);
+      result = renderer->Render(lf, camera, options);
       times_ms.push_back(SecondsSince(start) * 1e3);
+      gpu_ms.push_back(result.gpu_ms);
     }
     progress.finish();
     std::sort(times_ms.begin(), times_ms.end());
+    std::sort(gpu_ms.begin(), gpu_ms.end());
     std::vector<std::pair<std::filesystem::path, cv::Mat>> outputs = {{flags->out, result.image}};
     if (!flags->hit_mask.empty()) {
       cv::Mat rgb;
@@ -130,14 +137,17 @@ void AddRenderCommand(CLI::App& app) {
                  "image is black; check --eye and --look-at against `lfcam info {}`\n",
                  flags->input);
     fmt::print(
-        "wrote {}: {}; {:.1f} ms (median of {}, {} renderer), {:.1f}% of rays hit the slab\n",
+        "wrote {}: {}; {:.1f} ms{} (median of {}, {} renderer), {:.1f}% of rays hit the slab\n",
         flags->out,
         DescribeCamera(
             camera, options.integrator == Integrator::kCameras
                         ? fmt::format("cameras integrator, {:.1f} cameras a pixel",
                                       double(result.rays_hit) / (camera.width() * camera.height()))
                         : fmt::format("{} lens samples", camera.lens_samples().size())),
-        times_ms[times_ms.size() / 2], flags->repeat, result.path,
+        times_ms[times_ms.size() / 2],
+        renderer->uses_gl() ? fmt::format(", {:.2f} ms on the GPU", gpu_ms[gpu_ms.size() / 2])
+                            : std::string(),
+        flags->repeat, result.path,
         100.0 * double(result.rays_hit) / double(std::max(1LL, result.rays)));
   });
 }

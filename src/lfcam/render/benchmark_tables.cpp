@@ -74,31 +74,41 @@ VirtualCameraParams CellCamera(const BenchCell& cell, const ArrayPlane& array) {
   return p;
 }
 
-Timing TimeCell(const LightField& lf, const BenchCell& cell, bool reference,
-                const TimingPolicy& policy) {
+namespace {
+
+double Median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  const std::size_t n = values.size();
+  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+}  // namespace
+
+Timing TimeCell(const LightField& lf, const BenchCell& cell, const FrameRenderer& renderer,
+                FrameRenderOptions options, const TimingPolicy& policy) {
   const VirtualCamera camera(CellCamera(cell, lf.slab().uv));
-  CpuRenderOptions options;
   options.threads = cell.threads;
   options.integrator = cell.integrator;
   options.interpolation = cell.interpolation;
-  options.reference = reference;
   Timing timing;
-  timing.path = RenderLightFieldCpu(lf, camera, options).path;  // the warm-up
-  std::vector<double> ms;
+  // Warm-up: caches; on the GPU also the upload, the shader's compilation and the clocks.
+  for (int i = 0; i < (renderer.uses_gl() ? 3 : 1); ++i)
+    timing.path = renderer.Render(lf, camera, options).path;
+  std::vector<double> wall_ms, gpu_ms;
   double spent = 0;
-  while (int(ms.size()) < policy.max_runs &&
-         (int(ms.size()) < policy.min_runs || spent < policy.min_seconds)) {
+  while (int(wall_ms.size()) < policy.max_runs &&
+         (int(wall_ms.size()) < policy.min_runs || spent < policy.min_seconds)) {
     const auto start = std::chrono::steady_clock::now();
-    RenderLightFieldCpu(lf, camera, options);
+    const RenderResult result = renderer.Render(lf, camera, options);
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    ms.push_back(seconds * 1e3);
+    wall_ms.push_back(seconds * 1e3);
+    gpu_ms.push_back(result.gpu_ms);
     spent += seconds;
   }
-  std::sort(ms.begin(), ms.end());
-  timing.runs = int(ms.size());
-  timing.median_ms =
-      ms.size() % 2 ? ms[ms.size() / 2] : 0.5 * (ms[ms.size() / 2 - 1] + ms[ms.size() / 2]);
+  timing.runs = int(wall_ms.size());
+  timing.wall_median_ms = Median(wall_ms);
+  timing.median_ms = renderer.uses_gl() ? Median(gpu_ms) : timing.wall_median_ms;
   return timing;
 }
 
@@ -114,6 +124,7 @@ nlohmann::json CellRecord(const BenchCell& cell, const Timing& timing) {
   r["focal_length_mm"] = cell.focal_length_mm;
   r["focus_distance_mm"] = cell.focus_distance_mm;
   r["median_ms"] = timing.median_ms;
+  r["wall_median_ms"] = timing.wall_median_ms;
   r["runs"] = timing.runs;
   r["renderer"] = timing.path;
   r["paper_ms"] = cell.paper_ms ? nlohmann::json(*cell.paper_ms) : nlohmann::json();

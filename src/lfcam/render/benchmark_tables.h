@@ -10,6 +10,7 @@
 
 #include "lfcam/core/lightfield.h"
 #include "lfcam/render/cpu_renderer.h"
+#include "lfcam/render/frame_renderer.h"
 #include "lfcam/render/virtual_camera.h"
 
 namespace lfcam {
@@ -39,7 +40,8 @@ std::vector<BenchCell> Table2Cells(Integrator integrator, Interpolation interpol
 VirtualCameraParams CellCamera(const BenchCell& cell, const ArrayPlane& array);
 
 struct Timing {
-  double median_ms = 0;
+  double median_ms = 0;       // CPU: wall-clock; GL: the compute pass (GL timer queries)
+  double wall_median_ms = 0;  // wall-clock, with the GL frame's set-up and read-back
   int runs = 0;
   std::string path;  // RenderResult::path
 };
@@ -47,9 +49,10 @@ struct TimingPolicy {
   int min_runs = 5, max_runs = 50;
   double min_seconds = 1.0;  // keep running (up to max_runs) until this much time is spent
 };
-// One warm-up render, then runs until the policy is met; the median.
-Timing TimeCell(const LightField& lf, const BenchCell& cell, bool reference,
-                const TimingPolicy& policy);
+// One warm-up render, then runs until the policy is met; the median. `options` gives the
+// backend's settings (reference, work group); the cell gives the rest.
+Timing TimeCell(const LightField& lf, const BenchCell& cell, const FrameRenderer& renderer,
+                FrameRenderOptions options, const TimingPolicy& policy);
 
 // {"table", "size", "threads", "integrator", "aperture_mm", "lens_rate", "median_ms",
 //  "paper_ms", ...}: one record.

@@ -10,7 +10,6 @@
 namespace lfcam {
 namespace {
 
-constexpr int kPerPitch = 8;              // lattice nodes a camera pitch, along each axis
 constexpr double kRadiusStep = 1.0 / 16;  // between radius levels (grid units)
 constexpr double kParallelTolerance = 1e-9;
 
@@ -80,8 +79,10 @@ CameraIntegratorFrame::CameraIntegratorFrame(const LightField& lf, const Virtual
     const int steps = std::max(1, int(std::ceil((r_hi - r_lo) / kRadiusStep)));
     for (int k = 0; k <= steps; ++k) radii.push_back(r_lo + (r_hi - r_lo) * k / steps);
   }
-  const int x0 = int(std::floor(x_lo * kPerPitch)) - 1, x1 = int(std::ceil(x_hi * kPerPitch)) + 1;
-  const int y0 = int(std::floor(y_lo * kPerPitch)) - 1, y1 = int(std::ceil(y_hi * kPerPitch)) + 1;
+  const int x0 = int(std::floor(x_lo * kNodesPerPitch)) - 1,
+            x1 = int(std::ceil(x_hi * kNodesPerPitch)) + 1;
+  const int y0 = int(std::floor(y_lo * kNodesPerPitch)) - 1,
+            y1 = int(std::ceil(y_hi * kNodesPerPitch)) + 1;
   const std::size_t cameras = std::size_t(rows_) * std::size_t(cols_);
   for (const double radius : radii) {
     Level level;
@@ -96,7 +97,8 @@ CameraIntegratorFrame::CameraIntegratorFrame(const LightField& lf, const Virtual
   for (Level& level : levels_)
     tbb::parallel_for(0, level.nx * level.ny, [&](int node) {
       const int a = node % level.nx, b = node / level.nx;
-      const double cx = double(level.x0 + a) / kPerPitch, cy = double(level.y0 + b) / kPerPitch;
+      const double cx = double(level.x0 + a) / kNodesPerPitch,
+                   cy = double(level.y0 + b) / kNodesPerPitch;
       float* out = level.weights.data() + std::size_t(node) * cameras;
       for (const GridCameraWeight& w : DiskCameraWeights(level.radius, cx, cy, cols_, rows_))
         out[std::size_t(w.row * cols_ + w.col)] = float(w.weight);
@@ -139,7 +141,7 @@ void CameraIntegratorFrame::AddNode(const Level& level, int a, int b, float w, f
 
 void CameraIntegratorFrame::AddLevel(const Level& level, double cx, double cy, float w,
                                      float* out) const {
-  const double x = cx * kPerPitch - level.x0, y = cy * kPerPitch - level.y0;
+  const double x = cx * kNodesPerPitch - level.x0, y = cy * kNodesPerPitch - level.y0;
   const int a = int(std::floor(x)), b = int(std::floor(y));
   const float fx = float(x - a), fy = float(y - b);
   AddNode(level, a, b, w * (1 - fx) * (1 - fy), out);

@@ -48,18 +48,23 @@ class CameraIntegratorFrame {
   const std::vector<GridCameraWeight>& uniform_weights() const { return uniform_; }
   std::size_t table_nodes() const;  // footprint centres tabulated, over all radii
 
+  // The table (for the GL renderer, which interpolates it per pixel as Weights does): radius
+  // levels, each a lattice of footprint centres (the same lattice at every level) with a dense
+  // weight vector per node.
+  static constexpr int kNodesPerPitch = 8;
+  struct Level {
+    double radius = 0;
+    int x0 = 0, y0 = 0, nx = 0, ny = 0;  // node (a, b) at ((x0 + a), (y0 + b)) / kNodesPerPitch
+    std::vector<float> weights;          // [b][a][camera, row-major]: nx * ny * rows * cols
+  };
+  const std::vector<Level>& levels() const { return levels_; }
+
  private:
   const VirtualCamera& camera_;
   int rows_, cols_;
   double pitch_;
   Vec3 p_ca_, u_ca_, v_ca_, n_ca_;
   bool exact_ = true;
-  // Radius levels; each a lattice of centres with a dense weight vector per node.
-  struct Level {
-    double radius = 0;
-    int x0 = 0, y0 = 0, nx = 0, ny = 0;  // lattice nodes (x0 + a) / kPerPitch, (y0 + b) / ...
-    std::vector<float> weights;          // nx * ny * rows * cols
-  };
   std::vector<Level> levels_;  // increasing radius
   std::vector<GridCameraWeight> uniform_;
 

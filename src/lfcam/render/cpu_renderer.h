@@ -41,6 +41,7 @@ struct RenderResult {
   // resized: render/separable_frame.h) or "rows" (per-pixel rays), with the instruction set,
   // for example "separable (AVX3)".
   std::string path;
+  double gpu_ms = -1;  // the GL renderer: the compute pass's time from a GL timer query
 };
 
 RenderResult RenderLightFieldCpu(const LightField& lf, const VirtualCamera& camera,

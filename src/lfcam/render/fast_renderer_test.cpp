@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "lfcam/render/cpu_renderer.h"
+#include "lfcam/render/render_test_cases.h"
 #include "lfcam/render/simd_kernels.h"
 #include "lfcam/sim/scene.h"
 #include "lfcam/sim/simulate_lightfield.h"
@@ -19,117 +20,10 @@
 namespace lfcam {
 namespace {
 
-// The paper scene, small: 6 x 7 cameras (rows x cols) of 96 x 88 samples, 8-bit sRGB, from
-// cameras a little off the ideal grid (as a calibrated array's are).
-const LightField& SmallPaperLightField() {
-  static const LightField lf = [] {
-    SimulateLightFieldOptions o;
-    o.rows = 6;
-    o.cols = 7;
-    o.n_s = 96;
-    o.n_t = 88;
-    o.st_domain = StDomain{-1.2, -1.2, 1.2, 1.2};
-    o.supersampling = 1;
-    const Scene scene = MakePaperScene();
-    LightField ideal = SimulateLightField(scene, o);
-    for (int r = 0; r < o.rows; ++r)
-      for (int c = 0; c < o.cols; ++c)
-        o.camera_centers.push_back(ideal.camera_center(r, c) + Vec3(0.7 * std::sin(r + 2.0 * c),
-                                                                    0.5 * std::cos(3.0 * r - c),
-                                                                    0));
-    return SimulateLightField(scene, o);
-  }();
-  return lf;
-}
-
-// The same samples on an st-plane turned a little against the array (0.03 degrees about its
-// normal, 0.05 degrees out of the array's plane), as a calibrated light field's world board is:
-// only nearly separable.
-const LightField& TurnedStPlaneLightField() {
-  static const LightField lf = [] {
-    LightField turned = SmallPaperLightField();
-    ViewWindow& st = turned.mutable_slab().st;
-    const Mat3 turn = (Eigen::AngleAxisd(5e-4, Vec3::UnitZ()) *
-                       Eigen::AngleAxisd(9e-4, Vec3(1, 1, 0).normalized()))
-                          .toRotationMatrix();
-    st.x_axis = turn * st.x_axis;
-    st.y_axis = turn * st.y_axis;
-    return turned;
-  }();
-  return lf;
-}
-
-struct Case {
-  std::string name;
-  VirtualCameraParams camera;
-  Integrator integrator;
-  Interpolation interpolation;
-  std::string path;     // the fast path expected: "separable" or "rows"
-  bool turned = false;  // on TurnedStPlaneLightField()
-};
-
-std::vector<Case> Cases() {
-  const LightField& lf = SmallPaperLightField();
-  const Vec3 centre = lf.slab().uv.center();
-  VirtualCameraParams base;
-  base.width = 61;  // not a multiple of any vector length
-  base.height = 47;
-  base.eye = centre;
-  base.look_at = centre - Vec3(0, 0, 4000);
-  base.focal_length_mm = 300;
-  base.focus_distance_mm = 3900;
-  base.lens_rate = 2;
-  std::vector<Case> cases;
-  const auto add = [&](const std::string& name, VirtualCameraParams p, const std::string& path,
-                       bool turned = false) {
-    for (const Integrator integrator : {Integrator::kLensSamples, Integrator::kCameras})
-      for (const Interpolation interpolation :
-           {Interpolation::kQuadrilinear, Interpolation::kFocalPlane}) {
-        if (integrator == Integrator::kCameras && interpolation == Interpolation::kQuadrilinear)
-          continue;  // the cameras integrator has one lookup
-        cases.push_back({name + " " + ToString(integrator) + " " + ToString(interpolation), p,
-                         integrator, interpolation, path, turned});
-      }
-  };
-  VirtualCameraParams p = base;
-  add("pinhole at the centre", p, "separable");
-  p.aperture_mm = 90;
-  add("aperture at the centre", p, "separable");
-  p.breathing = false;
-  p.eye = centre + Vec3(-40, 23, 0);
-  p.look_at = p.eye - Vec3(0, 0, 1000);
-  add("aperture elsewhere on the array, no breathing", p, "separable");
-  // Wide enough that rays leave the st domain, and lens samples leave the array window.
-  p = base;
-  p.focal_length_mm = 60;
-  p.aperture_mm = 120;
-  p.eye = centre + Vec3(60, -50, 0);
-  p.look_at = p.eye - Vec3(0, 0, 1000);
-  add("wide, off-centre, past the edges", p, "separable");
-  p = base;
-  p.aperture_mm = 90;
-  p.width = 300;  // wide enough that l crosses a sample row along a pixel row
-  add("aperture at the centre, turned st-plane", p, "separable", true);
-  p.focal_length_mm = 60;
-  p.aperture_mm = 0;
-  add("wide pinhole, turned st-plane", p, "separable", true);
-  p = base;
-  p.eye = centre + Vec3(30, -20, 700);
-  p.aperture_mm = 70;
-  add("aperture in front of the array", p, "rows");
-  p.look_at = centre + Vec3(250, 150, -3000);
-  add("aperture in front of the array, turned", p, "rows");
-  p.up = Vec3(std::sin(0.7), std::cos(0.7), 0);  // rolled 40 degrees: l runs along the rows
-  add("aperture in front of the array, rolled", p, "rows");
-  p.up = Vec3::UnitY();
-  p.aperture_mm = 0;
-  add("pinhole turned", p, "rows");
-  p.breathing = false;
-  p.focal_length_mm = 80;
-  p.eye = centre + Vec3(0, 0, -500);
-  add("pinhole behind the array, wide, no breathing", p, "rows");
-  return cases;
-}
+using render_test::Case;
+using render_test::Cases;
+using render_test::SmallPaperLightField;
+using render_test::TurnedStPlaneLightField;
 
 // The instruction sets compiled in that this machine runs.
 std::vector<std::int64_t> Targets() {

@@ -1,0 +1,45 @@
+#pragma once
+// One front over the two backends (`--backend cpu|gl|auto`): `lfcam render`, `lfcam bench` and
+// the viewer render through it. `auto` takes the GL renderer when EGL offers a hardware GPU and
+// the CPU renderer otherwise (Mesa's llvmpipe runs the shader on the CPU too, slower than the
+// CPU renderer itself), and says which and why.
+#include <memory>
+#include <string>
+
+#include "lfcam/render/cpu_renderer.h"
+#include "lfcam/render/gl_renderer.h"
+
+namespace lfcam {
+
+enum class Backend { kCpu, kGl, kAuto };
+std::string ToString(Backend backend);
+Backend BackendFromString(const std::string& name);  // throws lfcam::Error
+
+struct FrameRenderOptions {
+  Integrator integrator = Integrator::kLensSamples;
+  Interpolation interpolation = Interpolation::kQuadrilinear;
+  int threads = 0;                        // CPU: 0 = all cores
+  bool reference = false;                 // CPU: the scalar reference
+  int workgroup_x = 16, workgroup_y = 8;  // GL
+  ProgressCallback progress;              // CPU only
+};
+
+class FrameRenderer {
+ public:
+  // Opens the backend; kGl throws lfcam::Error when no GL 4.3 context can be made.
+  explicit FrameRenderer(Backend backend);
+  bool uses_gl() const { return gl_ != nullptr; }
+  GlRenderer* gl() const { return gl_.get(); }
+  // What renders, for people: "gl on NVIDIA H100 80GB HBM3/PCIe/SSE2 (OpenGL 4.6.0 NVIDIA
+  // 580.159.04)" or "cpu (2 cores, AVX3)", and with auto, why.
+  const std::string& description() const { return description_; }
+
+  RenderResult Render(const LightField& lf, const VirtualCamera& camera,
+                      const FrameRenderOptions& options) const;
+
+ private:
+  std::unique_ptr<GlRenderer> gl_;
+  std::string description_;
+};
+
+}  // namespace lfcam

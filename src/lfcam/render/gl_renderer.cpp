@@ -1,0 +1,379 @@
+#include "lfcam/render/gl_renderer.h"
+
+#include <epoxy/gl.h>
+#include <fmt/format.h>
+
+#include <chrono>
+#include <optional>
+#include <vector>
+
+#include "lfcam/core/error.h"
+#include "lfcam/render/camera_integrator.h"
+#include "lfcam/render/ray_setup.h"
+#include "lfcam/render/shaders/render_frame.comp.h"
+
+namespace lfcam {
+namespace {
+
+// The shader's modes (render_frame.comp).
+enum Mode { kLensQuadrilinear = 0, kLensFocalPlane = 1, kCamerasUniform = 2, kCamerasTable = 3 };
+
+// The buffers' binding points in the shader.
+enum Binding { kLensUv = 0, kLensSt = 1, kCameraSt = 2, kCameraWeights = 3, kWeightTable = 4 };
+
+struct ShaderCameraWeight {
+  std::int32_t index;
+  float weight;
+};
+static_assert(sizeof(OriginConstants) == 6 * sizeof(float), "std430 layout of Origin");
+
+std::string GlErrorName(GLenum error) {
+  switch (error) {
+    case GL_INVALID_ENUM:
+      return "GL_INVALID_ENUM";
+    case GL_INVALID_VALUE:
+      return "GL_INVALID_VALUE";
+    case GL_INVALID_OPERATION:
+      return "GL_INVALID_OPERATION";
+    case GL_OUT_OF_MEMORY:
+      return "GL_OUT_OF_MEMORY";
+    default:
+      return fmt::format("GL error 0x{:x}", error);
+  }
+}
+
+// Throws when GL reports an error; `what` says what was being done.
+void CheckGl(const std::string& what) {
+  const GLenum error = glGetError();
+  if (error != GL_NO_ERROR)
+    throw Error(fmt::format("OpenGL: {} failed: {}", what, GlErrorName(error)));
+}
+
+GLuint CompileProgram(const std::string& defines) {
+  const std::string source = "#version 430 core\n" + defines + "#line 1\n" + kRenderFrameShader;
+  const GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
+  const char* text = source.c_str();
+  glShaderSource(shader, 1, &text, nullptr);
+  glCompileShader(shader);
+  GLint ok = 0;
+  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  const auto log = [](GLuint object, bool is_program) {
+    GLint length = 0;
+    if (is_program)
+      glGetProgramiv(object, GL_INFO_LOG_LENGTH, &length);
+    else
+      glGetShaderiv(object, GL_INFO_LOG_LENGTH, &length);
+    std::string info(std::size_t(std::max(length, 1)), '\0');
+    if (is_program)
+      glGetProgramInfoLog(object, length, nullptr, info.data());
+    else
+      glGetShaderInfoLog(object, length, nullptr, info.data());
+    return info;
+  };
+  if (!ok) {
+    const std::string message = log(shader, false);
+    glDeleteShader(shader);
+    throw Error("OpenGL: the renderer's compute shader did not compile:\n" + message);
+  }
+  const GLuint program = glCreateProgram();
+  glAttachShader(program, shader);
+  glLinkProgram(program);
+  glDeleteShader(shader);
+  glGetProgramiv(program, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    const std::string message = log(program, true);
+    glDeleteProgram(program);
+    throw Error("OpenGL: the renderer's compute shader did not link:\n" + message);
+  }
+  return program;
+}
+
+// Uniform setters by name (a name the compiler optimised away is skipped).
+struct Uniforms {
+  GLuint program;
+  GLint At(const char* name) const { return glGetUniformLocation(program, name); }
+  void Int(const char* name, int v) const { glUniform1i(At(name), v); }
+  void Float(const char* name, double v) const { glUniform1f(At(name), float(v)); }
+  void Int2(const char* name, int a, int b) const { glUniform2i(At(name), a, b); }
+  void Int4(const char* name, int a, int b, int c, int d) const {
+    glUniform4i(At(name), a, b, c, d);
+  }
+  void Vec3f(const char* name, const Vec3& v) const {
+    glUniform3f(At(name), float(v.x()), float(v.y()), float(v.z()));
+  }
+  void Vec3f(const char* name, double x, double y, double z) const {
+    glUniform3f(At(name), float(x), float(y), float(z));
+  }
+  // A plane's three functions of p_o: at00, di, dj as (n, x, y).
+  void Plane(const char* prefix, const PlaneAffines& p) const {
+    Vec3f(fmt::format("{}_at00", prefix).c_str(), p.n.at00, p.x.at00, p.y.at00);
+    Vec3f(fmt::format("{}_di", prefix).c_str(), p.n.di, p.x.di, p.y.di);
+    Vec3f(fmt::format("{}_dj", prefix).c_str(), p.n.dj, p.x.dj, p.y.dj);
+  }
+  void Origin(const char* prefix, const OriginConstants& o) const {
+    const std::string p(prefix);
+    glUniform1f(At((p + ".num").c_str()), o.num);
+    glUniform1f(At((p + ".n_o").c_str()), o.n_o);
+    glUniform1f(At((p + ".x_o").c_str()), o.x_o);
+    glUniform1f(At((p + ".y_o").c_str()), o.y_o);
+    glUniform1f(At((p + ".x0").c_str()), o.x0);
+    glUniform1f(At((p + ".y0").c_str()), o.y0);
+  }
+};
+
+template <typename T>
+void FillBuffer(GLuint buffer, const std::vector<T>& data) {
+  glBindBuffer(GL_SHADER_STORAGE_BUFFER, buffer);
+  // An empty buffer still gets a few bytes: a binding needs storage.
+  const std::size_t bytes = std::max<std::size_t>(data.size() * sizeof(T), 16);
+  glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(bytes), nullptr, GL_STREAM_DRAW);
+  if (!data.empty())
+    glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(data.size() * sizeof(T)), data.data());
+}
+
+std::string Mib(double bytes) { return fmt::format("{:.0f} MiB", bytes / (1024.0 * 1024.0)); }
+
+}  // namespace
+
+GlRenderer::GlRenderer(bool prefer_hardware) : context_(GlContext::Create(prefer_hardware)) {
+  GLint v = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &v);
+  limits_.max_texture_size = v;
+  glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &v);
+  limits_.max_array_layers = v;
+  glGetIntegerv(GL_MAX_COMPUTE_WORK_GROUP_INVOCATIONS, &v);
+  limits_.max_workgroup_invocations = v;
+  GLint64 block = 0;
+  glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &block);
+  limits_.max_storage_block_bytes = block;
+  if (epoxy_has_gl_extension("GL_NVX_gpu_memory_info")) {
+    glGetIntegerv(GL_GPU_MEMORY_INFO_DEDICATED_VIDMEM_NVX, &v);
+    limits_.dedicated_memory_kb = v;
+  }
+  glGenBuffers(5, buffers_);
+  glGenQueries(1, &timer_);
+  CheckGl("setting up the renderer");
+}
+
+GlRenderer::~GlRenderer() {
+  try {
+    context_->MakeCurrent();
+  } catch (const Error&) {
+    return;  // the context goes with its objects
+  }
+  for (const auto& [key, program] : programs_) glDeleteProgram(program);
+  glDeleteBuffers(5, buffers_);
+  glDeleteQueries(1, &timer_);
+  if (views_) glDeleteTextures(1, &views_);
+  if (output_) glDeleteTextures(1, &output_);
+}
+
+void GlRenderer::Upload(const LightField& lf) {
+  const LightFieldDims& d = lf.dims();
+  if (views_ && uploaded_ == lf.data() && uploaded_dims_ == d) return;
+  if (d.n_s > limits_.max_texture_size || d.n_t > limits_.max_texture_size)
+    throw Error(fmt::format(
+        "the light field's views ({}x{} samples) exceed this GPU's largest texture ({} on {})",
+        d.n_s, d.n_t, limits_.max_texture_size, device().renderer));
+  if (static_cast<long long>(d.view_count()) > limits_.max_array_layers)
+    throw Error(
+        fmt::format("the light field's {} views exceed this GPU's texture array layers ({} on {})",
+                    d.view_count(), limits_.max_array_layers, device().renderer));
+  const bool srgb8 = lf.sample_type() == SampleType::kSrgb8;
+  // The driver may pad each texel to four channels.
+  const double bytes = double(d.samples_per_view()) * double(d.view_count()) * (srgb8 ? 4 : 8);
+  if (limits_.dedicated_memory_kb > 0 && bytes > 1024.0 * double(limits_.dedicated_memory_kb))
+    throw Error(fmt::format("the light field needs about {} on the GPU; {} has {}", Mib(bytes),
+                            device().renderer, Mib(1024.0 * double(limits_.dedicated_memory_kb))));
+  if (views_) glDeleteTextures(1, &views_);
+  views_ = 0;
+  uploaded_ = nullptr;
+  while (glGetError() != GL_NO_ERROR) {
+  }
+  glGenTextures(1, &views_);
+  glBindTexture(GL_TEXTURE_2D_ARRAY, views_);
+  glTexStorage3D(GL_TEXTURE_2D_ARRAY, 1, srgb8 ? GL_SRGB8 : GL_RGB16F, d.n_s, d.n_t,
+                 GLsizei(d.view_count()));
+  if (glGetError() == GL_OUT_OF_MEMORY) {
+    glDeleteTextures(1, &views_);
+    views_ = 0;
+    throw Error(fmt::format("the light field ({}) does not fit in the memory of {}", Mib(bytes),
+                            device().renderer));
+  }
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  for (std::size_t v = 0; v < d.view_count(); ++v)
+    glTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, GLint(v), d.n_s, d.n_t, 1, GL_RGB,
+                    srgb8 ? GL_UNSIGNED_BYTE : GL_HALF_FLOAT, lf.data() + v * lf.view_bytes());
+  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  CheckGl("uploading the light field");
+  uploaded_ = lf.data();
+  uploaded_dims_ = d;
+}
+
+unsigned GlRenderer::Program(int mode, const GlRenderOptions& options) {
+  const std::string defines =
+      fmt::format("#define WORKGROUP_X {}\n#define WORKGROUP_Y {}\n#define MODE {}\n",
+                  options.workgroup_x, options.workgroup_y, mode);
+  auto& program = programs_[defines];
+  if (!program) program = CompileProgram(defines);
+  return program;
+}
+
+void GlRenderer::EnsureOutput(int width, int height) {
+  if (output_ && output_width_ == width && output_height_ == height) return;
+  if (width > limits_.max_texture_size || height > limits_.max_texture_size)
+    throw Error(fmt::format("a {}x{} frame exceeds this GPU's largest texture ({} on {})", width,
+                            height, limits_.max_texture_size, device().renderer));
+  if (output_) glDeleteTextures(1, &output_);
+  glGenTextures(1, &output_);
+  glBindTexture(GL_TEXTURE_2D, output_);
+  glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA32F, width, height);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  CheckGl(fmt::format("making a {}x{} frame", width, height));
+  output_width_ = width;
+  output_height_ = height;
+}
+
+double GlRenderer::RenderToTexture(const LightField& lf, const VirtualCamera& camera,
+                                   const GlRenderOptions& options) {
+  context_->MakeCurrent();
+  if (options.workgroup_x < 1 || options.workgroup_y < 1 ||
+      options.workgroup_x * options.workgroup_y > limits_.max_workgroup_invocations)
+    throw UsageError(fmt::format("--workgroup {}x{}: this GPU runs 1 to {} invocations a group",
+                                 options.workgroup_x, options.workgroup_y,
+                                 limits_.max_workgroup_invocations));
+  const LightFieldDims& d = lf.dims();
+  if (d.rows < 1 || d.cols < 1 || d.n_s < 2 || d.n_t < 2)
+    throw Error(
+        fmt::format("the GL renderer needs at least 2x2 samples a view (this light field "
+                    "has {}x{})",
+                    d.n_s, d.n_t));
+  Upload(lf);
+  EnsureOutput(camera.width(), camera.height());
+
+  const bool lens_samples = options.integrator == Integrator::kLensSamples || camera.is_pinhole();
+  const bool focal_plane = options.integrator == Integrator::kCameras ||
+                           options.interpolation == Interpolation::kFocalPlane;
+  const RaySetup setup(lf, camera, lens_samples);
+  std::optional<CameraIntegratorFrame> cameras;
+  int mode = lens_samples ? (focal_plane ? kLensFocalPlane : kLensQuadrilinear) : kCamerasUniform;
+  std::vector<ShaderCameraWeight> weights;
+  std::vector<float> table;
+  if (!lens_samples) {
+    cameras.emplace(lf, camera);
+    for (const GridCameraWeight& w : cameras->uniform_weights())
+      weights.push_back({w.row * d.cols + w.col, float(w.weight)});
+    if (weights.empty() && !cameras->levels().empty()) {
+      mode = kCamerasTable;
+      for (const CameraIntegratorFrame::Level& level : cameras->levels())
+        table.insert(table.end(), level.weights.begin(), level.weights.end());
+      if (double(table.size()) * sizeof(float) > double(limits_.max_storage_block_bytes))
+        throw Error(fmt::format(
+            "the cameras integrator's weight table for this frame ({}) exceeds this GPU's "
+            "storage block limit ({} on {}); a smaller frame or aperture fits",
+            Mib(double(table.size()) * sizeof(float)), Mib(double(limits_.max_storage_block_bytes)),
+            device().renderer));
+    }
+  }
+  std::vector<OriginConstants> camera_st(std::size_t(d.view_count()));
+  for (std::size_t i = 0; i < camera_st.size(); ++i) camera_st[i] = setup.camera_st(int(i));
+  FillBuffer(buffers_[kLensUv], setup.lens_uv);
+  FillBuffer(buffers_[kLensSt], setup.lens_st);
+  FillBuffer(buffers_[kCameraSt], camera_st);
+  FillBuffer(buffers_[kCameraWeights], weights);
+  FillBuffer(buffers_[kWeightTable], table);
+  for (int b = 0; b < 5; ++b) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GLuint(b), buffers_[b]);
+  CheckGl("uploading the frame's set-up");
+
+  const GLuint program = Program(mode, options);
+  glUseProgram(program);
+  const Uniforms u{program};
+  u.Int2("frame_size", camera.width(), camera.height());
+  u.Int2("grid", d.cols, d.rows);
+  u.Int2("st_size", d.n_s, d.n_t);
+  u.Plane("uv", setup.uv);
+  u.Plane("st", setup.st);
+  u.Origin("eye_st", setup.eye_st);
+  u.Int("lens_count", int(setup.lens_uv.size()));
+  u.Int("weight_count", int(weights.size()));
+  u.Int("views", 0);
+  if (mode == kCamerasTable) {
+    const ArrayPlane& array = lf.slab().uv;
+    const Vec3 p00 = camera.focus_point(camera.pixel_direction(0, 0));
+    u.Vec3f("focus_at00", p00 - array.p_ca);
+    u.Vec3f("focus_di", camera.focus_point(camera.pixel_direction(1, 0)) - p00);
+    u.Vec3f("focus_dj", camera.focus_point(camera.pixel_direction(0, 1)) - p00);
+    u.Vec3f("eye_from_array", camera.e_c() - array.p_ca);
+    u.Vec3f("array_u", array.u_ca);
+    u.Vec3f("array_v", array.v_ca);
+    u.Vec3f("array_n", array.n_ca);
+    u.Vec3f("lens_u", camera.u_c());
+    u.Vec3f("lens_v", camera.v_c());
+    u.Float("pitch_mm", array.pitch_mm);
+    u.Float("lens_radius_mm", 0.5 * camera.params().aperture_mm);
+    const auto& levels = cameras->levels();
+    u.Int("level_count", int(levels.size()));
+    u.Int("nodes_per_pitch", CameraIntegratorFrame::kNodesPerPitch);
+    u.Int4("lattice", levels[0].x0, levels[0].y0, levels[0].nx, levels[0].ny);
+    u.Float("radius0", levels[0].radius);
+    u.Float("radius_step", levels.size() > 1 ? levels[1].radius - levels[0].radius : 1.0);
+  }
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D_ARRAY, views_);
+  glBindImageTexture(0, output_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+  CheckGl("setting the frame's parameters");
+
+  const auto start = std::chrono::steady_clock::now();
+  glBeginQuery(GL_TIME_ELAPSED, timer_);
+  glDispatchCompute(GLuint((camera.width() + options.workgroup_x - 1) / options.workgroup_x),
+                    GLuint((camera.height() + options.workgroup_y - 1) / options.workgroup_y), 1);
+  glEndQuery(GL_TIME_ELAPSED);
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
+                  GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+  glFinish();
+  const double wall_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  CheckGl("rendering the frame");
+  GLuint64 nanoseconds = 0;
+  glGetQueryObjectui64v(timer_, GL_QUERY_RESULT, &nanoseconds);
+  last_lens_count_ = lens_samples ? static_cast<long long>(setup.lens_uv.size()) : 0;
+  // A software GL (llvmpipe) runs compute work outside its timer queries (they read 0): there
+  // the pass's wall-clock time, from the dispatch to glFinish, stands in.
+  const double gpu_ms = double(nanoseconds) * 1e-6;
+  return device().software || gpu_ms <= 0 ? wall_ms : gpu_ms;
+}
+
+RenderResult GlRenderer::Render(const LightField& lf, const VirtualCamera& camera,
+                                const GlRenderOptions& options) {
+  RenderResult result;
+  result.gpu_ms = RenderToTexture(lf, camera, options);
+  const int width = camera.width(), height = camera.height();
+  std::vector<float> pixels(std::size_t(width) * std::size_t(height) * 4);
+  glBindTexture(GL_TEXTURE_2D, output_);
+  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  glGetTexImage(GL_TEXTURE_2D, 0, GL_RGBA, GL_FLOAT, pixels.data());
+  CheckGl("reading the frame back");
+  result.image = cv::Mat(height, width, CV_32FC3);
+  result.hit_mask = cv::Mat(height, width, CV_8UC1);
+  for (int j = 0; j < height; ++j) {
+    const float* in = pixels.data() + std::size_t(j) * std::size_t(width) * 4;
+    auto* out = result.image.ptr<cv::Vec3f>(camera.image_row(j));
+    auto* mask = result.hit_mask.ptr<std::uint8_t>(camera.image_row(j));
+    for (int i = 0; i < width; ++i) {
+      out[i] = {in[4 * i], in[4 * i + 1], in[4 * i + 2]};
+      const auto count = static_cast<long long>(in[4 * i + 3]);
+      mask[i] = count > 0 ? 255 : 0;
+      result.rays_hit += count;
+    }
+  }
+  result.rays = last_lens_count_ > 0 ? static_cast<long long>(width) * height * last_lens_count_
+                                     : result.rays_hit;
+  result.path = "gl (" + device().renderer + ")";
+  return result;
+}
+
+}  // namespace lfcam

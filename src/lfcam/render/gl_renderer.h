@@ -1,0 +1,81 @@
+#pragma once
+// The GL light field renderer (`lfcam render --backend gl`): the CPU renderer's model, one
+// compute-shader invocation a pixel (render/shaders/render_frame.comp), headless through EGL.
+// The per-frame set-up of the virtual camera is the CPU renderer's (render/ray_setup.h, and the
+// cameras integrator's weights from render/camera_integrator.h), computed once in C++; the
+// shader does per-pixel work only.
+//
+// The light field lives on the GPU as one sRGB texture array, a layer a view, so the hardware
+// decodes to linear light and filters within a view (the filter's weights are fixed point on
+// most GPUs: 8 bits of a sample on NVIDIA's, hence a difference from the CPU renderer of a few
+// thousandths of the contrast between neighbouring samples; render/gl_renderer_test.cpp bounds
+// it). It is uploaded once and kept while the same light field is rendered.
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+
+#include "lfcam/core/lightfield.h"
+#include "lfcam/render/cpu_renderer.h"
+#include "lfcam/render/gl_context.h"
+#include "lfcam/render/virtual_camera.h"
+
+namespace lfcam {
+
+struct GlRenderOptions {
+  Integrator integrator = Integrator::kLensSamples;
+  Interpolation interpolation = Interpolation::kQuadrilinear;
+  int workgroup_x = 16, workgroup_y = 8;  // the compute shader's local size
+};
+
+// The device's limits that decide what it can render.
+struct GlLimits {
+  int max_texture_size = 0, max_array_layers = 0;
+  long long max_storage_block_bytes = 0;
+  int max_workgroup_invocations = 0;
+  long long dedicated_memory_kb = -1;  // where the driver says (NVIDIA), else -1
+};
+
+class GlRenderer {
+ public:
+  // Makes a GL 4.3 context (render/gl_context.h); throws lfcam::Error when there is none.
+  explicit GlRenderer(bool prefer_hardware = true);
+  ~GlRenderer();
+  GlRenderer(const GlRenderer&) = delete;
+  GlRenderer& operator=(const GlRenderer&) = delete;
+
+  const GlDeviceInfo& device() const { return context_->device(); }
+  const GlLimits& limits() const { return limits_; }
+
+  // Renders a frame into the renderer's output texture (RGBA32F, row 0 at the bottom: alpha
+  // holds the rays that hit or the cameras read) without reading it back, and returns the GPU
+  // time of the compute pass in milliseconds (a GL timer query; on a software GL, whose timer
+  // queries do not see compute work, the wall-clock time from the dispatch to glFinish). Throws
+  // lfcam::Error when the light field or the frame exceeds the device's limits, naming the limit.
+  double RenderToTexture(const LightField& lf, const VirtualCamera& camera,
+                         const GlRenderOptions& options);
+  unsigned output_texture() const { return output_; }
+
+  // Renders and reads the frame back as the CPU renderer returns it; `gpu_ms` is set.
+  RenderResult Render(const LightField& lf, const VirtualCamera& camera,
+                      const GlRenderOptions& options);
+
+ private:
+  void Upload(const LightField& lf);
+  unsigned Program(int mode, const GlRenderOptions& options);
+  void EnsureOutput(int width, int height);
+
+  std::unique_ptr<GlContext> context_;
+  GlLimits limits_;
+  unsigned views_ = 0;              // the light field's texture array
+  const void* uploaded_ = nullptr;  // whose samples it holds
+  LightFieldDims uploaded_dims_{};
+  unsigned output_ = 0;  // the frame, RGBA32F
+  int output_width_ = 0, output_height_ = 0;
+  unsigned buffers_[5] = {0, 0, 0, 0, 0};  // the shader's storage buffers
+  unsigned timer_ = 0;
+  std::map<std::string, unsigned> programs_;  // by mode and work group size
+  long long last_lens_count_ = 0;
+};
+
+}  // namespace lfcam

@@ -1,0 +1,215 @@
+// The GL renderer against the CPU renderer: the same model, so the same frames up to float
+// rounding and the texture unit's fixed-point filter. Runs on whatever GL 4.3 EGL offers (in
+// CI, Mesa's llvmpipe); without one the tests say so and skip, unless LFCAM_REQUIRE_GL=1
+// (scripts/test.sh sets it, having installed Mesa), where that is a failure.
+#include "lfcam/render/gl_renderer.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <iostream>
+#include <memory>
+#include <opencv2/core.hpp>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "lfcam/core/error.h"
+#include "lfcam/render/frame_renderer.h"
+#include "lfcam/render/render_test_cases.h"
+
+namespace lfcam {
+namespace {
+
+using render_test::Case;
+using render_test::SmallPaperLightField;
+using render_test::TurnedStPlaneLightField;
+
+// The renderer every test shares (a context and an uploaded light field), or null with the
+// reason in `why`.
+GlRenderer* SharedRenderer(std::string* why) {
+  static std::string failure;
+  static const std::unique_ptr<GlRenderer> renderer = []() -> std::unique_ptr<GlRenderer> {
+    try {
+      auto gl = std::make_unique<GlRenderer>();
+      std::cout << "GL device: " << gl->device().renderer << ", OpenGL " << gl->device().version
+                << "\n";
+      return gl;
+    } catch (const Error& e) {
+      failure = e.what();
+      return nullptr;
+    }
+  }();
+  *why = failure;
+  return renderer.get();
+}
+
+#define LFCAM_GL_OR_SKIP(gl)                                               \
+  std::string why_no_gl;                                                   \
+  GlRenderer* gl = SharedRenderer(&why_no_gl);                             \
+  if (gl == nullptr) {                                                     \
+    const char* required = std::getenv("LFCAM_REQUIRE_GL");                \
+    if (required != nullptr && std::string(required) == "1")               \
+      FAIL() << "LFCAM_REQUIRE_GL=1 but no GL 4.3 context: " << why_no_gl; \
+    GTEST_SKIP() << "no GL 4.3 context could be made: " << why_no_gl;      \
+  }
+
+// Random valid cameras over the small light field: eyes on, in front of and behind the array's
+// plane, turned and rolled, pinholes and apertures, breathing on and off.
+std::vector<Case> RandomCases(int count, unsigned seed) {
+  const LightField& lf = SmallPaperLightField();
+  const Vec3 centre = lf.slab().uv.center();
+  std::mt19937 rng(seed);
+  const auto uniform = [&](double a, double b) {
+    return std::uniform_real_distribution<double>(a, b)(rng);
+  };
+  std::vector<Case> cases;
+  for (int n = 0; n < count; ++n) {
+    VirtualCameraParams p;
+    p.width = int(uniform(33, 97));
+    p.height = int(uniform(29, 81));
+    const double height = n % 3 == 0 ? 0.0 : uniform(-400, 900);
+    p.eye = centre + Vec3(uniform(-60, 60), uniform(-50, 50), height);
+    p.look_at = n % 2 == 0 ? Vec3(p.eye - Vec3(0, 0, 1000))
+                           : Vec3(centre + Vec3(uniform(-400, 400), uniform(-300, 300), -3500));
+    if (n % 4 == 3) p.up = Vec3(std::sin(0.5), std::cos(0.5), 0);
+    p.focal_length_mm = uniform(120, 420);
+    p.focus_distance_mm = uniform(3300, 5200);
+    p.aperture_mm = n % 5 == 0 ? 0.0 : uniform(20, 150);
+    p.lens_rate = uniform(1, 3);
+    p.breathing = n % 2 == 1;
+    const int kind = n % 3;
+    const Integrator integrator = kind == 2 ? Integrator::kCameras : Integrator::kLensSamples;
+    const Interpolation interpolation =
+        kind == 0 ? Interpolation::kQuadrilinear : Interpolation::kFocalPlane;
+    cases.push_back({"random camera " + std::to_string(n) + " " + ToString(integrator) + " " +
+                         ToString(interpolation),
+                     p, integrator, interpolation, "", n % 4 == 1});
+  }
+  return cases;
+}
+
+struct Agreement {
+  double mean_abs = 0, psnr = 0, max_abs = 0, mask_mismatch = 0;
+};
+
+// Over the pixels both renderers hit: the mean and largest absolute difference (linear light,
+// 0..1) and the PSNR; and the share of pixels whose hit masks differ.
+Agreement Compare(const RenderResult& gl, const RenderResult& cpu) {
+  Agreement a;
+  const cv::Mat both = gl.hit_mask & cpu.hit_mask;
+  const int pixels = std::max(1, cv::countNonZero(both));
+  cv::Mat difference;
+  cv::absdiff(gl.image, cpu.image, difference);
+  const cv::Scalar sum = cv::sum(difference.setTo(cv::Scalar::all(0), ~both));
+  a.mean_abs = (sum[0] + sum[1] + sum[2]) / (3.0 * pixels);
+  double squares = 0;
+  for (int y = 0; y < difference.rows; ++y)
+    for (int x = 0; x < difference.cols; ++x) {
+      const cv::Vec3f d = difference.at<cv::Vec3f>(y, x);
+      squares += d.dot(d);
+      a.max_abs = std::max<double>(a.max_abs, std::max({d[0], d[1], d[2]}));
+    }
+  const double mse = squares / (3.0 * pixels);
+  a.psnr = mse > 0 ? 10 * std::log10(1.0 / mse) : 99.0;
+  a.mask_mismatch = double(cv::countNonZero(gl.hit_mask != cpu.hit_mask)) / gl.hit_mask.total();
+  return a;
+}
+
+void ExpectAgreement(GlRenderer& gl, const std::vector<Case>& cases, Agreement& worst) {
+  for (const Case& c : cases) {
+    const LightField& lf = c.turned ? TurnedStPlaneLightField() : SmallPaperLightField();
+    const VirtualCamera camera(c.camera);
+    CpuRenderOptions cpu_options;
+    cpu_options.integrator = c.integrator;
+    cpu_options.interpolation = c.interpolation;
+    const RenderResult cpu = RenderLightFieldCpu(lf, camera, cpu_options);
+    GlRenderOptions gl_options;
+    gl_options.integrator = c.integrator;
+    gl_options.interpolation = c.interpolation;
+    const RenderResult frame = gl.Render(lf, camera, gl_options);
+    ASSERT_GT(cpu.rays_hit, 0) << c.name;
+    const Agreement a = Compare(frame, cpu);
+    EXPECT_LT(a.mean_abs, 1.0 / 255) << c.name;
+    EXPECT_GT(a.psnr, 45.0) << c.name;
+    // No pixel far off either: a wrong weight or tap shows in a few pixels long before the mean.
+    EXPECT_LT(a.max_abs, 2.0 / 255) << c.name;
+    EXPECT_LT(a.mask_mismatch, 0.01) << c.name;
+    // Rays and cameras read agree up to the pixels along the domain's edges.
+    EXPECT_NEAR(double(frame.rays_hit), double(cpu.rays_hit), 0.01 * double(cpu.rays_hit))
+        << c.name;
+    EXPECT_EQ(frame.rays > 0, cpu.rays > 0) << c.name;
+    EXPECT_GE(frame.gpu_ms, 0.0) << c.name;
+    worst.mean_abs = std::max(worst.mean_abs, a.mean_abs);
+    worst.max_abs = std::max(worst.max_abs, a.max_abs);
+    worst.mask_mismatch = std::max(worst.mask_mismatch, a.mask_mismatch);
+    worst.psnr = worst.psnr == 0 ? a.psnr : std::min(worst.psnr, a.psnr);
+  }
+}
+
+TEST(GlRenderer, AgreesWithTheCpuRendererOnEveryPath) {
+  LFCAM_GL_OR_SKIP(gl);
+  Agreement worst;
+  ExpectAgreement(*gl, render_test::Cases(), worst);
+  ExpectAgreement(*gl, RandomCases(24, 2026), worst);
+  std::cout << "worst over every case: mean |difference| " << worst.mean_abs * 255
+            << " / 255, largest " << worst.max_abs * 255 << " / 255, PSNR " << worst.psnr
+            << " dB, hit masks differing on " << 100 * worst.mask_mismatch << "% of pixels\n";
+}
+
+TEST(GlRenderer, RefusesViewsLargerThanTheDeviceWithItsLimit) {
+  LFCAM_GL_OR_SKIP(gl);
+  const LightField& small = SmallPaperLightField();
+  LightFieldDims dims = small.dims();
+  dims.n_s = gl->limits().max_texture_size + 1;
+  dims.n_t = 2;
+  const LightField wide(dims, SampleType::kSrgb8, small.slab());
+  VirtualCameraParams p;
+  p.width = p.height = 8;
+  p.eye = small.slab().uv.center();
+  p.look_at = p.eye - Vec3(0, 0, 1000);
+  try {
+    gl->Render(wide, VirtualCamera(p), {});
+    FAIL() << "rendered a light field wider than the largest texture";
+  } catch (const Error& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find(std::to_string(dims.n_s)), std::string::npos) << message;
+    EXPECT_NE(message.find(std::to_string(gl->limits().max_texture_size)), std::string::npos)
+        << message;
+  }
+  // The renderer still works afterwards.
+  EXPECT_GT(gl->Render(small, VirtualCamera(p), {}).rays_hit, 0);
+}
+
+TEST(GlRenderer, RefusesAWorkGroupTheDeviceCannotRun) {
+  LFCAM_GL_OR_SKIP(gl);
+  VirtualCameraParams p;
+  p.width = p.height = 8;
+  p.eye = SmallPaperLightField().slab().uv.center();
+  p.look_at = p.eye - Vec3(0, 0, 1000);
+  GlRenderOptions o;
+  o.workgroup_x = gl->limits().max_workgroup_invocations;
+  o.workgroup_y = 2;
+  EXPECT_THROW(gl->Render(SmallPaperLightField(), VirtualCamera(p), o), UsageError);
+  o.workgroup_x = 8;
+  o.workgroup_y = 4;
+  EXPECT_GT(gl->Render(SmallPaperLightField(), VirtualCamera(p), o).rays_hit, 0);
+}
+
+TEST(FrameRenderer, NamesTheBackendItPicked) {
+  EXPECT_EQ(BackendFromString("auto"), Backend::kAuto);
+  EXPECT_THROW(BackendFromString("vulkan"), Error);
+  const FrameRenderer cpu(Backend::kCpu);
+  EXPECT_FALSE(cpu.uses_gl());
+  EXPECT_EQ(cpu.description().rfind("cpu (", 0), 0u) << cpu.description();
+  const FrameRenderer automatic(Backend::kAuto);
+  // auto takes a GL context only on a hardware GPU, and says why either way.
+  if (automatic.uses_gl()) {
+    EXPECT_FALSE(automatic.gl()->device().software);
+  }
+  EXPECT_NE(automatic.description().find("auto"), std::string::npos) << automatic.description();
+}
+
+}  // namespace
+}  // namespace lfcam

@@ -1,0 +1,205 @@
+// One frame of the light field renderer, one invocation a pixel: the GL twin of the CPU
+// renderer's row kernels (render/simd_kernels.cpp), over the per-frame set-up both share
+// (render/ray_setup.h): every coordinate is a projective function of the pixel, from constants
+// computed once per frame in C++. The views are an sRGB texture array, one layer a view: the
+// hardware decodes to linear light and filters bilinearly within a view; the blend across
+// cameras is taken here.
+//
+// The C++ side prepends "#version 430 core" and defines WORKGROUP_X, WORKGROUP_Y and MODE:
+//   MODE 0  lens samples, the paper's quadrilinear lookup
+//   MODE 1  lens samples, the focal-plane lookup
+//   MODE 2  the cameras integrator, one weight list for every pixel
+//   MODE 3  the cameras integrator, weights per pixel from the frame's table
+// Output: linear RGB, and in alpha the rays that hit (lens samples) or the cameras read.
+
+layout(local_size_x = WORKGROUP_X, local_size_y = WORKGROUP_Y) in;
+
+layout(rgba32f, binding = 0) uniform writeonly image2D frame_image;
+layout(binding = 0) uniform sampler2DArray views;
+
+// An origin's constants against a plane (OriginConstants in ray_setup.h).
+struct Origin {
+  float num, n_o, x_o, y_o, x0, y0;
+};
+layout(std430, binding = 0) readonly buffer LensUv { Origin lens_uv[]; };
+layout(std430, binding = 1) readonly buffer LensSt { Origin lens_st[]; };
+layout(std430, binding = 2) readonly buffer CameraSt { Origin camera_st[]; };
+struct CameraWeight {
+  int index;
+  float weight;
+};
+layout(std430, binding = 3) readonly buffer CameraWeights { CameraWeight camera_weights[]; };
+layout(std430, binding = 4) readonly buffer WeightTable { float weight_table[]; };
+
+uniform ivec2 frame_size;  // width, height
+uniform ivec2 grid;        // camera columns, rows
+uniform ivec2 st_size;     // n_s, n_t
+// p_o against the uv- and st-planes: (n.p_o, a_x.p_o, a_y.p_o) = at00 + di * i + dj * j.
+uniform vec3 uv_at00, uv_di, uv_dj, st_at00, st_di, st_dj;
+uniform Origin eye_st;  // the central lines
+uniform int lens_count;
+uniform int weight_count;
+// MODE 3: the footprint's set-up (world mm relative to the array's centre p_ca) and the table
+// (CameraIntegratorFrame's lattice of footprint centres, per radius level).
+uniform vec3 focus_at00, focus_di, focus_dj;  // p_o - p_ca
+uniform vec3 eye_from_array;                  // e_c - p_ca
+uniform vec3 array_u, array_v, array_n;       // u_ca, v_ca, n_ca
+uniform vec3 lens_u, lens_v;                  // u_c, v_c
+uniform float pitch_mm, lens_radius_mm;
+uniform int level_count, nodes_per_pitch;
+uniform ivec4 lattice;  // x0, y0, nx, ny
+uniform float radius0, radius_step;
+
+struct Hit {
+  vec2 at;
+  bool valid;
+};
+
+// Where the line from an origin through p_o (as plane functions p) meets the plane.
+Hit Project(vec3 p, Origin o) {
+  Hit h;
+  const float den = p.x - o.n_o;
+  h.valid = den != 0.0;
+  const float lambda = o.num / (h.valid ? den : 1.0);
+  h.at = vec2(fma(lambda, p.y - o.x_o, o.x0), fma(lambda, p.z - o.y_o, o.y0));
+  if (!h.valid) h.at = vec2(0.0);
+  return h;
+}
+
+bool Inside(Hit h, ivec2 n) {
+  return h.valid && all(greaterThanEqual(h.at, vec2(-0.5))) &&
+         all(lessThanEqual(h.at, vec2(n) - 0.5));
+}
+
+// The clamped linear interpolation along one axis of n samples (AxisLerp in C++).
+void AxisLerp(float x, int n, out int i0, out int i1, out float w1) {
+  x = clamp(x, 0.0, float(n - 1));
+  i0 = clamp(int(x), 0, max(n - 2, 0));
+  i1 = min(i0 + 1, n - 1);
+  w1 = x - float(i0);
+}
+
+// View `layer` read bilinearly at st sample coordinates (k, l), in linear light.
+vec3 ReadView(int layer, vec2 kl) {
+  return texture(views, vec3((kl + 0.5) / vec2(st_size), float(layer))).rgb;
+}
+
+// Camera `index` read along its own line through p_o (the focal-plane read).
+vec3 ReadFocused(int index, vec3 p_st) {
+  const Hit h = Project(p_st, camera_st[index]);
+  return h.valid ? ReadView(index, h.at) : vec3(0.0);
+}
+
+#if MODE == 3
+// The table's weight of camera `index` for a footprint centred at (cx, cy) at radius level
+// `level`: bilinear between the four lattice nodes around the centre.
+float LevelWeight(int level, int index, float cx, float cy) {
+  const float x = cx * float(nodes_per_pitch) - float(lattice.x);
+  const float y = cy * float(nodes_per_pitch) - float(lattice.y);
+  const int a = int(floor(x)), b = int(floor(y));
+  const float fx = x - float(a), fy = y - float(b);
+  const int cameras = grid.x * grid.y;
+  const int a0 = clamp(a, 0, lattice.z - 1), a1 = clamp(a + 1, 0, lattice.z - 1);
+  const int b0 = clamp(b, 0, lattice.w - 1), b1 = clamp(b + 1, 0, lattice.w - 1);
+  const int base = level * lattice.z * lattice.w;
+  const float w00 = weight_table[((base + b0 * lattice.z + a0) * cameras) + index];
+  const float w10 = weight_table[((base + b0 * lattice.z + a1) * cameras) + index];
+  const float w01 = weight_table[((base + b1 * lattice.z + a0) * cameras) + index];
+  const float w11 = weight_table[((base + b1 * lattice.z + a1) * cameras) + index];
+  return (1.0 - fy) * ((1.0 - fx) * w00 + fx * w10) + fy * ((1.0 - fx) * w01 + fx * w11);
+}
+
+// The cameras integrator with a footprint per pixel (CameraIntegratorFrame::FootprintOf and
+// Weights in C++).
+void RenderCamerasTable(ivec2 pixel, vec3 p_st, out vec3 sum, out int reads) {
+  sum = vec3(0.0);
+  reads = 0;
+  const vec3 p_o = focus_at00 + focus_di * float(pixel.x) + focus_dj * float(pixel.y);
+  const vec3 to_eye = eye_from_array - p_o;
+  const float h_e = dot(array_n, to_eye);
+  if (abs(h_e) < 1e-12) return;
+  const float lambda = dot(array_n, -p_o) / h_e;
+  const vec3 centre = p_o + lambda * to_eye;
+  const float cx = dot(centre, array_u) / pitch_mm - 0.5;
+  const float cy = dot(centre, array_v) / pitch_mm - 0.5;
+  const vec3 du = lambda * lens_u - (lambda * dot(array_n, lens_u) / h_e) * to_eye;
+  const vec3 dv = lambda * lens_v - (lambda * dot(array_n, lens_v) / h_e) * to_eye;
+  const float det = dot(du, array_u) * dot(dv, array_v) - dot(du, array_v) * dot(dv, array_u);
+  const float radius = lens_radius_mm * sqrt(abs(det)) / pitch_mm;
+  // A footprint that does not meet the window has no weights.
+  const float dx = max(max(-0.5 - cx, cx - (float(grid.x) - 0.5)), 0.0);
+  const float dy = max(max(-0.5 - cy, cy - (float(grid.y) - 0.5)), 0.0);
+  if (dx * dx + dy * dy >= radius * radius && (dx > 0.0 || dy > 0.0)) return;
+  int k = 0;
+  float t = 0.0;
+  if (level_count > 1) {
+    const float x = clamp((radius - radius0) / radius_step, 0.0, float(level_count - 1));
+    k = min(int(x), level_count - 2);
+    t = x - float(k);
+  }
+  // Only the cameras the footprint (with the lattice's and the levels' slack) can reach.
+  const float reach = radius + 1.5;
+  const int c0 = max(int(floor(cx - reach)), 0), c1 = min(int(ceil(cx + reach)), grid.x - 1);
+  const int r0 = max(int(floor(cy - reach)), 0), r1 = min(int(ceil(cy + reach)), grid.y - 1);
+  float total = 0.0;
+  for (int row = r0; row <= r1; ++row)
+    for (int col = c0; col <= c1; ++col) {
+      const int index = row * grid.x + col;
+      float w = LevelWeight(k, index, cx, cy);
+      if (level_count > 1) w = (1.0 - t) * w + t * LevelWeight(k + 1, index, cx, cy);
+      if (!(w > 0.0)) continue;
+      total += w;
+      sum += w * ReadFocused(index, p_st);
+      ++reads;
+    }
+  // Renormalised, as next to the window's edge a lattice node may miss the window.
+  if (total > 0.0) sum /= total;
+}
+#endif
+
+void main() {
+  const ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+  if (any(greaterThanEqual(pixel, frame_size))) return;
+  const vec2 ij = vec2(pixel);
+  const vec3 p_st = st_at00 + st_di * ij.x + st_dj * ij.y;
+  vec3 sum = vec3(0.0);
+  int count = 0;
+#if MODE == 0 || MODE == 1
+  const vec3 p_uv = uv_at00 + uv_di * ij.x + uv_dj * ij.y;
+  for (int n = 0; n < lens_count; ++n) {
+    const Hit at_uv = Project(p_uv, lens_uv[n]);
+    const Hit at_st = Project(p_st, lens_st[n]);
+    if (!Inside(at_uv, grid) || !Inside(at_st, st_size)) continue;
+    ++count;
+    int c[2], r[2];
+    float wc, wr;
+    AxisLerp(at_uv.at.x, grid.x, c[0], c[1], wc);
+    AxisLerp(at_uv.at.y, grid.y, r[0], r[1], wr);
+    const float row_w[2] = float[2](1.0 - wr, wr), col_w[2] = float[2](1.0 - wc, wc);
+    for (int a = 0; a < 2; ++a)
+      for (int b = 0; b < 2; ++b) {
+        const float w = row_w[a] * col_w[b];
+        if (w == 0.0) continue;
+        const int index = r[a] * grid.x + c[b];
+#if MODE == 0
+        sum += w * ReadView(index, at_st.at);
+#else
+        sum += w * ReadFocused(index, p_st);
+#endif
+      }
+  }
+  if (count > 0) sum /= float(count);
+#else
+  // The pixel's central line decides whether the pixel meets the sampled st domain.
+  if (Inside(Project(p_st, eye_st), st_size)) {
+#if MODE == 2
+    for (int n = 0; n < weight_count; ++n)
+      sum += camera_weights[n].weight * ReadFocused(camera_weights[n].index, p_st);
+    count = weight_count;
+#else
+    RenderCamerasTable(pixel, p_st, sum, count);
+#endif
+  }
+#endif
+  imageStore(frame_image, pixel, vec4(sum, float(count)));
+}
