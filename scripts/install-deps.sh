@@ -16,6 +16,9 @@ packages=(
   # The GL renderer: OpenGL 4.3+ compute through EGL, headless (libepoxy loads the entry points);
   # Mesa's llvmpipe runs it where there is no GPU (CI).
   libepoxy-dev libegl-dev libegl-mesa0 libgl1-mesa-dri
+  # The viewer: a GLFW window with Dear ImGui (its GLFW and OpenGL backends' sources come with
+  # libimgui-dev); Xvfb gives it a screen in the tests.
+  libglfw3-dev libimgui-dev xvfb xauth
   libgtest-dev libgmock-dev
 )
 # bench/peer.sh: the NumPy + OpenCV peer renderer.

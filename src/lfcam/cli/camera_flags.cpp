@@ -12,32 +12,59 @@
 namespace lfcam::cli {
 
 void CameraFlags::AddTo(CLI::App& c) {
-  c.add_option(
-       "--size", size,
-       fmt::format("Image size in pixels: N (square) or WxH, at most {} a side", kMaxImageSide))
-      ->capture_default_str();
-  c.add_option("--eye", eye, "Camera position e_c, X,Y,Z in world mm (default: array centre)");
-  c.add_option("--look-at", look_at,
-               "Point looked at, X,Y,Z in world mm (default: straight ahead, along -n_ca)");
-  c.add_option("--up", up, "Up direction X,Y,Z (default: v_ca)");
-  c.add_option("--focal-length", focal_length_mm, "Focal length f in mm (film is 56 mm)")
-      ->capture_default_str();
-  c.add_option("--focus-distance", focus_distance_mm,
-               "Focus distance d_o in mm, from the lens; must exceed f")
-      ->capture_default_str();
-  c.add_option("--aperture", aperture_mm, "Aperture diameter d_l in mm (0 = pinhole)")
-      ->capture_default_str();
-  c.add_option(
-       "--lens-rate", lens_rate,
-       fmt::format("Lens sampling rate gamma_ls: n_ls = gamma (d_l/2)^2 / 210 rays a pixel, "
-                   "at most {} (4 to 9 looks good)",
-                   kMaxLensSamples))
-      ->capture_default_str();
-  c.add_flag("--no-breathing", no_breathing,
-             "Keep the film at f (fixed field of view) and focus with f_e = f d_o / (f + d_o)");
+  options_["--camera"] = c.add_option(
+      "--camera", view_file,
+      "A saved view (FILE.json, as the viewer writes beside a screenshot): its camera, "
+      "integrator and lookup; camera flags given too override it (--size renders it at "
+      "another size)");
+  options_["--size"] =
+      c.add_option(
+           "--size", size,
+           fmt::format("Image size in pixels: N (square) or WxH, at most {} a side", kMaxImageSide))
+          ->capture_default_str();
+  options_["--eye"] =
+      c.add_option("--eye", eye, "Camera position e_c, X,Y,Z in world mm (default: array centre)");
+  options_["--look-at"] =
+      c.add_option("--look-at", look_at,
+                   "Point looked at, X,Y,Z in world mm (default: straight ahead, along -n_ca)");
+  options_["--up"] = c.add_option("--up", up, "Up direction X,Y,Z (default: v_ca)");
+  options_["--focal-length"] =
+      c.add_option("--focal-length", focal_length_mm, "Focal length f in mm (film is 56 mm)")
+          ->capture_default_str();
+  options_["--focus-distance"] =
+      c.add_option("--focus-distance", focus_distance_mm,
+                   "Focus distance d_o in mm, from the lens; must exceed f")
+          ->capture_default_str();
+  options_["--aperture"] =
+      c.add_option("--aperture", aperture_mm, "Aperture diameter d_l in mm (0 = pinhole)")
+          ->capture_default_str();
+  options_["--lens-rate"] =
+      c.add_option(
+           "--lens-rate", lens_rate,
+           fmt::format("Lens sampling rate gamma_ls: n_ls = gamma (d_l/2)^2 / 210 rays a pixel, "
+                       "at most {} (4 to 9 looks good)",
+                       kMaxLensSamples))
+          ->capture_default_str();
+  options_["--no-breathing"] =
+      c.add_flag("--no-breathing", no_breathing,
+                 "Keep the film at f (fixed field of view) and focus with f_e = f d_o / (f + d_o)");
+}
+
+bool CameraFlags::given(const std::string& flag) const {
+  const auto it = options_.find(flag);
+  return it != options_.end() && it->second != nullptr && it->second->count() > 0;
+}
+
+const std::optional<ViewSettings>& CameraFlags::view() const {
+  if (!view_read_) {
+    view_read_ = true;
+    if (!view_file.empty()) view_ = FlagValue("--camera", [&] { return ReadViewFile(view_file); });
+  }
+  return view_;
 }
 
 void CameraFlags::Validate() const {
+  view();
   const std::pair<int, int> image = ParseSize("--size", size, kMaxImageSide);
   // The linear image, its hit mask and their encoded copies: about 25 bytes a pixel.
   FlagValue("--size", [&] {
@@ -68,6 +95,20 @@ void CameraFlags::Validate() const {
 }
 
 VirtualCameraParams CameraFlags::Resolve(const ArrayPlane& array) const {
+  if (const auto& saved = view()) {
+    // The saved view, with the flags given on the command line over it.
+    VirtualCameraParams p = saved->camera;
+    if (given("--size")) std::tie(p.width, p.height) = ParseSize("--size", size, kMaxImageSide);
+    if (given("--eye")) p.eye = ParseVec3("--eye", eye);
+    if (given("--look-at")) p.look_at = ParseVec3("--look-at", look_at);
+    if (given("--up")) p.up = ParseVec3("--up", up);
+    if (given("--focal-length")) p.focal_length_mm = focal_length_mm;
+    if (given("--focus-distance")) p.focus_distance_mm = focus_distance_mm;
+    if (given("--aperture")) p.aperture_mm = aperture_mm;
+    if (given("--lens-rate")) p.lens_rate = lens_rate;
+    if (given("--no-breathing")) p.breathing = false;
+    return p;
+  }
   VirtualCameraParams p;
   std::tie(p.width, p.height) = ParseSize("--size", size, kMaxImageSide);
   p.eye = eye.empty() ? array.center() : ParseVec3("--eye", eye);
@@ -88,7 +129,10 @@ VirtualCamera CameraFlags::MakeCamera(const ArrayPlane& array) const {
   } catch (const UsageError&) {
     throw;
   } catch (const Error& e) {
-    throw UsageError(fmt::format("camera flags (--eye, --look-at, --up): {}", e.what()));
+    throw UsageError(fmt::format(
+        "camera flags ({}): {}",
+        view_file.empty() ? "--eye, --look-at, --up" : "--camera " + view_file + " and the flags",
+        e.what()));
   }
 }
 

@@ -2,9 +2,12 @@
 // The virtual camera flags shared by `render`, `oracle` and every later command that looks
 // through the paper's camera.
 #include <CLI/CLI.hpp>
+#include <map>
+#include <optional>
 #include <string>
 
 #include "lfcam/core/slab.h"
+#include "lfcam/render/view_file.h"
 #include "lfcam/render/virtual_camera.h"
 
 namespace lfcam::cli {
@@ -17,8 +20,13 @@ struct CameraFlags {
   double aperture_mm = 0.0;
   double lens_rate = 4.0;
   bool no_breathing = false;
+  std::string view_file;  // --camera FILE.json: a saved view (the viewer's), flags override it
 
   void AddTo(CLI::App& command);
+  // The saved view (--camera), read once; none without the flag. Throws UsageError naming it.
+  const std::optional<ViewSettings>& view() const;
+  // Whether a flag was given on the command line (not just defaulted).
+  bool given(const std::string& flag) const;
   // Checks every flag that does not depend on the array (size, vectors, lens, the lens sample
   // count) before anything large is read; throws lfcam::UsageError naming the flag.
   void Validate() const;
@@ -27,6 +35,9 @@ struct CameraFlags {
 
  private:
   VirtualCameraParams Resolve(const ArrayPlane& array) const;
+  std::map<std::string, CLI::Option*> options_;
+  mutable std::optional<ViewSettings> view_;
+  mutable bool view_read_ = false;
 };
 
 }  // namespace lfcam::cli

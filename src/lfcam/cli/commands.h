@@ -9,6 +9,7 @@ void AddSimulateCaptureCommand(CLI::App& simulate);  // `simulate capture`, unde
 void AddCalibrateCommand(CLI::App& app);
 void AddBuildCommand(CLI::App& app);
 void AddRenderCommand(CLI::App& app);
+void AddViewCommand(CLI::App& app);
 void AddOracleCommand(CLI::App& app);
 void AddInfoCommand(CLI::App& app);
 void AddCompareCommand(CLI::App& app);

@@ -66,25 +66,25 @@ void AddRenderCommand(CLI::App& app) {
                      "Also write where rays hit the slab (white) as an image; both images are "
                      "written, or neither");
   render->add_flag("--quiet", flags->quiet, "No progress bar (it is drawn only on a terminal)");
-  render
-      ->add_option("--integrator", flags->integrator,
-                   "lens-samples (the paper's: n_ls rays a pixel, with --interpolation) or "
-                   "cameras (their limit with the focal-plane lookup: every camera under the "
-                   "aperture read once, exactly weighted; noise-free, sharp on the plane of "
-                   "focus, out-of-focus objects as one copy per camera)")
-      ->capture_default_str();
-  render
-      ->add_option("--interpolation", flags->interpolation,
-                   "With lens-samples: quadrilinear (the paper's; smooth out-of-focus blur, "
-                   "noisy at low --lens-rate) or focal-plane (each camera read along its own ray "
-                   "through the point in focus; Isaksen et al. 2000)")
-      ->capture_default_str();
+  auto* integrator_option =
+      render->add_option("--integrator", flags->integrator,
+                         "lens-samples (the paper's: n_ls rays a pixel, with --interpolation) or "
+                         "cameras (their limit with the focal-plane lookup: every camera under the "
+                         "aperture read once, exactly weighted; noise-free, sharp on the plane of "
+                         "focus, out-of-focus objects as one copy per camera)");
+  integrator_option->capture_default_str();
+  auto* interpolation_option = render->add_option(
+      "--interpolation", flags->interpolation,
+      "With lens-samples: quadrilinear (the paper's; smooth out-of-focus blur, "
+      "noisy at low --lens-rate) or focal-plane (each camera read along its own ray "
+      "through the point in focus; Isaksen et al. 2000)");
+  interpolation_option->capture_default_str();
   flags->backend.AddTo(*render);
   render->add_flag("--reference", flags->reference,
                    "Use the scalar reference renderer (one pixel at a time, every ray in double "
                    "precision; the definition the vectorised renderer is tested against) instead "
                    "of the vectorised one");
-  render->callback([flags] {
+  render->callback([flags, integrator_option, interpolation_option] {
     // Every flag and output is checked before the light field is read.
     FrameRenderOptions options;
     options.threads = flags->threads;
@@ -94,6 +94,11 @@ void AddRenderCommand(CLI::App& app) {
     options.integrator =
         FlagValue("--integrator", [&] { return IntegratorFromString(flags->integrator); });
     flags->camera.Validate();
+    // A saved view brings its integrator and lookup, unless the flags say otherwise.
+    if (const auto& view = flags->camera.view()) {
+      if (integrator_option->count() == 0) options.integrator = view->integrator;
+      if (interpolation_option->count() == 0) options.interpolation = view->interpolation;
+    }
     RequireImageOutput(flags->out, "--out");
     std::error_code ec;
     if (std::filesystem::equivalent(flags->input, flags->out, ec))

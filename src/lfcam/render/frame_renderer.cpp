@@ -38,18 +38,22 @@ Backend BackendFromString(const std::string& name) {
   throw Error(fmt::format("unknown backend '{}' (expected cpu, gl or auto)", name));
 }
 
-FrameRenderer::FrameRenderer(Backend backend) {
+FrameRenderer::FrameRenderer(Backend backend, bool in_current_context) {
   if (backend == Backend::kCpu) {
     description_ = CpuDescription();
     return;
   }
+  const auto open = [&] {
+    return in_current_context ? std::make_unique<GlRenderer>(GlContext::AdoptCurrent())
+                              : std::make_unique<GlRenderer>();
+  };
   if (backend == Backend::kGl) {
-    gl_ = std::make_unique<GlRenderer>();
+    gl_ = open();
     description_ = GlDescription(*gl_);
     return;
   }
   try {
-    auto gl = std::make_unique<GlRenderer>();
+    auto gl = open();
     if (!gl->device().software) {
       gl_ = std::move(gl);
       description_ = GlDescription(*gl_) + ": auto found a hardware GPU";

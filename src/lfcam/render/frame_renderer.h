@@ -26,8 +26,10 @@ struct FrameRenderOptions {
 
 class FrameRenderer {
  public:
-  // Opens the backend; kGl throws lfcam::Error when no GL 4.3 context can be made.
-  explicit FrameRenderer(Backend backend);
+  // Opens the backend; kGl throws lfcam::Error when no GL 4.3 context can be made. With
+  // `in_current_context` the GL renderer uses the context current on this thread (the viewer's
+  // window) instead of making its own.
+  explicit FrameRenderer(Backend backend, bool in_current_context = false);
   bool uses_gl() const { return gl_ != nullptr; }
   GlRenderer* gl() const { return gl_.get(); }
   // What renders, for people: "gl on NVIDIA H100 80GB HBM3/PCIe/SSE2 (OpenGL 4.6.0 NVIDIA

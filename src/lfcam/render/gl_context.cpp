@@ -177,14 +177,28 @@ std::unique_ptr<GlContext> GlContext::Create(bool prefer_hardware) {
   throw Error(message);
 }
 
+std::unique_ptr<GlContext> GlContext::AdoptCurrent() {
+  std::unique_ptr<GlContext> gl(new GlContext());
+  gl->owned_ = false;
+  gl->device_.renderer = GlString(GL_RENDERER);
+  if (gl->device_.renderer.empty()) throw Error("no OpenGL context is current on this thread");
+  gl->device_.vendor = GlString(GL_VENDOR);
+  gl->device_.version = GlString(GL_VERSION);
+  gl->device_.software = IsSoftwareRenderer(gl->device_.renderer);
+  if (epoxy_gl_version() < 43)
+    throw Error("the window's OpenGL " + gl->device_.version + " is older than 4.3");
+  return gl;
+}
+
 GlContext::~GlContext() {
-  if (display_ == nullptr) return;
+  if (!owned_ || display_ == nullptr) return;
   eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
   eglDestroyContext(display_, context_);
   // The display stays initialised: EGL shares it between every context made on it.
 }
 
 void GlContext::MakeCurrent() const {
+  if (!owned_) return;
   if (!eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_))
     throw Error("the OpenGL context could not be made current (" + EglErrorName(eglGetError()) +
                 ")");

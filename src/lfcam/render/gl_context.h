@@ -24,6 +24,9 @@ class GlContext {
   // when none can be made. With `prefer_hardware` false the software rasteriser is taken first
   // when there is one.
   static std::unique_ptr<GlContext> Create(bool prefer_hardware = true);
+  // The context current on this thread, made by someone else (the viewer's window): used, never
+  // destroyed or switched. Throws lfcam::Error when none is current or it is older than 4.3.
+  static std::unique_ptr<GlContext> AdoptCurrent();
   ~GlContext();
   GlContext(const GlContext&) = delete;
   GlContext& operator=(const GlContext&) = delete;
@@ -35,6 +38,7 @@ class GlContext {
   GlContext() = default;
   void* display_ = nullptr;  // EGLDisplay
   void* context_ = nullptr;  // EGLContext
+  bool owned_ = true;
   GlDeviceInfo device_;
 };
 

@@ -135,7 +135,9 @@ std::string Mib(double bytes) { return fmt::format("{:.0f} MiB", bytes / (1024.0
 
 }  // namespace
 
-GlRenderer::GlRenderer(bool prefer_hardware) : context_(GlContext::Create(prefer_hardware)) {
+GlRenderer::GlRenderer(bool prefer_hardware) : GlRenderer(GlContext::Create(prefer_hardware)) {}
+
+GlRenderer::GlRenderer(std::unique_ptr<GlContext> context) : context_(std::move(context)) {
   GLint v = 0;
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &v);
   limits_.max_texture_size = v;

@@ -40,6 +40,8 @@ class GlRenderer {
  public:
   // Makes a GL 4.3 context (render/gl_context.h); throws lfcam::Error when there is none.
   explicit GlRenderer(bool prefer_hardware = true);
+  // In a context made elsewhere (GlContext::AdoptCurrent: the viewer's window).
+  explicit GlRenderer(std::unique_ptr<GlContext> context);
   ~GlRenderer();
   GlRenderer(const GlRenderer&) = delete;
   GlRenderer& operator=(const GlRenderer&) = delete;

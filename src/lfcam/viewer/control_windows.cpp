@@ -1,0 +1,145 @@
+#include "lfcam/viewer/control_windows.h"
+
+#include <fmt/format.h>
+#include <imgui.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "lfcam/viewer/view_navigation.h"
+
+namespace lfcam {
+namespace {
+
+bool DragVec3(const char* label, Vec3& v, float speed) {
+  float f[3] = {float(v.x()), float(v.y()), float(v.z())};
+  if (!ImGui::DragFloat3(label, f, speed, 0, 0, "%.1f")) return false;
+  v = Vec3(f[0], f[1], f[2]);
+  return true;
+}
+
+bool SliderLog(const char* label, double& value, double lo, double hi, const char* format) {
+  float f = float(value);
+  if (!ImGui::SliderFloat(label, &f, float(lo), float(hi), format, ImGuiSliderFlags_Logarithmic))
+    return false;
+  value = f;
+  return true;
+}
+
+}  // namespace
+
+bool DrawCameraWindow(ViewSettings& view, const ArrayPlane& array, bool* open) {
+  bool changed = false;
+  VirtualCameraParams& p = view.camera;
+  ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
+  if (ImGui::Begin("Camera (F2)", open, ImGuiWindowFlags_AlwaysAutoResize)) {
+    ImGui::PushItemWidth(ImGui::GetFontSize() * 16);
+    changed |= DragVec3("eye (mm)", p.eye, 2.0f);
+    Vec3 forward = (p.look_at - p.eye).normalized();
+    double yaw = std::atan2(forward.x(), -forward.z()) * 180 / M_PI;
+    double pitch = std::asin(std::clamp(forward.y(), -1.0, 1.0)) * 180 / M_PI;
+    float angles[2] = {float(yaw), float(pitch)};
+    if (ImGui::DragFloat2("yaw, pitch (deg)", angles, 0.1f, -180, 180, "%.2f")) {
+      const double y = angles[0] * M_PI / 180,
+                   t = std::clamp(double(angles[1]), -89.0, 89.0) * M_PI / 180;
+      forward = Vec3(std::sin(y) * std::cos(t), std::sin(t), -std::cos(y) * std::cos(t));
+      p.look_at = p.eye + 1000.0 * forward;
+      changed = true;
+    }
+    changed |= SliderLog("focal length f (mm)", p.focal_length_mm, 20, 2000, "%.1f");
+    changed |= SliderLog("focus distance d_o (mm)", p.focus_distance_mm, 500, 50000, "%.0f");
+    changed |= SliderLog("aperture d_l (mm)", p.aperture_mm, 0, 1000, "%.1f");
+    changed |= ImGui::Checkbox("focus breathing", &p.breathing);
+    if (ImGui::Button("reset to the array's centre view (R)")) {
+      p = ResetToArrayCentre(p, array);
+      changed = true;
+    }
+    p.focus_distance_mm = std::max(p.focus_distance_mm, 1.05 * p.focal_length_mm);
+    p.aperture_mm = std::max(p.aperture_mm, 0.0);
+    ImGui::PopItemWidth();
+  }
+  ImGui::End();
+  return changed;
+}
+
+bool DrawRenderingWindow(ViewSettings& view, double& render_scale, const FrameStats& stats,
+                         bool* open) {
+  bool changed = false;
+  ImGui::SetNextWindowPos(ImVec2(10, ImGui::GetFontSize() * 17), ImGuiCond_FirstUseEver);
+  if (ImGui::Begin("Rendering (F3)", open, ImGuiWindowFlags_AlwaysAutoResize)) {
+    ImGui::PushItemWidth(ImGui::GetFontSize() * 16);
+    int integrator = view.integrator == Integrator::kCameras ? 1 : 0;
+    if (ImGui::Combo("integrator", &integrator, "lens samples (paper)\0cameras (exact limit)\0")) {
+      view.integrator = integrator == 1 ? Integrator::kCameras : Integrator::kLensSamples;
+      changed = true;
+    }
+    int lookup = view.interpolation == Interpolation::kFocalPlane ? 1 : 0;
+    if (view.integrator == Integrator::kLensSamples &&
+        ImGui::Combo("lookup", &lookup, "quadrilinear (paper)\0focal plane\0")) {
+      view.interpolation = lookup == 1 ? Interpolation::kFocalPlane : Interpolation::kQuadrilinear;
+      changed = true;
+    }
+    if (view.integrator == Integrator::kLensSamples) {
+      float rate = float(view.camera.lens_rate);
+      if (ImGui::SliderFloat("lens sampling rate", &rate, 0.25f, 16.0f, "%.2f",
+                             ImGuiSliderFlags_Logarithmic)) {
+        view.camera.lens_rate = rate;
+        changed = true;
+      }
+    }
+    float scale = float(render_scale);
+    if (ImGui::SliderFloat("render scale", &scale, 0.1f, 2.0f, "%.2f")) {
+      render_scale = scale;
+      changed = true;
+    }
+    ImGui::Separator();
+    ImGui::Text("backend: %s", stats.backend.c_str());
+    ImGui::Text("frame: %d x %d%s", stats.width, stats.height,
+                stats.scale < 1
+                    ? fmt::format(" (reduced to {:.0f}% while moving)", 100 * stats.scale).c_str()
+                    : "");
+    ImGui::Text(
+        "%.1f ms a frame%s", stats.frame_ms,
+        stats.gpu_ms >= 0 ? fmt::format(" ({:.2f} ms on the GPU)", stats.gpu_ms).c_str() : "");
+    if (stats.reads_per_pixel > 0 && view.integrator == Integrator::kCameras)
+      ImGui::Text("%.1f cameras read a pixel", stats.reads_per_pixel);
+    else if (stats.reads_per_pixel > 0)
+      ImGui::Text("%.1f rays, %.1f camera lookups a pixel", stats.rays_per_pixel,
+                  stats.reads_per_pixel);
+    if (!stats.status.empty()) ImGui::Text("%s", stats.status.c_str());
+    ImGui::PopItemWidth();
+  }
+  ImGui::End();
+  return changed;
+}
+
+void DrawHelpOverlay(bool* open) {
+  if (!*open) return;
+  const ImGuiViewport* viewport = ImGui::GetMainViewport();
+  ImGui::SetNextWindowPos(
+      ImVec2(viewport->WorkPos.x + viewport->WorkSize.x - 10, viewport->WorkPos.y + 10),
+      ImGuiCond_Always, ImVec2(1, 0));
+  ImGui::SetNextWindowBgAlpha(0.75f);
+  if (ImGui::Begin("Help (F1)", open,
+                   ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings)) {
+    static const char* const kLines[][2] = {
+        {"F1", "this help"},
+        {"F2 / F3", "Camera / Rendering window"},
+        {"left drag", "orbit around the point in focus"},
+        {"shift+left or middle drag", "pan"},
+        {"wheel", "focus distance"},
+        {"ctrl+wheel", "dolly (move forward and back)"},
+        {"W A S D / Q E", "move forward, left, back, right / down, up"},
+        {"Z / X", "zoom in / out (focal length)"},
+        {"[ / ]", "aperture smaller / larger"},
+        {"B", "focus breathing on / off"},
+        {"click (no drag)", "focus on what is under the cursor"},
+        {"R", "reset to the array's centre view"},
+        {"F12", "screenshot: PNG and its view as JSON"},
+        {"Esc", "quit"}};
+    for (const auto& line : kLines) ImGui::Text("%-26s %s", line[0], line[1]);
+  }
+  ImGui::End();
+}
+
+}  // namespace lfcam

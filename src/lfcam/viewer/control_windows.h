@@ -1,0 +1,39 @@
+#pragma once
+// The viewer's two control windows, as in the paper's Fig. 9 (Camera: position and
+// orientation, focal length, focus distance, aperture, breathing, reset; Rendering: integrator,
+// lookup, lens sampling rate, render scale, backend and device, milliseconds a frame, lookups a
+// pixel), and the help overlay with every key. Each draws with Dear ImGui and edits the view in
+// place.
+#include <string>
+
+#include "lfcam/core/slab.h"
+#include "lfcam/render/view_file.h"
+
+namespace lfcam {
+
+struct PanelVisibility {
+  bool camera = true;     // F2
+  bool rendering = true;  // F3
+  bool help = false;      // F1
+};
+
+// What the Rendering window reports about the frame on screen.
+struct FrameStats {
+  std::string backend;  // FrameRenderer::description()
+  double frame_ms = 0;  // the shown frame's render, wall-clock
+  double gpu_ms = -1;   // GL: its compute pass
+  double scale = 1;     // the shown frame's resolution over the full one
+  int width = 0, height = 0;
+  double rays_per_pixel = 0;   // lens samples cast (or cameras read) a pixel
+  double reads_per_pixel = 0;  // camera views read a pixel (lens samples: 4 a ray); 0 unknown
+  std::string status;          // the last click-to-focus, screenshot, ...
+};
+
+// Each returns true when it changed the view. `render_scale` is the render resolution over the
+// window's framebuffer.
+bool DrawCameraWindow(ViewSettings& view, const ArrayPlane& array, bool* open);
+bool DrawRenderingWindow(ViewSettings& view, double& render_scale, const FrameStats& stats,
+                         bool* open);
+void DrawHelpOverlay(bool* open);
+
+}  // namespace lfcam

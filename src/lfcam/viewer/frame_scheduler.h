@@ -1,0 +1,66 @@
+#pragma once
+// What the viewer renders next, so that it never blocks: a frame whose full-resolution render
+// costs more than the frame budget is rendered at a reduced scale while the view is moving and
+// at full resolution once it rests. CPU frames render on a worker thread (the window keeps
+// drawing the last frame); GL frames render in the window's context, into the renderer's
+// output texture, and are drawn from there without a read-back.
+#include <chrono>
+#include <future>
+#include <optional>
+
+#include "lfcam/core/lightfield.h"
+#include "lfcam/render/frame_renderer.h"
+#include "lfcam/render/view_file.h"
+
+namespace lfcam {
+
+bool SameView(const ViewSettings& a, const ViewSettings& b);
+
+// The camera of `view` at `scale` of its resolution (at least 16 pixels a side, same aspect).
+VirtualCameraParams ScaledCamera(const VirtualCameraParams& camera, double scale);
+
+class FrameScheduler {
+ public:
+  FrameScheduler(const LightField& lf, const FrameRenderer& renderer, FrameRenderOptions options,
+                 double budget_ms);
+  ~FrameScheduler();
+  FrameScheduler(const FrameScheduler&) = delete;
+  FrameScheduler& operator=(const FrameScheduler&) = delete;
+
+  // Called once a loop with the view wanted (at full resolution) and whether it is moving.
+  // Returns true when a new frame is ready to draw.
+  bool Update(const ViewSettings& wanted, bool moving);
+  // The frame shown is `wanted` at full resolution and nothing is rendering.
+  bool converged(const ViewSettings& wanted) const;
+
+  // The frame to draw: a CPU image (linear, top-down) when !on_gl().
+  bool on_gl() const { return renderer_.uses_gl(); }
+  const RenderResult& shown() const { return shown_; }
+  double shown_scale() const { return shown_scale_; }
+  double shown_ms() const { return shown_ms_; }         // its render's wall-clock time
+  double full_estimate_ms() const { return full_ms_; }  // the last full-resolution render's
+
+  // A full-resolution render of `view`, now, read back (for screenshots).
+  RenderResult RenderNow(const ViewSettings& view) const;
+
+ private:
+  struct Job {
+    ViewSettings view;
+    double scale = 1;
+    std::chrono::steady_clock::time_point start;
+  };
+  FrameRenderOptions OptionsFor(const ViewSettings& view) const;
+  void Finish(const Job& job, RenderResult result);
+
+  const LightField& lf_;
+  const FrameRenderer& renderer_;
+  FrameRenderOptions options_;
+  double budget_ms_;
+  RenderResult shown_;
+  std::optional<ViewSettings> shown_view_;
+  double shown_scale_ = 0, shown_ms_ = 0, full_ms_ = 0;
+  std::optional<Job> job_;
+  std::future<RenderResult> pending_;  // the CPU's worker
+};
+
+}  // namespace lfcam

@@ -1,0 +1,524 @@
+#include "lfcam/viewer/viewer.h"
+
+#include <epoxy/gl.h>
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <fmt/format.h>
+#include <imgui.h>
+#include <imgui_impl_glfw.h>
+#include <imgui_impl_opengl3.h>
+
+#include <chrono>
+#include <cstdio>
+#include <memory>
+#include <opencv2/core.hpp>
+#include <thread>
+
+#include "lfcam/core/error.h"
+#include "lfcam/core/image_io.h"
+#include "lfcam/core/lightfield_file.h"
+#include "lfcam/render/focus_probe.h"
+#include "lfcam/viewer/control_windows.h"
+#include "lfcam/viewer/frame_display.h"
+#include "lfcam/viewer/frame_scheduler.h"
+#include "lfcam/viewer/view_navigation.h"
+#include "lfcam/viewer/viewer_script.h"
+
+namespace lfcam {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+std::string glfw_error;  // the last GLFW error, for messages
+
+void OnGlfwError(int code, const char* description) {
+  glfw_error = fmt::format("GLFW error 0x{:x}: {}", code, description ? description : "");
+}
+
+// The GLFW library, initialised for the viewer's lifetime.
+struct GlfwLibrary {
+  GlfwLibrary() {
+    glfwSetErrorCallback(OnGlfwError);
+    if (!glfwInit())
+      throw Error("lfcam view: no window system (" + glfw_error +
+                  "); is DISPLAY set? Without a screen, run it under xvfb-run");
+  }
+  ~GlfwLibrary() { glfwTerminate(); }
+};
+
+struct Window {
+  GLFWwindow* handle = nullptr;
+  Window(int width, int height, const std::string& title) {
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+    glfwWindowHint(GLFW_SCALE_TO_MONITOR, GLFW_TRUE);  // HiDPI
+    handle = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
+    if (handle == nullptr)
+      throw Error("lfcam view: no window with an OpenGL 4.3 core context (" + glfw_error + ")");
+    glfwMakeContextCurrent(handle);
+    glfwSwapInterval(1);  // vsync
+  }
+  ~Window() { glfwDestroyWindow(handle); }
+};
+
+// Input gathered by GLFW's callbacks between two loops.
+struct Input {
+  double scroll = 0;
+  std::vector<int> keys_pressed;
+};
+
+void OnScroll(GLFWwindow* window, double, double dy) {
+  static_cast<Input*>(glfwGetWindowUserPointer(window))->scroll += dy;
+}
+
+void OnKey(GLFWwindow* window, int key, int, int action, int) {
+  if (action == GLFW_PRESS)
+    static_cast<Input*>(glfwGetWindowUserPointer(window))->keys_pressed.push_back(key);
+}
+
+int KeyFromName(const std::string& name) {
+  if (name.size() == 1 && std::isalpha(static_cast<unsigned char>(name[0])))
+    return GLFW_KEY_A + (std::toupper(static_cast<unsigned char>(name[0])) - 'A');
+  if (name.size() >= 2 && name[0] == 'F') {
+    const int n = std::atoi(name.c_str() + 1);
+    if (n >= 1 && n <= 25) return GLFW_KEY_F1 + n - 1;
+  }
+  if (name == "[") return GLFW_KEY_LEFT_BRACKET;
+  if (name == "]") return GLFW_KEY_RIGHT_BRACKET;
+  if (name == "Esc" || name == "Escape") return GLFW_KEY_ESCAPE;
+  throw Error("unknown key '" + name + "'");
+}
+
+class Viewer {
+ public:
+  Viewer(const ViewerOptions& options, LightField lf)
+      : options_(options),
+        lf_(std::move(lf)),
+        window_(options.width, options.height, "lfcam view: " + options.light_field) {
+    glfwSetWindowUserPointer(window_.handle, &input_);
+    glfwSetScrollCallback(window_.handle, OnScroll);
+    glfwSetKeyCallback(window_.handle, OnKey);
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini left behind
+    float scale_x = 1, scale_y = 1;
+    glfwGetWindowContentScale(window_.handle, &scale_x, &scale_y);
+    ImGui::GetStyle().ScaleAllSizes(scale_x);
+    ImGui::GetIO().FontGlobalScale = scale_x;
+    ImGui_ImplGlfw_InitForOpenGL(window_.handle, true);  // chains the callbacks above
+    ImGui_ImplOpenGL3_Init("#version 330 core");
+    display_ = std::make_unique<FrameDisplay>();
+    renderer_ = std::make_unique<FrameRenderer>(options.backend, true);
+    FrameRenderOptions render_options;
+    render_options.threads = options.threads;
+    render_options.workgroup_x = options.workgroup_x;
+    render_options.workgroup_y = options.workgroup_y;
+    scheduler_ =
+        std::make_unique<FrameScheduler>(lf_, *renderer_, render_options, options.frame_budget_ms);
+    render_scale_ = options.render_scale;
+    if (!options.view_file.empty()) {
+      view_ = ReadViewFile(options.view_file);
+    } else {
+      view_.camera = ResetToArrayCentre(view_.camera, lf_.slab().uv);
+      view_.camera.focal_length_mm = 500;
+      view_.camera.focus_distance_mm = 4000;
+      view_.integrator = Integrator::kCameras;
+    }
+    view_.light_field = options.light_field;
+    stats_.backend = renderer_->description();
+    std::printf("lfcam view: %s\n", stats_.backend.c_str());
+    std::fflush(stdout);
+  }
+
+  ~Viewer() {
+    scheduler_.reset();
+    renderer_.reset();
+    display_.reset();
+    ImGui_ImplOpenGL3_Shutdown();
+    ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
+  }
+
+  void Run() {
+    std::vector<ScriptCommand> script;
+    if (!options_.script.empty()) script = ReadViewerScript(options_.script);
+    std::size_t next = 0;
+    while (!glfwWindowShouldClose(window_.handle)) {
+      glfwPollEvents();
+      FitViewToFramebuffer();
+      HandleInput();
+      // A script command runs when the one before it is done (wait: the frame converged).
+      while (next < script.size() && !waiting_ && frames_left_ == 0) {
+        if (!RunCommand(script[next++])) return;
+        FitViewToFramebuffer();
+      }
+      if (waiting_ && scheduler_->converged(view_) && !moving()) waiting_ = false;
+      if (frames_left_ > 0) --frames_left_;
+      DrawFrame();
+      if (!script.empty() && next >= script.size() && !waiting_ && frames_left_ == 0) return;
+    }
+  }
+
+ private:
+  bool moving() const { return Clock::now() - last_change_ < std::chrono::milliseconds(250); }
+
+  void Changed() { last_change_ = Clock::now(); }
+
+  // The render resolution follows the window's framebuffer and the render scale.
+  void FitViewToFramebuffer() {
+    glfwGetFramebufferSize(window_.handle, &fb_width_, &fb_height_);
+    const int w = std::max(16, int(std::lround(fb_width_ * render_scale_)));
+    const int h = std::max(16, int(std::lround(fb_height_ * render_scale_)));
+    if (w != view_.camera.width || h != view_.camera.height) {
+      view_.camera.width = w;
+      view_.camera.height = h;
+      Changed();
+    }
+  }
+
+  void SetView(const VirtualCameraParams& p) {
+    try {
+      VirtualCamera check(p);  // refuse a view the camera cannot take (for example f >= d_o)
+      view_.camera = p;
+      Changed();
+    } catch (const Error& e) {
+      stats_.status = e.what();
+    }
+  }
+
+  // Window pixel (top-left origin, screen coordinates) to film position (bottom-left, pixels).
+  void FilmPosition(double x, double y, double* fx, double* fy) const {
+    int ww = 1, wh = 1;
+    glfwGetWindowSize(window_.handle, &ww, &wh);
+    *fx = x / std::max(ww, 1) * view_.camera.width;
+    *fy = (1.0 - y / std::max(wh, 1)) * view_.camera.height;
+  }
+
+  void ClickToFocus(double x, double y) {
+    double fx = 0, fy = 0;
+    FilmPosition(x, y, &fx, &fy);
+    const FocusProbe probe = ProbeFocusDistance(lf_, VirtualCamera(view_.camera), fx, fy);
+    if (!probe.found) {
+      stats_.status = fmt::format("focus: no camera sees ({:.0f}, {:.0f})", x, y);
+    } else {
+      VirtualCameraParams p = view_.camera;
+      p.focus_distance_mm = std::max(probe.focus_distance_mm, 1.05 * p.focal_length_mm);
+      SetView(p);
+      stats_.status =
+          fmt::format("focus: {:.0f} mm at ({:.0f}, {:.0f}), confidence {:.2f}, {} cameras",
+                      probe.focus_distance_mm, x, y, probe.confidence, probe.cameras);
+    }
+    std::printf("%s\n", stats_.status.c_str());
+    std::fflush(stdout);
+  }
+
+  void Drag(double dx, double dy, bool pan) {
+    if (pan) {
+      const double mm =
+          MmPerPixelAtFocus(view_.camera) * view_.camera.width / std::max(1, WindowWidth());
+      SetView(Move(view_.camera, -dx * mm, dy * mm, 0));
+    } else {
+      // A drag across the window swings the eye across about the array's width: a light field
+      // is seen from near its array only.
+      const ArrayPlane& array = lf_.slab().uv;
+      const double radians_per_pixel = std::max(array.width_mm(), array.height_mm()) /
+                                       view_.camera.focus_distance_mm / std::max(1, WindowWidth());
+      SetView(Orbit(view_.camera, dx * radians_per_pixel, -dy * radians_per_pixel));
+    }
+  }
+
+  int WindowWidth() const {
+    int ww = 1, wh = 1;
+    glfwGetWindowSize(window_.handle, &ww, &wh);
+    return ww;
+  }
+
+  void Screenshot(const std::string& png) {
+    const RenderResult frame = scheduler_->RenderNow(view_);
+    WriteImage(png, frame.image);
+    std::string json = png;
+    const auto dot = json.rfind('.');
+    json = (dot == std::string::npos ? json : json.substr(0, dot)) + ".json";
+    WriteViewFile(json, view_);
+    stats_.status = "saved " + png + " and " + json;
+    std::printf("%s\n", stats_.status.c_str());
+    std::fflush(stdout);
+  }
+
+  void PressKey(int key) {
+    VirtualCameraParams p = view_.camera;
+    switch (key) {
+      case GLFW_KEY_F1:
+        panels_.help = !panels_.help;
+        break;
+      case GLFW_KEY_F2:
+        panels_.camera = !panels_.camera;
+        break;
+      case GLFW_KEY_F3:
+        panels_.rendering = !panels_.rendering;
+        break;
+      case GLFW_KEY_F12:
+        Screenshot(fmt::format("{}_{:03d}.png", options_.screenshot_prefix, ++screenshots_));
+        break;
+      case GLFW_KEY_R:
+        SetView(ResetToArrayCentre(p, lf_.slab().uv));
+        break;
+      case GLFW_KEY_Z:
+        SetView(ScaleFocalLength(p, 1.1));
+        break;
+      case GLFW_KEY_X:
+        SetView(ScaleFocalLength(p, 1 / 1.1));
+        break;
+      case GLFW_KEY_LEFT_BRACKET:
+        p.aperture_mm = p.aperture_mm / 1.2;
+        SetView(p);
+        break;
+      case GLFW_KEY_RIGHT_BRACKET:
+        p.aperture_mm = std::max(4.0, p.aperture_mm * 1.2);
+        SetView(p);
+        break;
+      case GLFW_KEY_B:
+        p.breathing = !p.breathing;
+        SetView(p);
+        break;
+      case GLFW_KEY_ESCAPE:
+        glfwSetWindowShouldClose(window_.handle, GLFW_TRUE);
+        break;
+      default:
+        break;
+    }
+  }
+
+  void HandleInput() {
+    const ImGuiIO& io = ImGui::GetIO();
+    std::vector<int> keys;
+    keys.swap(input_.keys_pressed);
+    const double scroll = input_.scroll;
+    input_.scroll = 0;
+    if (!io.WantCaptureKeyboard)
+      for (const int key : keys) PressKey(key);
+    // Held keys move the eye: 300 mm a second.
+    const double now = glfwGetTime();
+    const double dt = std::min(now - last_time_, 0.1);
+    last_time_ = now;
+    if (!io.WantCaptureKeyboard) {
+      const auto held = [&](int key) { return glfwGetKey(window_.handle, key) == GLFW_PRESS; };
+      const double step = 300.0 * dt;
+      const double right = (held(GLFW_KEY_D) - held(GLFW_KEY_A)) * step;
+      const double up = (held(GLFW_KEY_E) - held(GLFW_KEY_Q)) * step;
+      const double forward = (held(GLFW_KEY_W) - held(GLFW_KEY_S)) * step;
+      if (right != 0 || up != 0 || forward != 0) SetView(Move(view_.camera, right, up, forward));
+    }
+    if (io.WantCaptureMouse) {
+      dragging_ = false;
+      return;
+    }
+    const bool ctrl = glfwGetKey(window_.handle, GLFW_KEY_LEFT_CONTROL) == GLFW_PRESS ||
+                      glfwGetKey(window_.handle, GLFW_KEY_RIGHT_CONTROL) == GLFW_PRESS;
+    if (scroll != 0) {
+      if (ctrl)
+        SetView(Move(view_.camera, 0, 0, scroll * 0.05 * view_.camera.focus_distance_mm));
+      else
+        SetView(ScaleFocusDistance(view_.camera, std::pow(1.03, scroll)));
+    }
+    double x = 0, y = 0;
+    glfwGetCursorPos(window_.handle, &x, &y);
+    const bool left = glfwGetMouseButton(window_.handle, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+    const bool middle = glfwGetMouseButton(window_.handle, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS;
+    const bool shift = glfwGetKey(window_.handle, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS ||
+                       glfwGetKey(window_.handle, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
+    if (left || middle) {
+      if (!dragging_) {
+        dragging_ = true;
+        drag_moved_ = false;
+        press_x_ = x;
+        press_y_ = y;
+      } else if (x != last_x_ || y != last_y_) {
+        if (std::hypot(x - press_x_, y - press_y_) > 3) drag_moved_ = true;
+        if (drag_moved_) Drag(x - last_x_, y - last_y_, middle || shift);
+      }
+    } else if (dragging_) {
+      dragging_ = false;
+      if (!drag_moved_) ClickToFocus(press_x_, press_y_);  // a click, not a drag
+    }
+    last_x_ = x;
+    last_y_ = y;
+  }
+
+  // Runs one script command; false: quit.
+  bool RunCommand(const ScriptCommand& c) {
+    const auto number = [&](std::size_t i) { return std::stod(c.args[i]); };
+    const std::string where = fmt::format("{}:{}", options_.script, c.line);
+    try {
+      if (c.name == "quit") return false;
+      if (c.name == "window") {
+        glfwSetWindowSize(window_.handle, int(number(0)), int(number(1)));
+        frames_left_ = 3;  // let the window system apply it
+      } else if (c.name == "set") {
+        SetParameter(c.args[0], c.args[1]);
+      } else if (c.name == "click") {
+        ClickToFocus(number(0), number(1));
+      } else if (c.name == "drag") {
+        const bool pan = c.args.size() > 4 && (c.args[4] == "middle" || c.args[4] == "shift");
+        Drag(number(2) - number(0), number(3) - number(1), pan);
+      } else if (c.name == "key") {
+        PressKey(KeyFromName(c.args[0]));
+      } else if (c.name == "wait") {
+        waiting_ = true;
+        last_change_ = Clock::now() - std::chrono::seconds(1);  // scripted changes rest at once
+      } else if (c.name == "frames") {
+        frames_left_ = std::max(0, int(number(0)));
+      } else if (c.name == "screenshot") {
+        Screenshot(c.args[0]);
+      } else if (c.name == "capture") {
+        RequireImageOutput(c.args[0], "capture");
+        capture_path_ = c.args[0];
+        frames_left_ = 1;  // taken as the next frame is drawn
+      } else if (c.name == "print") {
+        std::printf("%s\n", ViewToJson(view_).dump().c_str());
+        std::fflush(stdout);
+      }
+    } catch (const Error& e) {
+      throw Error(where + ": " + e.what());
+    } catch (const std::exception& e) {
+      throw Error(where + ": " + e.what());
+    }
+    return true;
+  }
+
+  void SetParameter(const std::string& name, const std::string& value) {
+    VirtualCameraParams p = view_.camera;
+    const auto number = [&] {
+      std::size_t used = 0;
+      const double v = std::stod(value, &used);
+      if (used != value.size() || !std::isfinite(v)) throw Error("'" + value + "' is not a number");
+      return v;
+    };
+    const auto vec3 = [&] {
+      double x = 0, y = 0, z = 0;
+      char a = 0, b = 0;
+      std::istringstream in(value);
+      if (!(in >> x >> a >> y >> b >> z) || a != ',' || b != ',')
+        throw Error("'" + value + "' is not X,Y,Z");
+      return Vec3(x, y, z);
+    };
+    if (name == "focal-length")
+      p.focal_length_mm = number();
+    else if (name == "focus-distance")
+      p.focus_distance_mm = number();
+    else if (name == "aperture")
+      p.aperture_mm = number();
+    else if (name == "lens-rate")
+      p.lens_rate = number();
+    else if (name == "eye")
+      p.eye = vec3();
+    else if (name == "look-at")
+      p.look_at = vec3();
+    else if (name == "up")
+      p.up = vec3();
+    else if (name == "breathing") {
+      if (value != "on" && value != "off") throw Error("breathing is on or off");
+      p.breathing = value == "on";
+    } else if (name == "integrator") {
+      view_.integrator = IntegratorFromString(value);
+    } else if (name == "interpolation") {
+      view_.interpolation = InterpolationFromString(value);
+    } else if (name == "scale") {
+      const double s = number();
+      if (!(s >= 0.05 && s <= 2)) throw Error("scale must be 0.05 to 2");
+      render_scale_ = s;
+    } else {
+      throw Error("unknown parameter '" + name + "'");
+    }
+    VirtualCamera check(p);  // throws with the reason when the camera cannot be
+    view_.camera = p;
+    Changed();
+  }
+
+  void DrawFrame() {
+    if (scheduler_->Update(view_, moving()) && !scheduler_->on_gl())
+      display_->Upload(scheduler_->shown().image);
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    ImGui::NewFrame();
+    stats_.frame_ms = scheduler_->shown_ms();
+    stats_.gpu_ms = scheduler_->shown().gpu_ms;
+    stats_.scale = scheduler_->shown_scale();
+    stats_.width = view_.camera.width;
+    stats_.height = view_.camera.height;
+    const RenderResult& shown = scheduler_->shown();
+    const double pixels = std::max(1.0, double(shown.image.total()));
+    stats_.rays_per_pixel = shown.image.empty() ? 0 : double(shown.rays) / pixels;
+    stats_.reads_per_pixel = shown.image.empty()
+                                 ? 0
+                                 : (view_.integrator == Integrator::kCameras ? 1.0 : 4.0) *
+                                       double(shown.rays_hit) / pixels;
+    bool changed = false;
+    if (panels_.camera) changed |= DrawCameraWindow(view_, lf_.slab().uv, &panels_.camera);
+    if (panels_.rendering)
+      changed |= DrawRenderingWindow(view_, render_scale_, stats_, &panels_.rendering);
+    DrawHelpOverlay(&panels_.help);
+    if (changed) Changed();
+    ImGui::Render();
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glClearColor(0.1f, 0.1f, 0.1f, 1);
+    glClear(GL_COLOR_BUFFER_BIT);
+    if (scheduler_->shown_scale() > 0) {
+      const unsigned texture =
+          scheduler_->on_gl() ? renderer_->gl()->output_texture() : display_->uploaded_texture();
+      display_->Draw(texture, !scheduler_->on_gl(), fb_width_, fb_height_);
+    }
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    if (!capture_path_.empty()) CaptureWindow();
+    glfwSwapBuffers(window_.handle);
+  }
+
+  // The window's framebuffer as drawn (before the swap), to an 8-bit sRGB image.
+  void CaptureWindow() {
+    cv::Mat rgb(fb_height_, fb_width_, CV_8UC3);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadBuffer(GL_BACK);
+    glReadPixels(0, 0, fb_width_, fb_height_, GL_RGB, GL_UNSIGNED_BYTE, rgb.data);
+    cv::flip(rgb, rgb, 0);
+    WriteImage(capture_path_, rgb);
+    std::printf("captured the window in %s\n", capture_path_.c_str());
+    std::fflush(stdout);
+    capture_path_.clear();
+  }
+
+  const ViewerOptions& options_;
+  LightField lf_;
+  GlfwLibrary glfw_;
+  Window window_;
+  Input input_;
+  std::unique_ptr<FrameDisplay> display_;
+  std::unique_ptr<FrameRenderer> renderer_;
+  std::unique_ptr<FrameScheduler> scheduler_;
+  ViewSettings view_;
+  double render_scale_ = 1;
+  PanelVisibility panels_;
+  FrameStats stats_;
+  int fb_width_ = 1, fb_height_ = 1;
+  Clock::time_point last_change_ = Clock::now();
+  double last_time_ = 0;
+  bool dragging_ = false, drag_moved_ = false;
+  double press_x_ = 0, press_y_ = 0, last_x_ = 0, last_y_ = 0;
+  bool waiting_ = false;
+  int frames_left_ = 0;
+  int screenshots_ = 0;
+  std::string capture_path_;
+};
+
+}  // namespace
+
+void RunViewer(const ViewerOptions& options) {
+  // Everything that can be wrong with the inputs is found before a window opens.
+  LightField lf = ReadLightField(options.light_field);
+  if (!options.script.empty()) ReadViewerScript(options.script);
+  if (!options.view_file.empty()) ReadViewFile(options.view_file);
+  Viewer viewer(options, std::move(lf));
+  viewer.Run();
+}
+
+}  // namespace lfcam
