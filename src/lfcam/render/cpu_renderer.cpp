@@ -99,6 +99,7 @@ RenderResult NewResult(const VirtualCamera& camera) {
   RenderResult result;
   result.image = cv::Mat(camera.height(), camera.width(), CV_32FC3);
   result.hit_mask = cv::Mat(camera.height(), camera.width(), CV_8UC1);
+  result.counts = cv::Mat(camera.height(), camera.width(), CV_32SC1);
   return result;
 }
 
@@ -128,10 +129,12 @@ RenderResult RenderReference(const LightField& lf, const VirtualCamera& camera,
       const int row = camera.image_row(j);
       auto* out = result.image.ptr<cv::Vec3f>(row);
       auto* mask = result.hit_mask.ptr<std::uint8_t>(row);
+      auto* counts = result.counts.ptr<std::int32_t>(row);
       for (int i = tile.cols().begin(); i != tile.cols().end(); ++i) {
         const int hits = frame.cameras ? RenderPixelCameras(frame, i, j, weights.data(), out[i].val)
                                        : RenderPixel(frame, i, j, out[i].val);
         mask[i] = hits > 0 ? 255 : 0;
+        counts[i] = hits;
         hits_here += hits;
       }
     }
@@ -158,10 +161,12 @@ long long StoreRow(const VirtualCamera& camera, int j, const float* r, const flo
   const int row = camera.image_row(j);
   auto* out = result.image.ptr<cv::Vec3f>(row);
   auto* mask = result.hit_mask.ptr<std::uint8_t>(row);
+  auto* counts = result.counts.ptr<std::int32_t>(row);
   long long hits = 0;
   for (int i = 0; i < camera.width(); ++i) {
     out[i] = {r[i], g[i], b[i]};
     mask[i] = count[i] > 0 ? 255 : 0;
+    counts[i] = count[i];
     hits += count[i];
   }
   return hits;

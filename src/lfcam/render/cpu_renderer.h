@@ -35,6 +35,7 @@ struct CpuRenderOptions {
 struct RenderResult {
   cv::Mat image;           // linear RGB, CV_32FC3, row 0 at the top
   cv::Mat hit_mask;        // CV_8UC1: 255 where at least one ray hit the slab
+  cv::Mat counts;          // CV_32SC1: the rays that hit (cameras integrator: cameras read)
   long long rays = 0;      // rays cast (cameras integrator: camera reads)
   long long rays_hit = 0;  // rays that met both windows (cameras integrator: camera reads)
   // How it was rendered: "reference", or the vectorised kernels as "separable" (whole views

@@ -361,14 +361,17 @@ RenderResult GlRenderer::Render(const LightField& lf, const VirtualCamera& camer
   CheckGl("reading the frame back");
   result.image = cv::Mat(height, width, CV_32FC3);
   result.hit_mask = cv::Mat(height, width, CV_8UC1);
+  result.counts = cv::Mat(height, width, CV_32SC1);
   for (int j = 0; j < height; ++j) {
     const float* in = pixels.data() + std::size_t(j) * std::size_t(width) * 4;
     auto* out = result.image.ptr<cv::Vec3f>(camera.image_row(j));
     auto* mask = result.hit_mask.ptr<std::uint8_t>(camera.image_row(j));
+    auto* counts = result.counts.ptr<std::int32_t>(camera.image_row(j));
     for (int i = 0; i < width; ++i) {
       out[i] = {in[4 * i], in[4 * i + 1], in[4 * i + 2]};
       const auto count = static_cast<long long>(in[4 * i + 3]);
       mask[i] = count > 0 ? 255 : 0;
+      counts[i] = static_cast<std::int32_t>(count);
       result.rays_hit += count;
     }
   }

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "lfcam/core/error.h"
@@ -51,6 +52,15 @@ VirtualCamera::VirtualCamera(const VirtualCameraParams& p) : params_(p) {
   tan_half_y_ = tan_half_x_ * p.height / p.width;
   lens_samples_ = is_pinhole() ? std::vector<Vec2>{Vec2::Zero()}
                                : UnitDiskSamples(LensSampleCount(p.lens_rate, p.aperture_mm));
+}
+
+VirtualCamera VirtualCamera::WithLensSampleRange(int begin, int end) const {
+  VirtualCamera part = *this;
+  const int n = int(lens_samples_.size());
+  begin = std::clamp(begin, 0, n);
+  end = std::clamp(end, begin, n);
+  part.lens_samples_.assign(lens_samples_.begin() + begin, lens_samples_.begin() + end);
+  return part;
 }
 
 }  // namespace lfcam

@@ -69,6 +69,10 @@ class VirtualCamera {
   }
   // The unit-disk lens samples (n_ls of them; one, the centre, for a pinhole).
   const std::vector<Vec2>& lens_samples() const { return lens_samples_; }
+  // The same camera with only lens samples [begin, end) (clamped to the n_ls there are): what
+  // the viewer renders a part at a time and accumulates (RenderResult::counts) into the frame
+  // the whole set gives.
+  VirtualCamera WithLensSampleRange(int begin, int end) const;
   // Image row (top-down, as stored) of pixel row j (bottom-up, as in the paper).
   int image_row(int j) const { return params_.height - 1 - j; }
 

@@ -98,6 +98,8 @@ bool DrawRenderingWindow(ViewSettings& view, double& render_scale, const FrameSt
                 stats.scale < 1
                     ? fmt::format(" (reduced to {:.0f}% while moving)", 100 * stats.scale).c_str()
                     : "");
+    if (stats.parts > 1)
+      ImGui::Text("lens samples accumulated: part %d of %d", stats.parts_shown, stats.parts);
     ImGui::Text(
         "%.1f ms a frame%s", stats.frame_ms,
         stats.gpu_ms >= 0 ? fmt::format(" ({:.2f} ms on the GPU)", stats.gpu_ms).c_str() : "");

@@ -19,10 +19,11 @@ struct PanelVisibility {
 
 // What the Rendering window reports about the frame on screen.
 struct FrameStats {
-  std::string backend;  // FrameRenderer::description()
-  double frame_ms = 0;  // the shown frame's render, wall-clock
-  double gpu_ms = -1;   // GL: its compute pass
-  double scale = 1;     // the shown frame's resolution over the full one
+  std::string backend;             // FrameRenderer::description()
+  double frame_ms = 0;             // the shown frame's render, wall-clock
+  double gpu_ms = -1;              // GL: its compute pass
+  double scale = 1;                // the shown frame's resolution over the full one
+  int parts_shown = 1, parts = 1;  // an accumulating lens-samples frame: its parts so far
   int width = 0, height = 0;
   double rays_per_pixel = 0;   // lens samples cast (or cameras read) a pixel
   double reads_per_pixel = 0;  // camera views read a pixel (lens samples: 4 a ray); 0 unknown

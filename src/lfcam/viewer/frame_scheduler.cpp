@@ -42,13 +42,57 @@ RenderResult FrameScheduler::RenderNow(const ViewSettings& view) const {
 }
 
 void FrameScheduler::Finish(const Job& job, RenderResult result) {
-  shown_ms_ =
+  const double ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - job.start)
           .count();
-  if (job.scale >= 1) full_ms_ = shown_ms_;
-  shown_ = std::move(result);
   shown_view_ = job.view;
   shown_scale_ = job.scale;
+  parts_ = job.parts;
+  parts_shown_ = job.part + 1;
+  if (job.parts == 1) {
+    shown_ms_ = ms;
+    if (job.scale >= 1) full_ms_ = ms;
+    shown_ = std::move(result);
+    return;
+  }
+  if (job.part == 0) {
+    accumulator_.Reset(job.view.camera.width, job.view.camera.height);
+    parts_ms_ = 0;
+  }
+  accumulator_.Add(result);
+  parts_ms_ += ms;
+  shown_ = accumulator_.Frame();
+  shown_.path = result.path;
+  shown_ms_ = parts_ms_;
+  shown_on_gl_ = false;
+  if (parts_shown_ == parts_) full_ms_ = parts_ms_;
+}
+
+void FrameScheduler::Start(const Job& job) {
+  VirtualCamera camera(ScaledCamera(job.view.camera, job.scale));
+  if (job.parts > 1) {
+    const int n = int(camera.lens_samples().size());
+    camera = camera.WithLensSampleRange(n * job.part / job.parts, n * (job.part + 1) / job.parts);
+  }
+  const FrameRenderOptions o = OptionsFor(job.view);
+  if (renderer_.uses_gl()) {
+    RenderResult result;
+    if (job.parts > 1) {
+      result = renderer_.Render(lf_, camera, o);  // read back, to accumulate
+    } else {
+      // In the window's context: the frame stays in the renderer's output texture.
+      result.gpu_ms = renderer_.gl()->RenderToTexture(
+          lf_, camera, {o.integrator, o.interpolation, o.workgroup_x, o.workgroup_y});
+      result.path = "gl (" + renderer_.gl()->device().renderer + ")";
+      shown_on_gl_ = true;
+    }
+    Finish(job, std::move(result));
+    return;
+  }
+  shown_on_gl_ = false;
+  job_ = job;
+  pending_ = std::async(std::launch::async,
+                        [this, camera, o] { return renderer_.Render(lf_, camera, o); });
 }
 
 bool FrameScheduler::Update(const ViewSettings& wanted, bool moving) {
@@ -60,33 +104,33 @@ bool FrameScheduler::Update(const ViewSettings& wanted, bool moving) {
   }
   if (pending_.valid()) return ready;  // the worker is busy; the newest view comes next
   const bool same = shown_view_ && SameView(*shown_view_, wanted);
-  if (same && shown_scale_ >= 1) return ready;
-  // Reduced while moving when a full frame would cost more than the budget (or was not measured).
-  double scale = 1;
-  if (moving && full_ms_ > budget_ms_)
-    scale = std::clamp(std::sqrt(budget_ms_ / full_ms_), 0.125, 1.0);
-  if (same && scale <= shown_scale_) return ready;  // nothing better to show yet
-  Job job{wanted, scale, std::chrono::steady_clock::now()};
-  const VirtualCamera camera(ScaledCamera(wanted.camera, scale));
-  if (renderer_.uses_gl()) {
-    // In the window's context: the frame lands in the renderer's output texture.
-    RenderResult result;
-    result.gpu_ms = renderer_.gl()->RenderToTexture(
-        lf_, camera,
-        {wanted.integrator, wanted.interpolation, options_.workgroup_x, options_.workgroup_y});
-    result.path = "gl (" + renderer_.gl()->device().renderer + ")";
-    Finish(job, std::move(result));
+  const auto now = std::chrono::steady_clock::now();
+  // The next part of an accumulating frame.
+  if (same && shown_scale_ >= 1 && parts_shown_ < parts_) {
+    Start({wanted, 1.0, parts_shown_, parts_, now});
     return true;
   }
-  job_ = job;
-  const FrameRenderOptions o = OptionsFor(wanted);
-  pending_ = std::async(std::launch::async,
-                        [this, camera, o] { return renderer_.Render(lf_, camera, o); });
-  return ready;
+  if (same && shown_scale_ >= 1) return ready;
+  // Reduced while moving when a full frame would cost more than the budget.
+  if (moving && full_ms_ > budget_ms_) {
+    const double scale = std::clamp(std::sqrt(budget_ms_ / full_ms_), 0.125, 1.0);
+    if (same && scale <= shown_scale_) return ready;  // nothing better to show yet
+    Start({wanted, scale, 0, 1, now});
+    return true;
+  }
+  // At rest: the whole frame, in parts when it is a costly lens-samples one.
+  int parts = 1;
+  const VirtualCamera camera(wanted.camera);
+  const int lens_samples = int(camera.lens_samples().size());
+  if (wanted.integrator == Integrator::kLensSamples && lens_samples > 1 && full_ms_ > budget_ms_)
+    parts = std::clamp(int(std::ceil(full_ms_ / budget_ms_)), 2, std::min(lens_samples, 64));
+  Start({wanted, 1.0, 0, parts, now});
+  return true;
 }
 
 bool FrameScheduler::converged(const ViewSettings& wanted) const {
-  return !pending_.valid() && shown_scale_ >= 1 && shown_view_ && SameView(*shown_view_, wanted);
+  return !pending_.valid() && shown_scale_ >= 1 && parts_shown_ == parts_ && shown_view_ &&
+         SameView(*shown_view_, wanted);
 }
 
 }  // namespace lfcam

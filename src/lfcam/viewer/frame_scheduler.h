@@ -1,15 +1,19 @@
 #pragma once
 // What the viewer renders next, so that it never blocks: a frame whose full-resolution render
 // costs more than the frame budget is rendered at a reduced scale while the view is moving and
-// at full resolution once it rests. CPU frames render on a worker thread (the window keeps
-// drawing the last frame); GL frames render in the window's context, into the renderer's
-// output texture, and are drawn from there without a read-back.
+// at full resolution once it rests; with the lens-samples integrator the full-resolution frame
+// then comes in parts, a range of lens samples each, accumulated (LensSampleAccumulator) so
+// that the picture refines to exactly what `lfcam render` writes. CPU frames render on a worker
+// thread (the window keeps drawing the last frame); GL frames render in the window's context,
+// into the renderer's output texture, and are drawn from there without a read-back (the parts
+// of an accumulated frame are read back and added on the CPU).
 #include <chrono>
 #include <future>
 #include <optional>
 
 #include "lfcam/core/lightfield.h"
 #include "lfcam/render/frame_renderer.h"
+#include "lfcam/render/lens_sample_accumulator.h"
 #include "lfcam/render/view_file.h"
 
 namespace lfcam {
@@ -33,8 +37,11 @@ class FrameScheduler {
   // The frame shown is `wanted` at full resolution and nothing is rendering.
   bool converged(const ViewSettings& wanted) const;
 
-  // The frame to draw: a CPU image (linear, top-down) when !on_gl().
-  bool on_gl() const { return renderer_.uses_gl(); }
+  // The frame to draw: the GL renderer's output texture, or else a CPU image (linear, top-down).
+  bool on_gl() const { return shown_on_gl_; }
+  // Of an accumulated frame: the parts shown so far and all of them (1 and 1 otherwise).
+  int parts_shown() const { return parts_shown_; }
+  int parts() const { return parts_; }
   const RenderResult& shown() const { return shown_; }
   double shown_scale() const { return shown_scale_; }
   double shown_ms() const { return shown_ms_; }         // its render's wall-clock time
@@ -47,8 +54,10 @@ class FrameScheduler {
   struct Job {
     ViewSettings view;
     double scale = 1;
+    int part = 0, parts = 1;  // lens samples [n_ls * part / parts, n_ls * (part + 1) / parts)
     std::chrono::steady_clock::time_point start;
   };
+  void Start(const Job& job);
   FrameRenderOptions OptionsFor(const ViewSettings& view) const;
   void Finish(const Job& job, RenderResult result);
 
@@ -59,6 +68,10 @@ class FrameScheduler {
   RenderResult shown_;
   std::optional<ViewSettings> shown_view_;
   double shown_scale_ = 0, shown_ms_ = 0, full_ms_ = 0;
+  bool shown_on_gl_ = false;
+  int parts_shown_ = 1, parts_ = 1;
+  double parts_ms_ = 0;  // the accumulated frame's parts so far
+  LensSampleAccumulator accumulator_;
   std::optional<Job> job_;
   std::future<RenderResult> pending_;  // the CPU's worker
 };

@@ -235,13 +235,19 @@ class Viewer {
   }
 
   void Screenshot(const std::string& png) {
-    const RenderResult frame = scheduler_->RenderNow(view_);
+    // The frame on screen when it is the view at full quality and on the CPU (an accumulated
+    // one included); else rendered now.
+    const bool shown =
+        scheduler_->converged(view_) && !scheduler_->on_gl() && !scheduler_->shown().image.empty();
+    const RenderResult frame = shown ? scheduler_->shown() : scheduler_->RenderNow(view_);
     WriteImage(png, frame.image);
     std::string json = png;
     const auto dot = json.rfind('.');
     json = (dot == std::string::npos ? json : json.substr(0, dot)) + ".json";
     WriteViewFile(json, view_);
     stats_.status = "saved " + png + " and " + json;
+    if (shown && scheduler_->parts() > 1)
+      stats_.status += fmt::format(" (lens samples accumulated in {} parts)", scheduler_->parts());
     std::printf("%s\n", stats_.status.c_str());
     std::fflush(stdout);
   }
@@ -437,7 +443,8 @@ class Viewer {
   }
 
   void DrawFrame() {
-    if (scheduler_->Update(view_, moving()) && !scheduler_->on_gl())
+    if (scheduler_->Update(view_, moving()) && !scheduler_->on_gl() &&
+        !scheduler_->shown().image.empty())
       display_->Upload(scheduler_->shown().image);
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
@@ -445,6 +452,8 @@ class Viewer {
     stats_.frame_ms = scheduler_->shown_ms();
     stats_.gpu_ms = scheduler_->shown().gpu_ms;
     stats_.scale = scheduler_->shown_scale();
+    stats_.parts_shown = scheduler_->parts_shown();
+    stats_.parts = scheduler_->parts();
     stats_.width = view_.camera.width;
     stats_.height = view_.camera.height;
     const RenderResult& shown = scheduler_->shown();

@@ -133,6 +133,36 @@ TEST_F(Viewer, ScriptedSessionFocusesOnTheGlobeAndItsScreenshotRendersAgainOffli
   EXPECT_NE(larger.output.find("640x480"), std::string::npos) << larger.output;
 }
 
+TEST_F(Viewer, AccumulatesCostlyLensSampleFramesToWhatRenderWrites) {
+  // A frame budget of 1 ms: once a full lens-samples frame has been timed, the next view comes
+  // in parts (ranges of lens samples), accumulated; the screenshot is the frame on screen.
+  Write("lens.script",
+        "window 320 240\n"
+        "set integrator lens-samples\n"
+        "set aperture 150\n"
+        "set lens-rate 4\n"
+        "wait\n"
+        "set focus-distance 3700\n"
+        "wait\n"
+        "screenshot " +
+            Path("lens.png") +
+            "\n"
+            "quit\n");
+  const CommandResult run = View(Path("paper.lf") + " --script " + Path("lens.script") +
+                                 " --window 320x240 --frame-budget 1");
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("lens samples accumulated in"), std::string::npos) << run.output;
+  const CommandResult again = Lfcam("render " + Path("paper.lf") + " --camera " +
+                                    Path("lens.json") + " --out " + Path("lens_again.png"));
+  ASSERT_EQ(again.status, 0) << again.output;
+  const auto same = nlohmann::json::parse(
+      Lfcam("compare --json " + Path("lens.png") + " " + Path("lens_again.png")).output);
+  if (!same["psnr_db"].is_null()) {
+    EXPECT_GE(same["psnr_db"].get<double>(), 40.0) << same.dump();
+  }
+  std::cout << run.output << "accumulated against render --camera: " << same.dump() << "\n";
+}
+
 TEST_F(Viewer, RefusesMissingOrCorruptFilesBeforeAnyWindow) {
   CommandResult run = View(Path("missing.lf"));
   EXPECT_EQ(run.status, 1) << run.output;
