@@ -123,8 +123,12 @@ void AddBenchCommand(CLI::App& app) {
                lf.dims().n_t);
     fmt::print("renderer: {}{}\n", renderer.description(),
                renderer.uses_gl()
-                   ? fmt::format(", work group {}x{}; ms: the GPU's (timer queries)",
-                                 render_options.workgroup_x, render_options.workgroup_y)
+                   ? fmt::format(", work group {}x{}; ms: {}", render_options.workgroup_x,
+                                 render_options.workgroup_y,
+                                 renderer.gl()->device().software
+                                     ? "the compute pass to glFinish, wall-clock (a software "
+                                       "GL's timer queries miss compute work)"
+                                     : "the GPU's, from timer queries")
                    : std::string());
     std::vector<BenchCell> cells =
         flags->table == "table1" ? Table1Cells() : Table2Cells(integrator, interpolation);
