@@ -40,7 +40,7 @@ struct GlfwLibrary {
   GlfwLibrary() {
     glfwSetErrorCallback(OnGlfwError);
     if (!glfwInit())
-      throw Error("lfcam view: no window system (" + glfw_error +
+      throw Error("no window system for the viewer (" + glfw_error +
                   "); is DISPLAY set? Without a screen, run it under xvfb-run");
   }
   ~GlfwLibrary() { glfwTerminate(); }
@@ -55,7 +55,7 @@ struct Window {
     glfwWindowHint(GLFW_SCALE_TO_MONITOR, GLFW_TRUE);  // HiDPI
     handle = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
     if (handle == nullptr)
-      throw Error("lfcam view: no window with an OpenGL 4.3 core context (" + glfw_error + ")");
+      throw Error("no window with an OpenGL 4.3 core context (" + glfw_error + ")");
     glfwMakeContextCurrent(handle);
     glfwSwapInterval(1);  // vsync
   }
