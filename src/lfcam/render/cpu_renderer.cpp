@@ -305,14 +305,4 @@ RenderResult RenderLightFieldCpu(const LightField& lf, const VirtualCamera& came
   return RenderFast(lf, camera, options);
 }
 
-std::string ToString(Integrator integrator) {
-  return integrator == Integrator::kLensSamples ? "lens-samples" : "cameras";
-}
-
-Integrator IntegratorFromString(const std::string& name) {
-  if (name == "lens-samples") return Integrator::kLensSamples;
-  if (name == "cameras") return Integrator::kCameras;
-  throw Error(fmt::format("unknown integrator '{}' (expected lens-samples or cameras)", name));
-}
-
 }  // namespace lfcam

@@ -34,15 +34,4 @@ LightFieldSampler::LightFieldSampler(const LightField& lf)
     for (int c = 0; c < cols_; ++c) camera_centers_.push_back(lf.camera_center(r, c));
 }
 
-std::string ToString(Interpolation interpolation) {
-  return interpolation == Interpolation::kQuadrilinear ? "quadrilinear" : "focal-plane";
-}
-
-Interpolation InterpolationFromString(const std::string& name) {
-  if (name == "quadrilinear") return Interpolation::kQuadrilinear;
-  if (name == "focal-plane") return Interpolation::kFocalPlane;
-  throw Error(
-      fmt::format("unknown interpolation '{}' (expected quadrilinear or focal-plane)", name));
-}
-
 }  // namespace lfcam

@@ -1,0 +1,33 @@
+// The names of the integrators and lookups, as flags, view files and benchmark records spell
+// them (declared beside their enums in cpu_renderer.h and lightfield_sampler.h; kept apart from
+// the renderers so that the readers of those files build without them).
+#include <fmt/format.h>
+
+#include "lfcam/core/error.h"
+#include "lfcam/render/cpu_renderer.h"
+#include "lfcam/render/lightfield_sampler.h"
+
+namespace lfcam {
+
+std::string ToString(Integrator integrator) {
+  return integrator == Integrator::kLensSamples ? "lens-samples" : "cameras";
+}
+
+Integrator IntegratorFromString(const std::string& name) {
+  if (name == "lens-samples") return Integrator::kLensSamples;
+  if (name == "cameras") return Integrator::kCameras;
+  throw Error(fmt::format("unknown integrator '{}' (expected lens-samples or cameras)", name));
+}
+
+std::string ToString(Interpolation interpolation) {
+  return interpolation == Interpolation::kQuadrilinear ? "quadrilinear" : "focal-plane";
+}
+
+Interpolation InterpolationFromString(const std::string& name) {
+  if (name == "quadrilinear") return Interpolation::kQuadrilinear;
+  if (name == "focal-plane") return Interpolation::kFocalPlane;
+  throw Error(
+      fmt::format("unknown interpolation '{}' (expected quadrilinear or focal-plane)", name));
+}
+
+}  // namespace lfcam
