@@ -4,9 +4,6 @@
 
 #include <gtest/gtest.h>
 
-#include "lfcam/core/error.h"
-#include "lfcam/viewer/viewer_script.h"
-
 namespace lfcam {
 namespace {
 
@@ -69,27 +66,6 @@ TEST(ViewNavigation, ZoomFocusAndResetStayValid) {
   const VirtualCameraParams r = ResetToArrayCentre(Orbit(p, 0.5, 0.2), array);
   EXPECT_LT((r.eye - array.center()).norm(), 1e-9);
   EXPECT_LT(((r.look_at - r.eye).normalized() + array.n_ca).norm(), 1e-9);
-}
-
-TEST(ViewerScript, ReadsCommandsAndNamesTheLineOfAMistake) {
-  const auto script = ParseViewerScript(
-      "# a comment\n\nwindow 320 240\nset aperture 40\nclick 10 20\nwait\nquit\n", "s");
-  ASSERT_EQ(script.size(), 5u);
-  EXPECT_EQ(script[0].name, "window");
-  EXPECT_EQ(script[2].args[1], "20");
-  EXPECT_EQ(script[2].line, 5);
-  const auto error = [](const std::string& text) {
-    try {
-      ParseViewerScript(text, "s.script");
-    } catch (const Error& e) {
-      return std::string(e.what());
-    }
-    return std::string();
-  };
-  EXPECT_NE(error("wait\nfly 1 2\n").find("s.script:2: unknown command 'fly'"), std::string::npos);
-  EXPECT_NE(error("click 10\n").find("s.script:1: 'click' takes 2 arguments"), std::string::npos);
-  EXPECT_NE(error("click ten 20\n").find("'ten' is not a number"), std::string::npos);
-  EXPECT_NE(error("set aperture\n").find("'set' takes 2 arguments"), std::string::npos);
 }
 
 }  // namespace

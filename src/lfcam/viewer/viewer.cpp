@@ -21,6 +21,7 @@
 #include "lfcam/viewer/control_windows.h"
 #include "lfcam/viewer/frame_display.h"
 #include "lfcam/viewer/frame_scheduler.h"
+#include "lfcam/viewer/glfw_window.h"
 #include "lfcam/viewer/view_navigation.h"
 #include "lfcam/viewer/viewer_script.h"
 
@@ -29,84 +30,20 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-std::string glfw_error;  // the last GLFW error, for messages
-
-void OnGlfwError(int code, const char* description) {
-  glfw_error = fmt::format("GLFW error 0x{:x}: {}", code, description ? description : "");
-}
-
-// The GLFW library, initialised for the viewer's lifetime.
-struct GlfwLibrary {
-  GlfwLibrary() {
-    glfwSetErrorCallback(OnGlfwError);
-    if (!glfwInit())
-      throw Error("no window system for the viewer (" + glfw_error +
-                  "); is DISPLAY set? Without a screen, run it under xvfb-run");
-  }
-  ~GlfwLibrary() { glfwTerminate(); }
-};
-
-struct Window {
-  GLFWwindow* handle = nullptr;
-  Window(int width, int height, const std::string& title) {
-    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
-    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
-    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
-    glfwWindowHint(GLFW_SCALE_TO_MONITOR, GLFW_TRUE);  // HiDPI
-    handle = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
-    if (handle == nullptr)
-      throw Error("no window with an OpenGL 4.3 core context (" + glfw_error + ")");
-    glfwMakeContextCurrent(handle);
-    glfwSwapInterval(1);  // vsync
-  }
-  ~Window() { glfwDestroyWindow(handle); }
-};
-
-// Input gathered by GLFW's callbacks between two loops.
-struct Input {
-  double scroll = 0;
-  std::vector<int> keys_pressed;
-};
-
-void OnScroll(GLFWwindow* window, double, double dy) {
-  static_cast<Input*>(glfwGetWindowUserPointer(window))->scroll += dy;
-}
-
-void OnKey(GLFWwindow* window, int key, int, int action, int) {
-  if (action == GLFW_PRESS)
-    static_cast<Input*>(glfwGetWindowUserPointer(window))->keys_pressed.push_back(key);
-}
-
-int KeyFromName(const std::string& name) {
-  if (name.size() == 1 && std::isalpha(static_cast<unsigned char>(name[0])))
-    return GLFW_KEY_A + (std::toupper(static_cast<unsigned char>(name[0])) - 'A');
-  if (name.size() >= 2 && name[0] == 'F') {
-    const int n = std::atoi(name.c_str() + 1);
-    if (n >= 1 && n <= 25) return GLFW_KEY_F1 + n - 1;
-  }
-  if (name == "[") return GLFW_KEY_LEFT_BRACKET;
-  if (name == "]") return GLFW_KEY_RIGHT_BRACKET;
-  if (name == "Esc" || name == "Escape") return GLFW_KEY_ESCAPE;
-  throw Error("unknown key '" + name + "'");
-}
-
 class Viewer {
  public:
   Viewer(const ViewerOptions& options, LightField lf)
       : options_(options),
         lf_(std::move(lf)),
         window_(options.width, options.height, "lfcam view: " + options.light_field) {
-    glfwSetWindowUserPointer(window_.handle, &input_);
-    glfwSetScrollCallback(window_.handle, OnScroll);
-    glfwSetKeyCallback(window_.handle, OnKey);
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
     ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini left behind
     float scale_x = 1, scale_y = 1;
-    glfwGetWindowContentScale(window_.handle, &scale_x, &scale_y);
+    glfwGetWindowContentScale(window_.handle(), &scale_x, &scale_y);
     ImGui::GetStyle().ScaleAllSizes(scale_x);
     ImGui::GetIO().FontGlobalScale = scale_x;
-    ImGui_ImplGlfw_InitForOpenGL(window_.handle, true);  // chains the callbacks above
+    ImGui_ImplGlfw_InitForOpenGL(window_.handle(), true);  // chains the callbacks above
     ImGui_ImplOpenGL3_Init("#version 330 core");
     display_ = std::make_unique<FrameDisplay>();
     renderer_ = std::make_unique<FrameRenderer>(options.backend, true);
@@ -144,7 +81,7 @@ class Viewer {
     std::vector<ScriptCommand> script;
     if (!options_.script.empty()) script = ReadViewerScript(options_.script);
     std::size_t next = 0;
-    while (!glfwWindowShouldClose(window_.handle)) {
+    while (!glfwWindowShouldClose(window_.handle())) {
       glfwPollEvents();
       FitViewToFramebuffer();
       HandleInput();
@@ -167,7 +104,7 @@ class Viewer {
 
   // The render resolution follows the window's framebuffer and the render scale.
   void FitViewToFramebuffer() {
-    glfwGetFramebufferSize(window_.handle, &fb_width_, &fb_height_);
+    glfwGetFramebufferSize(window_.handle(), &fb_width_, &fb_height_);
     const int w = std::max(16, int(std::lround(fb_width_ * render_scale_)));
     const int h = std::max(16, int(std::lround(fb_height_ * render_scale_)));
     if (w != view_.camera.width || h != view_.camera.height) {
@@ -190,7 +127,7 @@ class Viewer {
   // Window pixel (top-left origin, screen coordinates) to film position (bottom-left, pixels).
   void FilmPosition(double x, double y, double* fx, double* fy) const {
     int ww = 1, wh = 1;
-    glfwGetWindowSize(window_.handle, &ww, &wh);
+    glfwGetWindowSize(window_.handle(), &ww, &wh);
     *fx = x / std::max(ww, 1) * view_.camera.width;
     *fy = (1.0 - y / std::max(wh, 1)) * view_.camera.height;
   }
@@ -230,7 +167,7 @@ class Viewer {
 
   int WindowWidth() const {
     int ww = 1, wh = 1;
-    glfwGetWindowSize(window_.handle, &ww, &wh);
+    glfwGetWindowSize(window_.handle(), &ww, &wh);
     return ww;
   }
 
@@ -289,7 +226,7 @@ class Viewer {
         SetView(p);
         break;
       case GLFW_KEY_ESCAPE:
-        glfwSetWindowShouldClose(window_.handle, GLFW_TRUE);
+        glfwSetWindowShouldClose(window_.handle(), GLFW_TRUE);
         break;
       default:
         break;
@@ -298,10 +235,9 @@ class Viewer {
 
   void HandleInput() {
     const ImGuiIO& io = ImGui::GetIO();
-    std::vector<int> keys;
-    keys.swap(input_.keys_pressed);
-    const double scroll = input_.scroll;
-    input_.scroll = 0;
+    const WindowInput input = window_.TakeInput();
+    const std::vector<int>& keys = input.keys_pressed;
+    const double scroll = input.scroll;
     if (!io.WantCaptureKeyboard)
       for (const int key : keys) PressKey(key);
     // Held keys move the eye: 300 mm a second.
@@ -309,7 +245,7 @@ class Viewer {
     const double dt = std::min(now - last_time_, 0.1);
     last_time_ = now;
     if (!io.WantCaptureKeyboard) {
-      const auto held = [&](int key) { return glfwGetKey(window_.handle, key) == GLFW_PRESS; };
+      const auto held = [&](int key) { return glfwGetKey(window_.handle(), key) == GLFW_PRESS; };
       const double step = 300.0 * dt;
       const double right = (held(GLFW_KEY_D) - held(GLFW_KEY_A)) * step;
       const double up = (held(GLFW_KEY_E) - held(GLFW_KEY_Q)) * step;
@@ -320,8 +256,8 @@ class Viewer {
       dragging_ = false;
       return;
     }
-    const bool ctrl = glfwGetKey(window_.handle, GLFW_KEY_LEFT_CONTROL) == GLFW_PRESS ||
-                      glfwGetKey(window_.handle, GLFW_KEY_RIGHT_CONTROL) == GLFW_PRESS;
+    const bool ctrl = glfwGetKey(window_.handle(), GLFW_KEY_LEFT_CONTROL) == GLFW_PRESS ||
+                      glfwGetKey(window_.handle(), GLFW_KEY_RIGHT_CONTROL) == GLFW_PRESS;
     if (scroll != 0) {
       if (ctrl)
         SetView(Move(view_.camera, 0, 0, scroll * 0.05 * view_.camera.focus_distance_mm));
@@ -329,11 +265,12 @@ class Viewer {
         SetView(ScaleFocusDistance(view_.camera, std::pow(1.03, scroll)));
     }
     double x = 0, y = 0;
-    glfwGetCursorPos(window_.handle, &x, &y);
-    const bool left = glfwGetMouseButton(window_.handle, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
-    const bool middle = glfwGetMouseButton(window_.handle, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS;
-    const bool shift = glfwGetKey(window_.handle, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS ||
-                       glfwGetKey(window_.handle, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
+    glfwGetCursorPos(window_.handle(), &x, &y);
+    const bool left = glfwGetMouseButton(window_.handle(), GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+    const bool middle =
+        glfwGetMouseButton(window_.handle(), GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS;
+    const bool shift = glfwGetKey(window_.handle(), GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS ||
+                       glfwGetKey(window_.handle(), GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
     if (left || middle) {
       if (!dragging_) {
         dragging_ = true;
@@ -359,7 +296,7 @@ class Viewer {
     try {
       if (c.name == "quit") return false;
       if (c.name == "window") {
-        glfwSetWindowSize(window_.handle, int(number(0)), int(number(1)));
+        glfwSetWindowSize(window_.handle(), int(number(0)), int(number(1)));
         frames_left_ = 3;  // let the window system apply it
       } else if (c.name == "set") {
         SetParameter(c.args[0], c.args[1]);
@@ -369,7 +306,7 @@ class Viewer {
         const bool pan = c.args.size() > 4 && (c.args[4] == "middle" || c.args[4] == "shift");
         Drag(number(2) - number(0), number(3) - number(1), pan);
       } else if (c.name == "key") {
-        PressKey(KeyFromName(c.args[0]));
+        PressKey(GlfwKeyFromName(c.args[0]));
       } else if (c.name == "wait") {
         waiting_ = true;
         last_change_ = Clock::now() - std::chrono::seconds(1);  // scripted changes rest at once
@@ -480,7 +417,7 @@ class Viewer {
     }
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
     if (!capture_path_.empty()) CaptureWindow();
-    glfwSwapBuffers(window_.handle);
+    glfwSwapBuffers(window_.handle());
   }
 
   // The window's framebuffer as drawn (before the swap), to an 8-bit sRGB image.
@@ -498,9 +435,7 @@ class Viewer {
 
   const ViewerOptions& options_;
   LightField lf_;
-  GlfwLibrary glfw_;
-  Window window_;
-  Input input_;
+  GlfwWindow window_;
   std::unique_ptr<FrameDisplay> display_;
   std::unique_ptr<FrameRenderer> renderer_;
   std::unique_ptr<FrameScheduler> scheduler_;

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <cctype>
 #include <charconv>
 #include <map>
 #include <sstream>
@@ -26,6 +27,17 @@ const std::map<std::string, Arity>& Commands() {
       {"frames", {1, 1, 1}}, {"screenshot", {1, 1, 0}}, {"capture", {1, 1, 0}},
       {"print", {0, 0, 0}},  {"quit", {0, 0, 0}}};
   return commands;
+}
+
+// The keys a script can press (viewer/glfw_window.h: GlfwKeyFromName).
+bool IsKeyName(const std::string& k) {
+  if (k.size() == 1) return std::isalpha(static_cast<unsigned char>(k[0])) || k == "[" || k == "]";
+  if (k == "Esc" || k == "Escape") return true;
+  if (k.size() < 2 || k.size() > 3 || k[0] != 'F') return false;
+  for (std::size_t i = 1; i < k.size(); ++i)
+    if (!std::isdigit(static_cast<unsigned char>(k[i]))) return false;
+  const int n = std::stoi(k.substr(1));
+  return n >= 1 && n <= 25;
 }
 
 bool IsNumber(const std::string& s) {
@@ -61,6 +73,9 @@ std::vector<ScriptCommand> ParseViewerScript(const std::string& text, const std:
       if (!IsNumber(c.args[std::size_t(k)]))
         throw Error(fmt::format("{}:{}: '{}': '{}' is not a number", where, number, c.name,
                                 c.args[std::size_t(k)]));
+    if (c.name == "key" && !IsKeyName(c.args[0]))
+      throw Error(fmt::format("{}:{}: unknown key '{}' (F1..F25, a letter, [, ], Esc)", where,
+                              number, c.args[0]));
     script.push_back(std::move(c));
   }
   return script;
