@@ -103,3 +103,5 @@ sheet e "(e) moving camera, f 700, d_o 4300, d_l 64" "$labels" "${files[@]}"
 echo
 echo "Done in $(( $(date +%s) - start )) s. Frames and contact sheets are in $out/:"
 ls "$out"/*_sheet.png
+echo "Explore the light field interactively (F1 lists the keys; docs/viewer.md):"
+echo "  $lfcam view $lf"
