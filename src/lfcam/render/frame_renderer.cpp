@@ -66,16 +66,18 @@ FrameRenderer::FrameRenderer(Backend backend, bool in_current_context) {
   }
 }
 
+GlRenderOptions GlOptions(const FrameRenderOptions& options) {
+  GlRenderOptions o;
+  o.integrator = options.integrator;
+  o.interpolation = options.interpolation;
+  o.workgroup_x = options.workgroup_x;
+  o.workgroup_y = options.workgroup_y;
+  return o;
+}
+
 RenderResult FrameRenderer::Render(const LightField& lf, const VirtualCamera& camera,
                                    const FrameRenderOptions& options) const {
-  if (gl_) {
-    GlRenderOptions o;
-    o.integrator = options.integrator;
-    o.interpolation = options.interpolation;
-    o.workgroup_x = options.workgroup_x;
-    o.workgroup_y = options.workgroup_y;
-    return gl_->Render(lf, camera, o);
-  }
+  if (gl_) return gl_->Render(lf, camera, GlOptions(options));
   CpuRenderOptions o;
   o.integrator = options.integrator;
   o.interpolation = options.interpolation;

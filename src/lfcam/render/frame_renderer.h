@@ -24,6 +24,9 @@ struct FrameRenderOptions {
   ProgressCallback progress;              // CPU only
 };
 
+// The GL renderer's share of the options.
+GlRenderOptions GlOptions(const FrameRenderOptions& options);
+
 class FrameRenderer {
  public:
   // Opens the backend; kGl throws lfcam::Error when no GL 4.3 context can be made. With

@@ -81,8 +81,7 @@ void FrameScheduler::Start(const Job& job) {
       result = renderer_.Render(lf_, camera, o);  // read back, to accumulate
     } else {
       // In the window's context: the frame stays in the renderer's output texture.
-      result.gpu_ms = renderer_.gl()->RenderToTexture(
-          lf_, camera, {o.integrator, o.interpolation, o.workgroup_x, o.workgroup_y});
+      result.gpu_ms = renderer_.gl()->RenderToTexture(lf_, camera, GlOptions(o));
       result.path = "gl (" + renderer_.gl()->device().renderer + ")";
       shown_on_gl_ = true;
     }
