@@ -19,6 +19,8 @@ packages=(
   # The viewer: a GLFW window with Dear ImGui (its GLFW and OpenGL backends' sources come with
   # libimgui-dev); Xvfb gives it a screen in the tests.
   libglfw3-dev libimgui-dev xvfb xauth
+  # The capture system: the node agent's HTTP API (cpp-httplib) and its signatures (OpenSSL).
+  libcpp-httplib-dev libssl-dev
   libgtest-dev libgmock-dev
 )
 # bench/peer.sh: the NumPy + OpenCV peer renderer.

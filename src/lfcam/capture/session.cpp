@@ -39,14 +39,31 @@ std::string CameraFileName(int row, int col) {
   return fmt::format("cam_{:02d}_{:02d}.jpg", row, col);
 }
 
+std::string ToString(ImageStatus status) {
+  switch (status) {
+    case ImageStatus::kOk:
+      return "ok";
+    case ImageStatus::kCaptured:
+      return "captured";
+    case ImageStatus::kMissing:
+      return "missing";
+  }
+  return "?";
+}
+
 std::string CameraLabel(int row, int col) { return fmt::format("camera ({}, {})", row, col); }
 
 nlohmann::json ManifestToJson(const CaptureManifest& m) {
   nlohmann::json shots = nlohmann::json::array();
   for (const Shot& s : m.shots) {
     nlohmann::json images = nlohmann::json::array();
-    for (const ShotImage& i : s.images)
-      images.push_back({{"row", i.row}, {"col", i.col}, {"file", i.file}});
+    for (const auto* list : {&s.images, &s.pending})
+      for (const ShotImage& i : *list) {
+        nlohmann::json image = {{"row", i.row}, {"col", i.col}, {"file", i.file}};
+        if (i.status != ImageStatus::kOk) image["status"] = ToString(i.status);
+        if (!i.capture.is_null()) image["capture"] = i.capture;
+        images.push_back(std::move(image));
+      }
     shots.push_back({{"kind", ToString(s.kind)}, {"name", s.name}, {"images", images}});
   }
   nlohmann::json boards = nlohmann::json::object();
@@ -131,10 +148,24 @@ CaptureManifest ManifestFromJson(const nlohmann::json& j, const std::string& whe
       image.col = int(JsonInteger(images[i], "col", 0, m.cols - 1, iw));
       image.file = JsonString(images[i], "file", iw);
       CheckRelativeName(image.file, iw);
+      if (images[i].contains("status")) {
+        const std::string status = JsonString(images[i], "status", iw);
+        if (status == "captured")
+          image.status = ImageStatus::kCaptured;
+        else if (status == "missing")
+          image.status = ImageStatus::kMissing;
+        else if (status != "ok")
+          throw Error(fmt::format("{}: status '{}' is not ok, captured or missing", iw, status));
+      }
+      if (images[i].contains("capture")) {
+        image.capture = images[i]["capture"];
+        if (!image.capture.is_object())
+          throw Error(fmt::format("{}: capture must be an object", iw));
+      }
       if (!seen.insert({image.row, image.col}).second)
         throw Error(fmt::format("{}: {} appears twice in shot '{}'", iw,
                                 CameraLabel(image.row, image.col), shot.name));
-      shot.images.push_back(std::move(image));
+      (image.status == ImageStatus::kOk ? shot.images : shot.pending).push_back(std::move(image));
     }
     m.shots.push_back(std::move(shot));
   }

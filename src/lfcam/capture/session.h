@@ -23,15 +23,36 @@ inline constexpr int kManifestVersion = 1;
 enum class ShotKind { kIntrinsics, kWorld, kScene };
 std::string ToString(ShotKind kind);
 
+// What the capture controller knows of a camera's image (docs/capture-layout.md): "ok", the file
+// is in the session with its checksum verified; "captured", the node took it and holds it but it
+// is not here yet (`lfcam capture fetch` gets it); "missing", the camera did not take it
+// (`capture.reason` says why).
+enum class ImageStatus { kOk, kCaptured, kMissing };
+std::string ToString(ImageStatus status);
+
 struct ShotImage {
+  ShotImage() = default;
+  ShotImage(int r, int c, std::string f, ImageStatus s = ImageStatus::kOk,
+            nlohmann::json record = nullptr)
+      : row(r), col(c), file(std::move(f)), status(s), capture(std::move(record)) {}
+
   int row = 0, col = 0;
   std::string file;  // relative to the session directory, '/'-separated
+  ImageStatus status = ImageStatus::kOk;
+  // From the capture controller: node, requested and actual trigger time, settings, size,
+  // sha256, reason. Null for sessions written otherwise.
+  nlohmann::json capture;
 };
 
 struct Shot {
+  Shot() = default;
+  Shot(ShotKind k, std::string n, std::vector<ShotImage> i = {}, std::vector<ShotImage> p = {})
+      : kind(k), name(std::move(n)), images(std::move(i)), pending(std::move(p)) {}
+
   ShotKind kind = ShotKind::kScene;
-  std::string name;  // "shot_00", "world", "scene"
-  std::vector<ShotImage> images;
+  std::string name;                // "shot_00", "world", "scene"
+  std::vector<ShotImage> images;   // the images in the session (status ok)
+  std::vector<ShotImage> pending;  // the cameras whose image is not (captured or missing)
 };
 
 struct CaptureManifest {

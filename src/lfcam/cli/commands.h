@@ -15,5 +15,6 @@ void AddInfoCommand(CLI::App& app);
 void AddCompareCommand(CLI::App& app);
 void AddMontageCommand(CLI::App& app);
 void AddBenchCommand(CLI::App& app);
+void AddCaptureCommand(CLI::App& app);
 
 }  // namespace lfcam::cli

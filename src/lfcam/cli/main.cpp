@@ -76,6 +76,7 @@ int main(int argc, char** argv) {
   app.footer(
       "Run `lfcam help COMMAND` for a command's flags.\n"
       "Exit status: 0 success, 1 an error in the work, 2 bad usage.");
+  lfcam::cli::AddCaptureCommand(app);
   lfcam::cli::AddSimulateCommand(app);
   lfcam::cli::AddCalibrateCommand(app);
   lfcam::cli::AddBuildCommand(app);

@@ -12,14 +12,6 @@
 #include "lfcam/sim/capture_simulation.h"
 
 namespace lfcam::cli {
-namespace {
-
-// 30 mm squares: a chessboard of 10 x 7 inner corners; a ChArUco board of 11 x 9 squares (an
-// odd row count: OpenCV 4.6 lays out boards of an even row count unlike other versions).
-constexpr const char* kDefaultChessboard = "10x7@30";
-constexpr const char* kDefaultCharuco = "charuco:11x9@30/22";
-
-}  // namespace
 
 void AddSimulateCaptureCommand(CLI::App& simulate) {
   auto* command = simulate.add_subcommand(
@@ -50,7 +42,7 @@ void AddSimulateCaptureCommand(CLI::App& simulate) {
   command->add_option("--intrinsics-board", flags->intrinsics_board,
                       fmt::format("Intrinsics board: COLSxROWS@MM (inner corners, square mm) or "
                                   "charuco:SXxSY@SQUARE/MARKER[:DICT] [default: {} or {}]",
-                                  kDefaultChessboard, kDefaultCharuco));
+                                  kSimulatedChessboard, kSimulatedCharuco));
   command->add_option("--shots", flags->shots, "Intrinsics board poses")
       ->capture_default_str()
       ->check(CLI::Range(1, 16));
@@ -75,8 +67,8 @@ void AddSimulateCaptureCommand(CLI::App& simulate) {
       throw UsageError(fmt::format("--board: '{}' is not chessboard or charuco", flags->board));
     const bool charuco = flags->board == "charuco";
     const std::string spec = !flags->intrinsics_board.empty() ? flags->intrinsics_board
-                             : charuco                        ? kDefaultCharuco
-                                                              : kDefaultChessboard;
+                             : charuco                        ? kSimulatedCharuco
+                                                              : kSimulatedChessboard;
     o.intrinsics_board = FlagValue("--intrinsics-board", [&] { return ParseBoardSpec(spec); });
     if (o.intrinsics_board.charuco() != charuco)
       throw UsageError(fmt::format("--intrinsics-board {} is not a {} (--board {})", spec,

@@ -155,7 +155,8 @@ std::string ImageExtension(const std::filesystem::path& path) {
                                path.string(), path.extension().string()));
 }
 
-std::vector<std::uint8_t> EncodeImage(const std::filesystem::path& path, const cv::Mat& rgb) {
+std::vector<std::uint8_t> EncodeImage(const std::filesystem::path& path, const cv::Mat& rgb,
+                                      int jpeg_quality = 95) {
   cv::Mat srgb = rgb.type() == CV_32FC3 ? LinearToSrgb8Image(rgb) : rgb;
   if (srgb.type() != CV_8UC3)
     throw Error(fmt::format("{}: internal: bad image type", path.string()));
@@ -164,7 +165,10 @@ std::vector<std::uint8_t> EncodeImage(const std::filesystem::path& path, const c
   std::vector<std::uint8_t> bytes;
   bool ok = false;
   try {
-    ok = cv::imencode(ImageExtension(path), bgr, bytes);
+    const std::string ext = ImageExtension(path);
+    std::vector<int> params;
+    if (ext == ".jpg") params = {cv::IMWRITE_JPEG_QUALITY, jpeg_quality};
+    ok = cv::imencode(ext, bgr, bytes, params);
   } catch (const cv::Exception&) {
     ok = false;
   }
@@ -185,6 +189,10 @@ void RequireImageOutput(const std::filesystem::path& path, const std::string& fl
 
 void WriteImage(const std::filesystem::path& path, const cv::Mat& rgb) {
   WriteFileAtomically(path, EncodeImage(path, rgb));
+}
+
+std::vector<std::uint8_t> EncodeJpeg(const cv::Mat& rgb, int quality) {
+  return EncodeImage("image.jpg", rgb, quality);
 }
 
 void WriteImages(const std::vector<std::pair<std::filesystem::path, cv::Mat>>& images) {

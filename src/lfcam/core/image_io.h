@@ -35,6 +35,9 @@ cv::Mat Srgb8ToLinearImage(const cv::Mat& srgb8_rgb);   // CV_8UC3 -> CV_32FC3
 // Writes an sRGB 8-bit RGB image (CV_8UC3) or a linear float one (CV_32FC3, encoded first).
 // The extension picks the encoding: .png (or none) or .jpg/.jpeg; others throw UsageError.
 void WriteImage(const std::filesystem::path& path, const cv::Mat& rgb);
+// A JPEG of an 8-bit sRGB RGB image (CV_8UC3; CV_32FC3 linear is converted) at `quality`
+// (1..100; WriteImage's .jpg is quality 95).
+std::vector<std::uint8_t> EncodeJpeg(const cv::Mat& rgb, int quality);
 // Several images, all or none (core/atomic_file.h: CommitAll).
 void WriteImages(const std::vector<std::pair<std::filesystem::path, cv::Mat>>& images);
 // Checks before any work that `path` can take an image: a known extension and a writable place.

@@ -117,33 +117,61 @@ bool SeesWholeBoard(const SimulatedModule& module, const BoardSpec& board,
   return true;
 }
 
+SimulatedArray::SimulatedArray(const Scene& scene, const CaptureSimulationOptions& o)
+    : scene_(scene),
+      options_(o),
+      array_(ResizeArray(scene.rig.array, o.rows, o.cols)),
+      world_board_{scene.rig.board_inner_corners_x, scene.rig.board_inner_corners_y,
+                   scene.rig.board_square_mm},
+      modules_(MakeModules(array_, o.sensor_width, o.sensor_height, o.defects, o.seed)),
+      board_poses_(IntrinsicsBoardPoses(array_, o.intrinsics_board, o.intrinsics_shots, o.seed)) {
+  for (int k = 0; k < o.intrinsics_shots; ++k)
+    plans_.push_back({ShotKind::kIntrinsics, fmt::format("shot_{:02d}", k),
+                      fmt::format("calib/intrinsics/shot_{:02d}", k),
+                      BoardInFrontOf(o.intrinsics_board, board_poses_[std::size_t(k)], scene)});
+  // The world frame is the world board's: it stands at the identity.
+  plans_.push_back(
+      {ShotKind::kWorld, "world", "calib/world", BoardInFrontOf(world_board_, Rigid3{}, scene)});
+  plans_.push_back(
+      {ShotKind::kScene, "scene", "scene", SceneRadiance(scene, o.scene_supersampling)});
+}
+
+std::optional<std::size_t> SimulatedArray::module_at(int row, int col) const {
+  for (std::size_t i = 0; i < modules_.size(); ++i)
+    if (modules_[i].row == row && modules_[i].col == col) return i;
+  return std::nullopt;
+}
+
+std::optional<std::size_t> SimulatedArray::shot_named(const std::string& name) const {
+  for (std::size_t i = 0; i < plans_.size(); ++i)
+    if (plans_[i].name == name) return i;
+  return std::nullopt;
+}
+
+cv::Mat SimulatedArray::Expose(std::size_t index, std::size_t s, ModuleCache& cache) const {
+  const SimulatedModule& m = modules_.at(index);
+  const ShotPlan& plan = plans_.at(s);
+  if (cache.directions.empty()) cache.directions = ModuleRayDirections(m);
+  // What stands behind the boards: the same for every board shot of this module.
+  if (plan.kind != ShotKind::kScene && cache.behind.empty())
+    cache.behind = RenderRadiance(m, cache.directions, SceneRadiance(scene_, 1));
+  ExposureOptions exposure;
+  exposure.noise = options_.noise;
+  exposure.noise_seed = options_.seed * 1000003ull + index * 131ull + s;
+  return ExposeModule(m, cache.directions, plan.radiance, exposure,
+                      plan.kind == ShotKind::kScene ? nullptr : &cache.behind);
+}
+
 CaptureSimulationResult SimulateCapture(const Scene& scene, const CaptureSimulationOptions& o,
                                         const fs::path& out_dir) {
   const auto start = std::chrono::steady_clock::now();
-  const ArrayPlane array = ResizeArray(scene.rig.array, o.rows, o.cols);
-  const BoardSpec world_board{scene.rig.board_inner_corners_x, scene.rig.board_inner_corners_y,
-                              scene.rig.board_square_mm};
-  const std::vector<SimulatedModule> modules =
-      MakeModules(array, o.sensor_width, o.sensor_height, o.defects, o.seed);
-  const std::vector<Rigid3> board_poses =
-      IntrinsicsBoardPoses(array, o.intrinsics_board, o.intrinsics_shots, o.seed);
-  // The world frame is the world board's: it stands at the identity.
+  const SimulatedArray simulated(scene, o);
+  const ArrayPlane& array = simulated.array();
+  const BoardSpec& world_board = simulated.world_board();
+  const std::vector<SimulatedModule>& modules = simulated.modules();
+  const std::vector<Rigid3>& board_poses = simulated.intrinsics_board_poses();
+  const auto& plans = simulated.shots();
   const Rigid3 world_from_world_board;
-
-  struct ShotPlan {
-    ShotKind kind;
-    std::string name, dir;
-    PixelRadiance radiance;
-  };
-  std::vector<ShotPlan> plans;
-  for (int k = 0; k < o.intrinsics_shots; ++k)
-    plans.push_back({ShotKind::kIntrinsics, fmt::format("shot_{:02d}", k),
-                     fmt::format("calib/intrinsics/shot_{:02d}", k),
-                     BoardInFrontOf(o.intrinsics_board, board_poses[std::size_t(k)], scene)});
-  plans.push_back({ShotKind::kWorld, "world", "calib/world",
-                   BoardInFrontOf(world_board, world_from_world_board, scene)});
-  plans.push_back(
-      {ShotKind::kScene, "scene", "scene", SceneRadiance(scene, o.scene_supersampling)});
 
   const double image_bytes = double(o.sensor_width) * o.sensor_height;
   RequireMemory(image_bytes * (12 + 12 + 3 * 4) * 2, "simulating two camera modules at a time");
@@ -158,7 +186,7 @@ CaptureSimulationResult SimulateCapture(const Scene& scene, const CaptureSimulat
   const fs::path staging = out.string() + fmt::format(".partial-{}", ::getpid());
   std::error_code ec;
   fs::remove_all(staging, ec);
-  for (const ShotPlan& plan : plans) {
+  for (const auto& plan : plans) {
     fs::create_directories(staging / plan.dir, ec);
     if (ec)
       throw Error(fmt::format("{}: cannot create directory: {}", (staging / plan.dir).string(),
@@ -182,7 +210,7 @@ CaptureSimulationResult SimulateCapture(const Scene& scene, const CaptureSimulat
   manifest.sensor_model = "Raspberry Pi Camera Module v1.3 (OV5647), simulated";
   manifest.intrinsics_board = o.intrinsics_board;
   manifest.world_board = world_board;
-  for (const ShotPlan& plan : plans) {
+  for (const auto& plan : plans) {
     Shot shot{plan.kind, plan.name, {}};
     for (const SimulatedModule& m : modules)
       shot.images.push_back({m.row, m.col, plan.dir + "/" + CameraFileName(m.row, m.col)});
@@ -199,16 +227,10 @@ CaptureSimulationResult SimulateCapture(const Scene& scene, const CaptureSimulat
   std::mutex progress_mutex;
   tbb::parallel_for(std::size_t(0), modules.size(), [&](std::size_t index) {
     const SimulatedModule& m = modules[index];
-    const cv::Mat directions = ModuleRayDirections(m);
-    // What stands behind the boards: the same for every board shot of this module.
-    const cv::Mat behind = RenderRadiance(m, directions, SceneRadiance(scene, 1));
+    SimulatedArray::ModuleCache cache;
     for (std::size_t s = 0; s < plans.size(); ++s) {
-      ExposureOptions exposure;
-      exposure.noise = o.noise;
-      exposure.noise_seed = o.seed * 1000003ull + index * 131ull + s;
-      const cv::Mat image = ExposeModule(m, directions, plans[s].radiance, exposure,
-                                         plans[s].kind == ShotKind::kScene ? nullptr : &behind);
-      WriteImage(staging / plans[s].dir / CameraFileName(m.row, m.col), image);
+      WriteImage(staging / plans[s].dir / CameraFileName(m.row, m.col),
+                 simulated.Expose(index, s, cache));
       if (o.image_done) {
         std::lock_guard lock(progress_mutex);
         o.image_done();

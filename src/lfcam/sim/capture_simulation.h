@@ -6,14 +6,22 @@
 #include <filesystem>
 #include <functional>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "lfcam/calib/board.h"
+#include "lfcam/capture/session.h"
 #include "lfcam/sim/camera_module.h"
 #include "lfcam/sim/scene.h"
 
 namespace lfcam {
+
+// The simulator's intrinsics boards: 30 mm squares, a chessboard of 10 x 7 inner corners, or a
+// ChArUco board of 11 x 9 squares (an odd row count: OpenCV 4.6 lays out boards of an even row
+// count unlike other versions).
+inline constexpr const char* kSimulatedChessboard = "10x7@30";
+inline constexpr const char* kSimulatedCharuco = "charuco:11x9@30/22";
 
 struct CaptureSimulationOptions {
   int rows = 10, cols = 10;
@@ -36,6 +44,46 @@ std::vector<Rigid3> IntrinsicsBoardPoses(const ArrayPlane& array, const BoardSpe
 // Whether `module` sees the whole board with its white margin (every outer corner in the image).
 bool SeesWholeBoard(const SimulatedModule& module, const BoardSpec& board,
                     const Rigid3& world_from_board, double margin_squares = 1.0);
+
+// The simulated array and its shots: the modules (with their defects), the intrinsics board's
+// poses, and for every shot what each module records. SimulateCapture photographs every shot
+// with every module; a simulated node (capture/simulated_camera.h) photographs them with one.
+class SimulatedArray {
+ public:
+  struct ShotPlan {
+    ShotKind kind;
+    std::string name, dir;  // "shot_03", "calib/intrinsics/shot_03"
+    PixelRadiance radiance;
+  };
+  // What a module computes once and shares between its shots.
+  struct ModuleCache {
+    cv::Mat directions, behind;
+  };
+
+  // `scene` must outlive the array.
+  SimulatedArray(const Scene& scene, const CaptureSimulationOptions& options);
+
+  const ArrayPlane& array() const { return array_; }
+  const BoardSpec& world_board() const { return world_board_; }
+  const std::vector<SimulatedModule>& modules() const { return modules_; }
+  const std::vector<Rigid3>& intrinsics_board_poses() const { return board_poses_; }
+  const std::vector<ShotPlan>& shots() const { return plans_; }
+  // Indices, or nullopt when there is no such module or shot.
+  std::optional<std::size_t> module_at(int row, int col) const;
+  std::optional<std::size_t> shot_named(const std::string& name) const;
+
+  // What module `module` records in shot `shot` (8-bit sRGB RGB), deterministic in the seed.
+  cv::Mat Expose(std::size_t module, std::size_t shot, ModuleCache& cache) const;
+
+ private:
+  const Scene& scene_;
+  CaptureSimulationOptions options_;
+  ArrayPlane array_;
+  BoardSpec world_board_;
+  std::vector<SimulatedModule> modules_;
+  std::vector<Rigid3> board_poses_;
+  std::vector<ShotPlan> plans_;
+};
 
 struct CaptureSimulationResult {
   std::size_t images = 0;

@@ -1,0 +1,63 @@
+#pragma once
+// `lfcam capture shoot` and `fetch`: one scheduled trigger time for the whole array, then the
+// images brought home into the session layout (docs/capture-layout.md) with bounded concurrency,
+// checksums verified, each written under a temporary name and renamed, retried with backoff.
+// The manifest records every camera's node, requested and actual trigger time, settings, size,
+// SHA-256 and status, and is rewritten (atomically) as each image arrives, so a host that dies
+// mid-fetch loses nothing: `fetch` resumes from it, partial files included.
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "lfcam/capture/array_file.h"
+#include "lfcam/capture/session.h"
+#include "lfcam/core/progress.h"
+#include "lfcam/node/request_signature.h"
+
+namespace lfcam {
+
+struct FetchOptions {
+  int concurrency = 8;        // downloads at once
+  int retries = 3;            // per image, after the first try, with backoff 0.25 s, 0.5 s, ...
+  ProgressCallback progress;  // bytes downloaded
+};
+
+struct ShootOptions {
+  ShotKind kind = ShotKind::kScene;
+  double margin_s = 0.5;           // the trigger time is this far ahead (at least 3 round trips)
+  int groups = 1;                  // > 1: staggered like the paper's two groups
+  double group_delay_s = 0.5;      // between groups
+  double capture_timeout_s = 120;  // for a node to take and store its image after T
+  bool fetch = true;               // download right away (else `lfcam capture fetch` later)
+  FetchOptions fetch_options;
+};
+
+struct CameraProblem {
+  int row = 0, col = 0;
+  std::string shot, status, reason;
+};
+
+struct SessionReport {
+  std::string shot;               // the shot taken (shoot only)
+  int cameras = 0;                // in the array file
+  int fired = 0;                  // took the image
+  std::optional<double> skew_ms;  // latest minus earliest actual trigger time, per group
+  double trigger_wait_s = 0, capture_s = 0, fetch_s = 0;
+  std::uint64_t bytes = 0;              // downloaded
+  int images_ok = 0;                    // in the session, verified (all shots)
+  std::vector<CameraProblem> problems;  // every image not in the session, and why
+};
+
+// Takes one shot of `options.kind` with every ready node and (by default) fetches it. The
+// session directory is created, or extended when it holds a session of the same grid.
+SessionReport ShootSession(const ArrayConfig& array, const SharedKey& key,
+                           const std::filesystem::path& session, const ShootOptions& options);
+
+// Downloads every image the manifest lists as captured and not yet here.
+SessionReport FetchSession(const ArrayConfig& array, const SharedKey& key,
+                           const std::filesystem::path& session, const FetchOptions& options);
+
+nlohmann::json SessionReportToJson(const SessionReport& report);
+
+}  // namespace lfcam

@@ -1,0 +1,351 @@
+// `lfcam capture`: the host controller of a camera array of lfcam-node agents (docs/hardware.md).
+#include <fcntl.h>
+#include <fmt/core.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <memory>
+
+#include "lfcam/capture/array_file.h"
+#include "lfcam/capture/array_status.h"
+#include "lfcam/capture/capture_session.h"
+#include "lfcam/capture/node_client.h"
+#include "lfcam/cli/commands.h"
+#include "lfcam/cli/parse.h"
+#include "lfcam/core/error.h"
+#include "lfcam/core/image_io.h"
+#include "lfcam/core/json_input.h"
+#include "lfcam/core/limits.h"
+#include "lfcam/core/progress.h"
+
+namespace lfcam::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+// What every subcommand that talks to the nodes takes: the array file and the key.
+struct ArrayFlags {
+  std::string array, key_file;
+  bool json = false;
+
+  void Add(CLI::App* command) {
+    command->add_option("array", array, "The array file (lfcam capture init writes one)")
+        ->required();
+    command->add_option("--key-file", key_file, "The array's key (default: the array file's)");
+    command->add_flag("--json", json, "Print the result as JSON");
+  }
+  std::pair<ArrayConfig, SharedKey> Load() const {
+    ArrayConfig config = FlagValue("array", [&] { return ReadArrayFile(array); });
+    const fs::path key_path = key_file.empty() ? KeyFilePath(config, array) : fs::path(key_file);
+    SharedKey key = FlagValue(key_file.empty() ? "the array file's key_file" : "--key-file",
+                              [&] { return ReadKeyFile(key_path); });
+    return {std::move(config), std::move(key)};
+  }
+};
+
+void PrintReports(const std::vector<NodeReport>& reports, bool json) {
+  if (json)
+    fmt::print("{}\n", JsonToText(ReportsToJson(reports), 2));
+  else
+    fmt::print("{}", ReportsTable(reports, ::isatty(STDOUT_FILENO) == 1));
+}
+
+// A session that is not complete exits with status 1, after the report (JSON or text).
+void FinishSession(const SessionReport& report, const fs::path& session, bool json) {
+  if (json) {
+    nlohmann::json j = SessionReportToJson(report);
+    j["session"] = session.string();
+    j["complete"] = report.problems.empty();
+    fmt::print("{}\n", JsonToText(j, 2));
+    std::fflush(stdout);
+    if (!report.problems.empty()) std::exit(1);
+    return;
+  }
+  if (!report.shot.empty()) {
+    fmt::print("shot '{}': {} of {} cameras fired", report.shot, report.fired, report.cameras);
+    if (report.skew_ms) fmt::print(", trigger skew {:.3f} ms", *report.skew_ms);
+    fmt::print(" ({:.2f} s from request to last image taken, margin {:.2f} s)\n", report.capture_s,
+               report.trigger_wait_s);
+  }
+  fmt::print("fetched {:.1f} MB in {:.2f} s; {} images in {}\n", double(report.bytes) / 1e6,
+             report.fetch_s, report.images_ok, session.string());
+  if (report.problems.empty()) return;
+  for (const CameraProblem& p : report.problems)
+    fmt::print(stderr, "  {} {} in shot '{}': {}\n", CameraLabel(p.row, p.col), p.status, p.shot,
+               p.reason);
+  int captured = 0;
+  for (const CameraProblem& p : report.problems) captured += p.status == "captured";
+  throw Error(fmt::format(
+      "{} images are not in the session ({} still on their nodes{}); the manifest says why",
+      report.problems.size(), captured,
+      captured > 0 ? ": `lfcam capture fetch` gets them when the nodes are back" : ""));
+}
+
+void AddKeygen(CLI::App& capture) {
+  auto* command = capture.add_subcommand("keygen", "Write a new key for an array (mode 600)");
+  auto out = std::make_shared<std::string>();
+  command->add_option("--out", *out, "The key file to write (must not exist)")->required();
+  command->callback([out] {
+    const int fd = ::open(out->c_str(), O_WRONLY | O_CREAT | O_EXCL, 0600);
+    if (fd < 0)
+      throw UsageError(
+          fmt::format("--out {}: cannot create ({}); an existing key is never "
+                      "overwritten",
+                      *out, std::strerror(errno)));
+    const std::string text = NewKeyHex() + "\n";
+    const bool ok = ::write(fd, text.data(), text.size()) == ssize_t(text.size());
+    ::close(fd);
+    if (!ok) {
+      ::unlink(out->c_str());
+      throw Error(fmt::format("{}: write failed", *out));
+    }
+    fmt::print("wrote {}: copy it to every node (mode 600) and keep it off the network\n", *out);
+  });
+}
+
+void AddInit(CLI::App& capture) {
+  auto* command = capture.add_subcommand("init", "Write an array file: grid, node addresses, key");
+  struct Flags {
+    std::string out, grid = "10x10", addresses, key_file = "array.key", sensor = "2592x1944",
+                     intrinsics_board, world_board;
+    double pitch = 28.0;
+  };
+  auto f = std::make_shared<Flags>();
+  command->add_option("--out", f->out, "The array file to write")->required();
+  command->add_option("--grid", f->grid, "ROWSxCOLS")->capture_default_str();
+  command
+      ->add_option("--addresses", f->addresses,
+                   "Node address pattern with {row} {col} {row02} {col02} {index} {index1}, e.g. "
+                   "10.0.0.{index1}:8470")
+      ->required();
+  command->add_option("--key-file", f->key_file, "The key, relative to the array file")
+      ->capture_default_str();
+  command->add_option("--pitch", f->pitch, "Camera spacing, mm")->capture_default_str();
+  command->add_option("--sensor", f->sensor, "Image size WxH")->capture_default_str();
+  command->add_option("--intrinsics-board", f->intrinsics_board, "The intrinsics board's SPEC");
+  command->add_option("--world-board", f->world_board, "The world board's SPEC");
+  command->callback([f] {
+    ArrayConfig a;
+    std::tie(a.rows, a.cols) = ParseSize("--grid", f->grid, kMaxViewsPerSide);
+    std::tie(a.settings.width, a.settings.height) = ParseSize("--sensor", f->sensor, 16384);
+    if (!(f->pitch > 0)) throw UsageError("--pitch must be positive");
+    a.pitch_mm = f->pitch;
+    a.key_file = f->key_file;
+    a.nodes = NodesFromPattern(a.rows, a.cols, f->addresses);
+    if (!f->intrinsics_board.empty())
+      a.intrinsics_board =
+          FlagValue("--intrinsics-board", [&] { return ParseBoardSpec(f->intrinsics_board); });
+    if (!f->world_board.empty())
+      a.world_board = FlagValue("--world-board", [&] { return ParseBoardSpec(f->world_board); });
+    WriteArrayFile(f->out, a);
+    fmt::print("wrote {}: {}x{} nodes, {} to {}\n", f->out, a.rows, a.cols, a.nodes.front().address,
+               a.nodes.back().address);
+  });
+}
+
+void AddStatus(CLI::App& capture) {
+  auto* command = capture.add_subcommand("status", "Every node's health, in one table");
+  auto flags = std::make_shared<ArrayFlags>();
+  flags->Add(command);
+  command->callback([flags] {
+    const auto [array, key] = flags->Load();
+    PrintReports(ArrayStatus(array, key), flags->json);
+  });
+}
+
+void AddConfigure(CLI::App& capture) {
+  auto* command = capture.add_subcommand(
+      "configure", "Lock the same camera settings on every node (flags update the array file)");
+  struct Flags : ArrayFlags {
+    std::string size, awb, denoise;
+    int exposure_us = 0, quality = 0;
+    double gain = 0;
+  };
+  auto f = std::make_shared<Flags>();
+  f->Add(command);
+  command->add_option("--size", f->size, "Image size WxH");
+  command->add_option("--exposure-us", f->exposure_us, "Shutter time, microseconds");
+  command->add_option("--gain", f->gain, "Analogue gain, 1..16");
+  command->add_option("--awb", f->awb, "White-balance gains RED,BLUE");
+  command->add_option("--denoise", f->denoise, "off, cdn_off, cdn_fast or cdn_hq");
+  command->add_option("--quality", f->quality, "JPEG quality, 1..100");
+  command->callback([f] {
+    auto [array, key] = f->Load();
+    nlohmann::json changes = nlohmann::json::object();
+    if (!f->size.empty()) {
+      const auto [w, h] = ParseSize("--size", f->size, 16384);
+      changes["width"] = w;
+      changes["height"] = h;
+    }
+    if (f->exposure_us != 0) changes["exposure_us"] = f->exposure_us;
+    if (f->gain != 0) changes["analogue_gain"] = f->gain;
+    if (!f->awb.empty()) {
+      const auto gains = ParseNumbers("--awb", f->awb, 2);
+      changes["awb_gains"] = {gains[0], gains[1]};
+    }
+    if (!f->denoise.empty()) changes["denoise"] = f->denoise;
+    if (f->quality != 0) changes["jpeg_quality"] = f->quality;
+    if (!changes.empty()) {
+      array.settings = FlagValue("settings", [&] {
+        return SettingsFromJson(changes, "the settings flags", array.settings);
+      });
+      ArrayConfig on_disk = ReadArrayFile(f->array);
+      on_disk.settings = array.settings;
+      WriteArrayFile(f->array, on_disk);
+      if (!f->json) fmt::print("updated the settings in {}\n", f->array);
+    }
+    PrintReports(ConfigureArray(array, key), f->json);
+  });
+}
+
+void AddIdentify(CLI::App& capture) {
+  auto* command =
+      capture.add_subcommand("identify", "Make one node blink its activity LED and log loudly");
+  struct Flags : ArrayFlags {
+    std::string camera;
+    int seconds = 10;
+  };
+  auto f = std::make_shared<Flags>();
+  f->Add(command);
+  command->add_option("--camera", f->camera, "ROW,COL")->required();
+  command->add_option("--seconds", f->seconds, "How long")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 600));
+  command->callback([f] {
+    const auto [array, key] = f->Load();
+    const auto rc = ParseNumbers("--camera", f->camera, 2);
+    const ArrayNode* node = array.node_at(int(rc[0]), int(rc[1]));
+    if (!node)
+      throw UsageError(fmt::format("--camera {}: no such node in {}", f->camera, f->array));
+    NodeClient client(node->address, key);
+    const auto reply = client.Post("/v1/identify", {{"seconds", f->seconds}});
+    if (f->json)
+      fmt::print("{}\n", JsonToText(reply.body, 2));
+    else
+      fmt::print("{} ({}): {}\n", CameraLabel(node->row, node->col), node->address,
+                 reply.body.value("led", false) ? "blinking its activity LED"
+                                                : "no LED access; it is logging loudly");
+  });
+}
+
+void AddPreview(CLI::App& capture) {
+  auto* command = capture.add_subcommand(
+      "preview", "A contact sheet of every node's preview, laid out as the array");
+  struct Flags : ArrayFlags {
+    std::string out;
+    int tile_width = 256;
+  };
+  auto f = std::make_shared<Flags>();
+  f->Add(command);
+  command->add_option("--out", f->out, "The contact sheet (.png or .jpg)")->required();
+  command->add_option("--tile-width", f->tile_width, "Pixels per node")
+      ->capture_default_str()
+      ->check(CLI::Range(32, 1024));
+  command->callback([f] {
+    RequireImageOutput(f->out, "--out");
+    const auto [array, key] = f->Load();
+    WriteImage(f->out, PreviewSheet(array, key, f->tile_width));
+    if (!f->json) fmt::print("wrote {}\n", f->out);
+  });
+}
+
+void AddFetchFlags(CLI::App* command, FetchOptions& o) {
+  command->add_option("--concurrency", o.concurrency, "Downloads at once")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 64));
+  command->add_option("--retries", o.retries, "Tries per image after the first (with backoff)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 20));
+}
+
+void AddShoot(CLI::App& capture) {
+  auto* command = capture.add_subcommand(
+      "shoot", "Fire every node at one scheduled time, then fetch the images into a session");
+  struct Flags : ArrayFlags {
+    std::string session, kind = "scene";
+    ShootOptions o;
+    bool no_fetch = false, quiet = false;
+  };
+  auto f = std::make_shared<Flags>();
+  f->Add(command);
+  command->add_option("--session", f->session, "The session folder (created or extended)")
+      ->required();
+  command->add_option("--kind", f->kind, "scene, world or intrinsics (one board pose)")
+      ->capture_default_str();
+  command->add_option("--groups", f->o.groups, "Fire in this many groups (the paper: 2)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 16));
+  command->add_option("--group-delay", f->o.group_delay_s, "Seconds between groups")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 10.0));
+  command->add_option("--margin", f->o.margin_s, "Seconds from now to the trigger time")
+      ->capture_default_str()
+      ->check(CLI::Range(0.05, 60.0));
+  command
+      ->add_option("--capture-timeout", f->o.capture_timeout_s,
+                   "Seconds a node has to store its image after the trigger")
+      ->capture_default_str();
+  AddFetchFlags(command, f->o.fetch_options);
+  command->add_flag("--no-fetch", f->no_fetch, "Leave the images on the nodes (fetch later)");
+  command->add_flag("--quiet", f->quiet, "No progress bar");
+  command->callback([f] {
+    if (f->kind == "scene")
+      f->o.kind = ShotKind::kScene;
+    else if (f->kind == "world")
+      f->o.kind = ShotKind::kWorld;
+    else if (f->kind == "intrinsics")
+      f->o.kind = ShotKind::kIntrinsics;
+    else
+      throw UsageError(fmt::format("--kind '{}' is not scene, world or intrinsics", f->kind));
+    f->o.fetch = !f->no_fetch;
+    const auto [array, key] = f->Load();
+    ProgressBar progress("fetching", std::int64_t(array.nodes.size()),
+                         ProgressWanted(f->quiet || f->json));
+    if (auto advance = progress.callback())
+      f->o.fetch_options.progress = [advance](std::int64_t) { advance(1); };
+    const SessionReport report = ShootSession(array, key, f->session, f->o);
+    progress.finish();
+    FinishSession(report, f->session, f->json);
+  });
+}
+
+void AddFetch(CLI::App& capture) {
+  auto* command = capture.add_subcommand(
+      "fetch", "Download whatever a session's nodes hold and the session does not yet");
+  struct Flags : ArrayFlags {
+    std::string session;
+    FetchOptions o;
+    bool quiet = false;
+  };
+  auto f = std::make_shared<Flags>();
+  f->Add(command);
+  command->add_option("--session", f->session, "The session folder")->required();
+  AddFetchFlags(command, f->o);
+  command->add_flag("--quiet", f->quiet, "No progress bar");
+  command->callback([f] {
+    const auto [array, key] = f->Load();
+    ProgressBar progress("fetching", 0, ProgressWanted(f->quiet || f->json));
+    const SessionReport report = FetchSession(array, key, f->session, f->o);
+    progress.finish();
+    FinishSession(report, f->session, f->json);
+  });
+}
+
+}  // namespace
+
+void AddCaptureCommand(CLI::App& app) {
+  auto* capture = app.add_subcommand(
+      "capture", "Drive a camera array of lfcam-node agents: status, configure, shoot, fetch");
+  capture->require_subcommand(1);
+  AddKeygen(*capture);
+  AddInit(*capture);
+  AddStatus(*capture);
+  AddConfigure(*capture);
+  AddIdentify(*capture);
+  AddPreview(*capture);
+  AddShoot(*capture);
+  AddFetch(*capture);
+}
+
+}  // namespace lfcam::cli

@@ -1,0 +1,42 @@
+#pragma once
+// What a node's camera does, whatever drives it: a Raspberry Pi camera through rpicam-apps
+// (rpicam_camera.h), a folder of images (replay_camera.h) or the simulated module
+// (capture/simulated_camera.h). The agent calls Prepare before the trigger time, Fire at it and
+// Collect after, so that everything slow happens outside the instant that must line up.
+#include <chrono>
+#include <string>
+
+#include "lfcam/node/capture_settings.h"
+
+namespace lfcam {
+
+struct ShotRequest {
+  std::string id;    // the capture's id (file name on the node)
+  std::string kind;  // "scene", "world" or "intrinsics"
+  std::string shot;  // the shot's name in the session: "scene", "world", "shot_03"
+};
+
+struct CameraProbe {
+  bool present = false;
+  std::string model;   // "rpicam-still (ov5647)", "replay /srv/images", ...
+  std::string detail;  // why not present, or anything worth knowing
+};
+
+class CameraBackend {
+ public:
+  virtual ~CameraBackend() = default;
+  virtual std::string name() const = 0;
+  virtual CameraProbe Probe() = 0;
+  // Applies the settings the host locked (may restart a running camera). Throws lfcam::Error.
+  virtual void Configure(const CaptureSettings& settings) = 0;
+  // Before the trigger time: whatever can be done ahead (start the camera, load the image).
+  virtual void Prepare(const ShotRequest& shot) = 0;
+  // At the trigger time: as little as possible.
+  virtual void Fire() = 0;
+  // After Fire: the JPEG taken. Throws lfcam::Error when none comes within `timeout`.
+  virtual std::string Collect(std::chrono::milliseconds timeout) = 0;
+  // A small JPEG for aiming and focusing, at most `max_width` pixels wide.
+  virtual std::string Preview(int max_width) = 0;
+};
+
+}  // namespace lfcam

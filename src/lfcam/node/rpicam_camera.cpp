@@ -1,0 +1,227 @@
+#include "lfcam/node/rpicam_camera.h"
+
+#include <fmt/format.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstring>
+#include <set>
+#include <sstream>
+#include <thread>
+
+#include "lfcam/core/error.h"
+#include "lfcam/core/input_file.h"
+#include "lfcam/node/jpeg_preview.h"
+
+extern char** environ;
+
+namespace lfcam {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// The first of `names` found on PATH, or empty.
+std::string FindOnPath(std::initializer_list<const char*> names) {
+  const char* path = std::getenv("PATH");
+  std::stringstream dirs(path ? path : "/usr/bin:/bin");
+  std::vector<std::string> folders;
+  for (std::string dir; std::getline(dirs, dir, ':');)
+    if (!dir.empty()) folders.push_back(dir);
+  for (const char* name : names)
+    for (const std::string& dir : folders)
+      if (::access((fs::path(dir) / name).c_str(), X_OK) == 0) return name;
+  return {};
+}
+
+class RpicamCamera final : public CameraBackend {
+ public:
+  explicit RpicamCamera(RpicamOptions options) : options_(std::move(options)) {
+    if (options_.program.empty())
+      options_.program = FindOnPath({"rpicam-still", "libcamera-still"});
+    std::error_code ec;
+    fs::create_directories(options_.work_folder, ec);
+    if (ec)
+      throw Error(fmt::format("{}: cannot create the camera's work folder: {}",
+                              options_.work_folder.string(), ec.message()));
+  }
+  ~RpicamCamera() override { Stop(); }
+
+  std::string name() const override { return "rpicam"; }
+
+  CameraProbe Probe() override {
+    if (options_.program.empty())
+      return {false, "rpicam", "neither rpicam-still nor libcamera-still is on PATH"};
+    if (pid_ > 0 && !Running())
+      return {false, options_.program, fmt::format("the camera process exited ({})", exit_)};
+    return {true, options_.program, pid_ > 0 ? "running, settings locked" : "not started"};
+  }
+
+  void Configure(const CaptureSettings& settings) override {
+    // Checked now, so that a bad template is refused at configure time.
+    ExpandCameraCommand(options_.command, options_.program, settings, Output());
+    settings_ = settings;
+    configured_ = true;
+    Stop();
+  }
+
+  void Prepare(const ShotRequest&) override {
+    if (!configured_) throw Error("rpicam: the camera is not configured yet");
+    if (options_.program.empty())
+      throw Error("rpicam: neither rpicam-still nor libcamera-still is on PATH");
+    if (pid_ <= 0 || !Running()) Start();
+    const auto ready = started_ + std::chrono::milliseconds(options_.warmup_ms);
+    std::this_thread::sleep_until(ready);
+    before_ = Frames();
+  }
+
+  void Fire() override {
+    if (pid_ > 0) ::kill(pid_, SIGUSR1);
+  }
+
+  std::string Collect(std::chrono::milliseconds timeout) override {
+    const auto deadline = std::chrono::steady_clock::now() + timeout;
+    std::optional<fs::path> frame;
+    std::uintmax_t last_size = 0;
+    while (std::chrono::steady_clock::now() < deadline) {
+      if (!frame) {
+        for (const fs::path& f : Frames())
+          if (!before_.count(f)) frame = f;
+      }
+      if (frame) {
+        // Written completely when its size stops changing.
+        std::error_code ec;
+        const auto size = fs::file_size(*frame, ec);
+        if (!ec && size > 0 && size == last_size) {
+          const auto bytes = ReadFileBytes(*frame, std::uint64_t(1) << 30, "camera frame");
+          fs::remove(*frame, ec);
+          return {bytes.begin(), bytes.end()};
+        }
+        last_size = ec ? 0 : size;
+      } else if (!Running()) {
+        throw Error(
+            fmt::format("rpicam: the camera process exited ({}) before writing a frame", exit_));
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    throw Error(
+        fmt::format("rpicam: no frame from {} within {} ms", options_.program, timeout.count()));
+  }
+
+  std::string Preview(int max_width) override {
+    Prepare({"preview", "preview", "preview"});
+    Fire();
+    return ScaledJpeg(Collect(std::chrono::seconds(10)), max_width, 80, "the camera's frame");
+  }
+
+ private:
+  std::string Output() const { return (options_.work_folder / "frame%05d.jpg").string(); }
+
+  std::set<fs::path> Frames() const {
+    std::set<fs::path> out;
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(options_.work_folder, ec))
+      if (entry.path().extension() == ".jpg") out.insert(entry.path());
+    return out;
+  }
+
+  void Start() {
+    Stop();
+    // Frames left from an earlier run would be mistaken for new ones.
+    std::error_code ec;
+    for (const fs::path& f : Frames()) fs::remove(f, ec);
+    const std::vector<std::string> args =
+        ExpandCameraCommand(options_.command, options_.program, settings_, Output());
+    std::vector<char*> argv;
+    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    pid_t pid = 0;
+    const int rc = ::posix_spawnp(&pid, argv[0], nullptr, nullptr, argv.data(), environ);
+    if (rc != 0)
+      throw Error(fmt::format("rpicam: cannot start {}: {}", args[0], std::strerror(rc)));
+    pid_ = pid;
+    exit_.clear();
+    started_ = std::chrono::steady_clock::now();
+  }
+
+  bool Running() {
+    if (pid_ <= 0) return false;
+    int status = 0;
+    const pid_t r = ::waitpid(pid_, &status, WNOHANG);
+    if (r == 0) return true;
+    exit_ = WIFEXITED(status)     ? fmt::format("exit status {}", WEXITSTATUS(status))
+            : WIFSIGNALED(status) ? fmt::format("signal {}", WTERMSIG(status))
+                                  : "gone";
+    pid_ = -1;
+    return false;
+  }
+
+  void Stop() {
+    if (pid_ <= 0) return;
+    // rpicam-apps quit cleanly on SIGUSR2; then SIGTERM, then SIGKILL.
+    for (int sig : {SIGUSR2, SIGTERM, SIGKILL}) {
+      ::kill(pid_, sig);
+      for (int i = 0; i < 50 && Running(); ++i)
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      if (pid_ <= 0) return;
+    }
+  }
+
+  RpicamOptions options_;
+  CaptureSettings settings_;
+  bool configured_ = false;
+  pid_t pid_ = -1;
+  std::string exit_;
+  std::chrono::steady_clock::time_point started_;
+  std::set<fs::path> before_;
+};
+
+}  // namespace
+
+std::vector<std::string> ExpandCameraCommand(const std::string& command_template,
+                                             const std::string& program, const CaptureSettings& s,
+                                             const std::string& output) {
+  const std::pair<const char*, std::string> values[] = {
+      {"{program}", program},
+      {"{width}", std::to_string(s.width)},
+      {"{height}", std::to_string(s.height)},
+      {"{exposure_us}", std::to_string(s.exposure_us)},
+      {"{analogue_gain}", fmt::format("{}", s.analogue_gain)},
+      {"{awb_red}", fmt::format("{}", s.awb_red)},
+      {"{awb_blue}", fmt::format("{}", s.awb_blue)},
+      {"{denoise}", s.denoise},
+      {"{jpeg_quality}", std::to_string(s.jpeg_quality)},
+      {"{output}", output}};
+  std::vector<std::string> args;
+  std::stringstream words(command_template);
+  for (std::string word; words >> word;) {
+    std::string expanded;
+    for (std::size_t i = 0; i < word.size();) {
+      if (word[i] != '{') {
+        expanded.push_back(word[i++]);
+        continue;
+      }
+      const auto close = word.find('}', i);
+      const std::string key = word.substr(i, close == std::string::npos ? close : close - i + 1);
+      const auto it = std::find_if(std::begin(values), std::end(values),
+                                   [&](const auto& v) { return key == v.first; });
+      if (it == std::end(values))
+        throw Error(
+            fmt::format("camera command: unknown placeholder '{}' in '{}'", key, command_template));
+      expanded += it->second;
+      i += key.size();
+    }
+    args.push_back(expanded);
+  }
+  if (args.empty()) throw Error("camera command: empty");
+  return args;
+}
+
+std::unique_ptr<CameraBackend> MakeRpicamCamera(const RpicamOptions& options) {
+  return std::make_unique<RpicamCamera>(options);
+}
+
+}  // namespace lfcam

@@ -1,0 +1,38 @@
+#pragma once
+// What a node reports of its machine: CPU temperature and throttling (a Raspberry Pi that runs
+// hot slows down), free disk and memory, and how far its clock is from the array's time source
+// as chrony sees it. Each is empty where the machine does not say.
+#include <cstdint>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+
+namespace lfcam {
+
+struct ClockOffset {
+  double offset_ms = 0;  // this clock minus the reference, milliseconds
+  std::string source;    // "chrony (server 10.0.0.1)", "simulated"
+};
+
+struct SystemStatus {
+  std::optional<double> cpu_temperature_c;
+  std::optional<std::string> throttled;  // vcgencmd get_throttled, e.g. "0x0"
+  std::uint64_t disk_free_bytes = 0;
+  std::optional<std::uint64_t> memory_available_bytes;
+  std::optional<ClockOffset> clock;
+};
+
+// `folder`: the capture folder, whose file system's free space counts.
+SystemStatus ReadSystemStatus(const std::filesystem::path& folder);
+
+// chrony's view of this clock (`chronyc -c tracking`), cached for a few seconds; nullopt when
+// chrony is not running or not synchronised.
+std::optional<ClockOffset> ChronyClockOffset();
+
+// Parses one line of `chronyc -c tracking` (CSV); nullopt when it is not one.
+std::optional<ClockOffset> ParseChronyTracking(const std::string& line);
+
+nlohmann::json SystemStatusToJson(const SystemStatus& status);
+
+}  // namespace lfcam
