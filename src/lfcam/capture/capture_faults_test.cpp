@@ -298,9 +298,8 @@ TEST_F(NodeSecurity, UnsignedWronglySignedStaleAndReplayedRequestsAre401) {
 TEST_F(NodeSecurity, NamesCannotLeaveTheCaptureFolderAndSizesAreBounded) {
   array_->Start(0);
   ASSERT_EQ(Send("POST", "/v1/configure", "{}", array_->key())->status, 200);
-  for (const std::string target :
-       {"/v1/captures/..%2F..%2Fetc%2Fpasswd", "/v1/captures/../../etc/passwd",
-        "/v1/captures/.settings.json", "/v1/captures/%2e%2e"}) {
+  for (const char* target : {"/v1/captures/..%2F..%2Fetc%2Fpasswd", "/v1/captures/../../etc/passwd",
+                             "/v1/captures/.settings.json", "/v1/captures/%2e%2e"}) {
     const auto r = Send("GET", target, "", array_->key());
     ASSERT_TRUE(r) << target;
     EXPECT_TRUE(r->status == 404 || r->status == 400) << target << " -> " << r->status;
