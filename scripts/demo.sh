@@ -3,26 +3,31 @@
 # simulated 10x10 array of Raspberry Pi camera modules (board shots and the Fig. 11 scene);
 # calibrate the array; build the light field; and render Fig. 11 (a)-(e) from it with the
 # paper's parameters into out/demo/ (one PNG per frame and one contact sheet per sequence).
-# Usage: scripts/demo.sh [--quick]
+# Usage: scripts/demo.sh [--quick] [--capture]
 #   default: modules of 1296x972 (binned, half the Pi v1.3's size), a 1248x1152 light field,
 #            1024x1024 frames
 #   --quick: modules of 648x486, a 624x576 light field and 512x512 frames
+#   --capture: take the raw capture the way a real array does: 100 lfcam-node agents (one
+#            process per camera, on loopback, playing simulated modules) driven by
+#            `lfcam capture` (configure, 14 board poses, world board, scene), instead of
+#            `lfcam simulate capture` writing the session directly (docs/hardware.md)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-quick=0
+quick=0 capture=0
 for arg in "$@"; do
   case "$arg" in
     --quick) quick=1 ;;
-    -h|--help) sed -n '2,6p' "$0"; exit 0 ;;
-    *) echo "demo.sh: unknown argument '$arg' (try --quick)" >&2; exit 2 ;;
+    --capture) capture=1 ;;
+    -h|--help) sed -n '2,14p' "$0"; exit 0 ;;
+    *) echo "demo.sh: unknown argument '$arg' (try --quick or --capture)" >&2; exit 2 ;;
   esac
 done
 
 start=$(date +%s)
 scripts/install-deps.sh
 cmake --preset release >/dev/null
-cmake --build --preset release --target lfcam
+cmake --build --preset release --target lfcam lfcam-node
 lfcam=build/release/lfcam
 
 out=out/demo
@@ -35,8 +40,26 @@ fi
 session="$out/capture"
 lf="$out/paper.lf"
 rm -rf "$session"
-echo "== capturing: 10x10 simulated Pi camera modules of $sensor (14 board poses, world board, scene)"
-$lfcam simulate capture --scene paper --grid 10x10 --sensor "$sensor" --out "$session"
+if [ $capture -eq 1 ]; then
+  nodes="$out/nodes"
+  trap 'scripts/local-array.sh stop "$nodes" >/dev/null 2>&1 || true' EXIT
+  echo "== starting 100 lfcam-node agents (simulated Pi camera modules of $sensor) on loopback"
+  scripts/local-array.sh start "$nodes" --grid 10x10 --sensor "$sensor" --backend sim
+  array="$nodes/array.json"
+  echo "== locking the same settings on every node"
+  $lfcam capture configure "$array" | tail -n 1
+  for k in $(seq -w 0 13); do
+    echo "== shooting board pose $k (every node at one trigger time, then fetched and verified)"
+    $lfcam capture shoot "$array" --session "$session" --kind intrinsics --quiet
+  done
+  echo "== shooting the world board, then the scene"
+  $lfcam capture shoot "$array" --session "$session" --kind world --quiet
+  $lfcam capture shoot "$array" --session "$session" --kind scene --quiet
+  scripts/local-array.sh stop "$nodes"
+else
+  echo "== capturing: 10x10 simulated Pi camera modules of $sensor (14 board poses, world board, scene)"
+  $lfcam simulate capture --scene paper --grid 10x10 --sensor "$sensor" --out "$session"
+fi
 echo "== calibrating the array"
 $lfcam calibrate "$session" --out "$out/calibration.json"
 echo "== building the light field: 10x10 views of $st_res st samples"
