@@ -48,7 +48,7 @@ rows=${grid%x*} cols=${grid#*x}
 [ -x "$node_bin" ] || { echo "local-array.sh: $node_bin is not built (cmake --build build/release)" >&2; exit 1; }
 mkdir -p "$dir"
 stop
-[ -f "$dir/array.key" ] || { (umask 077; openssl rand -hex 32 >"$dir/array.key"); }
+[ -f "$dir/array.key" ] || "${LFCAM:-build/release/lfcam}" capture keygen --out "$dir/array.key" >/dev/null
 : >"$dir/pids"
 for ((r = 0; r < rows; r++)); do
   for ((c = 0; c < cols; c++)); do

@@ -36,10 +36,9 @@ struct ArrayFlags {
     command->add_flag("--json", json, "Print the result as JSON");
   }
   std::pair<ArrayConfig, SharedKey> Load() const {
-    ArrayConfig config = FlagValue("array", [&] { return ReadArrayFile(array); });
+    ArrayConfig config = ReadArrayFile(array);
     const fs::path key_path = key_file.empty() ? KeyFilePath(config, array) : fs::path(key_file);
-    SharedKey key = FlagValue(key_file.empty() ? "the array file's key_file" : "--key-file",
-                              [&] { return ReadKeyFile(key_path); });
+    SharedKey key = ReadKeyFile(key_path);
     return {std::move(config), std::move(key)};
   }
 };
@@ -325,7 +324,15 @@ void AddFetch(CLI::App& capture) {
   command->add_flag("--quiet", f->quiet, "No progress bar");
   command->callback([f] {
     const auto [array, key] = f->Load();
-    ProgressBar progress("fetching", 0, ProgressWanted(f->quiet || f->json));
+    std::error_code ec;
+    const CaptureManifest manifest = fs::is_regular_file(fs::path(f->session) / kManifestName, ec)
+                                         ? ReadManifest(f->session)
+                                         : CaptureManifest{};
+    std::int64_t waiting = 0;
+    for (const Shot& s : manifest.shots)
+      for (const ShotImage& i : s.pending) waiting += i.status == ImageStatus::kCaptured;
+    ProgressBar progress("fetching", waiting, ProgressWanted(f->quiet || f->json));
+    if (auto advance = progress.callback()) f->o.progress = [advance](std::int64_t) { advance(1); };
     const SessionReport report = FetchSession(array, key, f->session, f->o);
     progress.finish();
     FinishSession(report, f->session, f->json);

@@ -127,7 +127,17 @@ bool CaptureStore::Remove(std::string_view id) {
   return had;
 }
 
-std::size_t CaptureStore::count() const { return List().size(); }
+std::size_t CaptureStore::count() const {
+  std::lock_guard lock(mutex_);
+  std::size_t n = 0;
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(folder_, ec)) {
+    const fs::path& p = entry.path();
+    n += p.extension() == ".json" && IsValidCaptureId(p.stem().string()) &&
+         fs::is_regular_file(folder_ / (p.stem().string() + ".jpg"), ec);
+  }
+  return n;
+}
 
 std::uint64_t CaptureStore::FreeBytes() const {
   struct statvfs st {};
