@@ -33,7 +33,9 @@ TEST(CaptureSystem, SimulatedNodesShootASessionThatCalibrateAndBuildAccept) {
   auto run = Lfcam("capture configure " + array_file.string());
   ASSERT_EQ(run.status, 0) << run.output;
   EXPECT_NE(run.output.find("4 of 4 nodes ready"), std::string::npos) << run.output;
-  for (int k = 0; k < 14; ++k) {
+  // Eight of the simulator's 14 board poses are enough for calibrate (and keep the test short
+  // under the sanitizers, where the nodes render slowly).
+  for (int k = 0; k < 8; ++k) {
     run = Lfcam("capture shoot " + array_file.string() + " --session " + session +
                 " --kind intrinsics --margin 0.1 --quiet");
     ASSERT_EQ(run.status, 0) << run.output;
@@ -64,7 +66,7 @@ TEST(CaptureSystem, SimulatedNodesShootASessionThatCalibrateAndBuildAccept) {
       ++compared;
     }
   }
-  EXPECT_EQ(compared, 16u * 4u);
+  EXPECT_EQ(compared, 10u * 4u);
 
   run = Lfcam("calibrate " + session + " --quiet --out " + (dir / "calibration.json").string());
   ASSERT_EQ(run.status, 0) << run.output;

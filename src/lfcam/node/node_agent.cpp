@@ -241,6 +241,7 @@ struct NodeAgent::Impl {
       ::pthread_setschedparam(::pthread_self(), SCHED_IDLE, &lowest);
       SleepUntilUnixNs(at + 20'000'000, options.simulated_clock_offset_ns);
       fired.wait();
+      if (failure) return;  // the camera did not fire
       try {
         record = store.Save(std::move(record), camera->Collect(std::chrono::seconds(30)));
       } catch (...) {
@@ -250,7 +251,11 @@ struct NodeAgent::Impl {
     ::prctl(PR_SET_TIMERSLACK, 1UL, 0, 0, 0);  // wake on the nanosecond asked, not 50 us later
     SleepUntilUnixNs(at, options.simulated_clock_offset_ns);
     record.trigger_unix_ns = Now();
-    camera->Fire();
+    try {
+      camera->Fire();
+    } catch (...) {
+      failure = std::current_exception();
+    }
     fired_promise.set_value();
     after_trigger.join();
     if (failure) std::rethrow_exception(failure);
