@@ -16,5 +16,6 @@ void AddCompareCommand(CLI::App& app);
 void AddMontageCommand(CLI::App& app);
 void AddBenchCommand(CLI::App& app);
 void AddCaptureCommand(CLI::App& app);
+void AddImportCommand(CLI::App& app);
 
 }  // namespace lfcam::cli

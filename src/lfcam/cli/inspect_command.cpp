@@ -22,6 +22,20 @@ std::string Vec(const Vec3& v) {
   return fmt::format("({:.3f}, {:.3f}, {:.3f})", v.x(), v.y(), v.z());
 }
 
+// Each view's camera centre in world millimetres: measured (a built or imported light field)
+// or the slab's ideal grid point. Where to put the virtual camera to stand where a camera was.
+nlohmann::json CameraCentres(const LightFieldHeader& h) {
+  nlohmann::json cameras = nlohmann::json::array();
+  for (int r = 0; r < h.dims.rows; ++r)
+    for (int c = 0; c < h.dims.cols; ++c) {
+      const Vec3 p = h.measured_poses.empty()
+                         ? h.slab.uv.camera_center(r, c)
+                         : h.measured_poses[std::size_t(r * h.dims.cols + c)].center;
+      cameras.push_back({{"row", r}, {"col", c}, {"center_mm", {p.x(), p.y(), p.z()}}});
+    }
+  return cameras;
+}
+
 nlohmann::json InfoJson(const LightFieldHeader& h) {
   const std::size_t bytes =
       h.dims.samples_per_view() * h.dims.view_count() * 3 * BytesPerChannel(h.sample_type);
@@ -39,7 +53,8 @@ nlohmann::json InfoJson(const LightFieldHeader& h) {
           {"slab", h.slab},
           {"separation_mm", h.slab.separation_mm()},
           {"metadata", h.metadata},
-          {"measured_poses", !h.measured_poses.empty()}};
+          {"measured_poses", !h.measured_poses.empty()},
+          {"cameras", CameraCentres(h)}};
 }
 
 }  // namespace

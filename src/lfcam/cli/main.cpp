@@ -80,6 +80,7 @@ int main(int argc, char** argv) {
   lfcam::cli::AddSimulateCommand(app);
   lfcam::cli::AddCalibrateCommand(app);
   lfcam::cli::AddBuildCommand(app);
+  lfcam::cli::AddImportCommand(app);
   lfcam::cli::AddRenderCommand(app);
   lfcam::cli::AddViewCommand(app);
   lfcam::cli::AddOracleCommand(app);

@@ -1,0 +1,121 @@
+// `lfcam import DIR --out FILE`: a light field from a folder of views someone else made (the
+// Stanford archive's, a Blender camera grid's, or any described in lfcam-views.json), through
+// the same resampler as `build` (docs/format.md, "Importing").
+#include <fmt/core.h>
+
+#include <memory>
+
+#include "lfcam/calib/lightfield_build.h"
+#include "lfcam/cli/commands.h"
+#include "lfcam/cli/parse.h"
+#include "lfcam/core/atomic_file.h"
+#include "lfcam/core/error.h"
+#include "lfcam/core/json_input.h"
+#include "lfcam/core/lightfield_file.h"
+#include "lfcam/core/limits.h"
+#include "lfcam/core/progress.h"
+#include "lfcam/io/grid_import.h"
+
+namespace lfcam::cli {
+
+void AddImportCommand(CLI::App& app) {
+  auto* command = app.add_subcommand(
+      "import", "Import a folder of views on a camera grid (Stanford, Blender grid, described)");
+  struct Flags {
+    std::string dir, out, st_res, st_domain, compression = "none", resampling = "linear";
+    double st_distance = 0, focal_px = 0, focal_mm = 0, sensor_width_mm = 0;
+    bool allow_missing = false, json = false, quiet = false;
+  };
+  auto f = std::make_shared<Flags>();
+  command->add_option("dir", f->dir, "The folder of views")->required();
+  command->add_option("--out", f->out, "Light field file to write (.lf)")->required();
+  command->add_option("--st-distance", f->st_distance,
+                      "Distance of the st-plane from the cameras, mm (default: the description's, "
+                      "else the depth most of the scene lies at, estimated)");
+  command->add_option("--st-res", f->st_res,
+                      "st samples per view, N_SxN_T (default: the views' size)");
+  command->add_option("--st-domain", f->st_domain,
+                      "Sampled st domain S0,T0,S1,T1 (view-window units; default 0,0,1,1: what the "
+                      "central camera sees on the st-plane)");
+  command->add_option("--focal-px", f->focal_px, "The views' focal length in pixels");
+  command->add_option("--focal-mm", f->focal_mm,
+                      "The lens's focal length, mm (with --sensor-width-mm)");
+  command->add_option("--sensor-width-mm", f->sensor_width_mm, "The sensor's width, mm");
+  command->add_option("--compress", f->compression, "none or zstd")->capture_default_str();
+  command->add_option("--resampling", f->resampling, "linear, cubic or lanczos4 (as for build)")
+      ->capture_default_str();
+  command->add_flag("--allow-missing", f->allow_missing,
+                    "Fill views missing from the grid from their nearest neighbours (recorded)");
+  command->add_flag("--json", f->json, "Print a summary as JSON on stdout");
+  command->add_flag("--quiet", f->quiet, "No progress bar");
+  command->callback([f] {
+    ImportOptions o;
+    auto positive = [](const char* flag, double value) -> std::optional<double> {
+      if (value == 0) return std::nullopt;
+      if (!(value > 0) || !std::isfinite(value))
+        throw UsageError(fmt::format("{} must be positive", flag));
+      return value;
+    };
+    o.st_distance_mm = positive("--st-distance", f->st_distance);
+    o.focal_px = positive("--focal-px", f->focal_px);
+    o.focal_mm = positive("--focal-mm", f->focal_mm);
+    o.sensor_width_mm = positive("--sensor-width-mm", f->sensor_width_mm);
+    if (o.focal_mm.has_value() != o.sensor_width_mm.has_value())
+      throw UsageError("--focal-mm and --sensor-width-mm go together");
+    BuildOptions b;
+    if (!f->st_domain.empty()) b.st_domain = ParseStDomain("--st-domain", f->st_domain);
+    std::optional<std::pair<int, int>> st_res;
+    if (!f->st_res.empty()) st_res = ParseSize("--st-res", f->st_res, kMaxStSamplesPerSide);
+    b.resampling = FlagValue("--resampling", [&] { return ResamplingFromString(f->resampling); });
+    b.allow_missing = f->allow_missing;
+    LightFieldWriteOptions w;
+    if (f->compression == "zstd")
+      w.compression = Compression::kZstd;
+    else if (f->compression != "none")
+      throw UsageError(fmt::format("--compress: '{}' is not none or zstd", f->compression));
+    RequireWritableOutput(f->out, "--out");
+
+    const ImportedGrid grid = ScanGridFolder(f->dir, f->allow_missing);
+    const ImportedSession session = MakeImportedSession(f->dir, grid, o);
+    std::tie(b.n_s, b.n_t) = st_res.value_or(std::pair{grid.width, grid.height});
+    ProgressBar progress("importing views", std::int64_t(grid.rows) * grid.cols,
+                         ProgressWanted(f->quiet || f->json));
+    if (const auto advance = progress.callback()) b.view_done = [advance] { advance(1); };
+    BuildReport report;
+    const LightField lf =
+        BuildLightField(f->dir, session.manifest, session.calibration, b, &report);
+    progress.finish();
+    WriteLightField(lf, f->out, w);
+    const nlohmann::json summary = {{"out", f->out},
+                                    {"naming", ToString(grid.naming)},
+                                    {"rows", grid.rows},
+                                    {"cols", grid.cols},
+                                    {"view_width", grid.width},
+                                    {"view_height", grid.height},
+                                    {"pitch_mm", grid.pitch_mm},
+                                    {"focal_px", session.focal_px},
+                                    {"st_distance_mm", session.st_distance_mm},
+                                    {"st_distance_estimated", session.st_distance_estimated},
+                                    {"n_s", lf.dims().n_s},
+                                    {"n_t", lf.dims().n_t},
+                                    {"filled", report.filled},
+                                    {"seconds", report.seconds}};
+    if (f->json) {
+      fmt::print("{}\n", JsonToText(summary, 2));
+      return;
+    }
+    fmt::print(
+        "imported {}x{} views of {}x{} ({} naming), pitch {:.3f} mm, focal length {:.1f} px\n",
+        grid.rows, grid.cols, grid.width, grid.height, ToString(grid.naming), grid.pitch_mm,
+        session.focal_px);
+    fmt::print("  st-plane {:.0f} mm from the cameras{}; {}x{} st samples in {:.2f} s\n",
+               session.st_distance_mm,
+               session.st_distance_estimated ? " (estimated: where most of the scene is)" : "",
+               lf.dims().n_s, lf.dims().n_t, report.seconds);
+    for (const auto& filled : report.filled)
+      fmt::print(stderr, "lfcam: warning: filled {}\n", filled);
+    fmt::print("wrote {}\n", f->out);
+  });
+}
+
+}  // namespace lfcam::cli

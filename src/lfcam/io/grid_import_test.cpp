@@ -1,0 +1,230 @@
+// Importing views named the Stanford and Blender ways against a synthetic grid whose truth is
+// known (a textured plane photographed by ideal cameras at named positions), bad folders, and
+// the real Blender data set in ../shared/data when it is present.
+#include "lfcam/io/grid_import.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "lfcam/calib/lightfield_build.h"
+#include "lfcam/cli/cli_test_support.h"
+#include "lfcam/core/error.h"
+#include "lfcam/core/image_metrics.h"
+#include "lfcam/core/lightfield_file.h"
+
+namespace lfcam {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr double kPlaneMm = 2000;  // the textured plane's distance from the cameras
+constexpr double kFocalPx = 200;
+constexpr int kWidth = 160, kHeight = 120;
+
+// A smooth random texture on the plane z = 0, 1 mm a texel, centred on the origin.
+cv::Mat Texture() {
+  cv::Mat t(1600, 1600, CV_32FC3);
+  cv::randu(t, 0, 255);
+  cv::GaussianBlur(t, t, {0, 0}, 6);
+  cv::normalize(t, t, 0, 255, cv::NORM_MINMAX);
+  return t;
+}
+
+// What an ideal camera at (x, y, kPlaneMm) looking along -z sees of the plane (y up, image
+// rows down).
+cv::Mat ViewOfPlane(const cv::Mat& texture, double x, double y) {
+  cv::Mat map_x(kHeight, kWidth, CV_32F), map_y(kHeight, kWidth, CV_32F);
+  for (int v = 0; v < kHeight; ++v)
+    for (int u = 0; u < kWidth; ++u) {
+      const double wx = x + (u - 0.5 * (kWidth - 1)) * kPlaneMm / kFocalPx;
+      const double wy = y - (v - 0.5 * (kHeight - 1)) * kPlaneMm / kFocalPx;
+      map_x.at<float>(v, u) = float(wx + 800);
+      map_y.at<float>(v, u) = float(800 - wy);  // texture rows run down, y up
+    }
+  cv::Mat out, out8;
+  cv::remap(texture, out, map_x, map_y, cv::INTER_LINEAR);
+  out.convertTo(out8, CV_8UC3);
+  return out8;
+}
+
+// The Blender exporter's names: RR counts rows down (first number -y), CC counts columns to the
+// left (second number x).
+fs::path WriteBlenderGrid(const std::string& name, int n, double pitch, bool blender = true) {
+  const fs::path dir = fs::temp_directory_path() / (name + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const cv::Mat texture = Texture();
+  for (int rr = 0; rr < n; ++rr)
+    for (int cc = 0; cc < n; ++cc) {
+      const double y = ((n - 1) / 2.0 - rr) * pitch, x = ((n - 1) / 2.0 - cc) * pitch;
+      const std::string file = blender
+                                   ? fmt::format("Cam_{:02d}_{:02d}_{:f}_{:f}_{}_{}.png", rr, cc,
+                                                 -y, x, kFocalPx * 36.0 / kWidth, 36)
+                                   : fmt::format("out_{:02d}_{:02d}_{:f}_{:f}_.png", rr, cc, -y, x);
+      cv::imwrite((dir / file).string(), ViewOfPlane(texture, x, y));
+    }
+  return dir;
+}
+
+double Psnr(const cv::Mat& a, const cv::Mat& b) {
+  return CompareImages(a.clone(), b.clone()).psnr_db;
+}
+
+cv::Mat ViewImage(const LightField& lf, int row, int col) {
+  const auto& d = lf.dims();
+  cv::Mat view(d.n_t, d.n_s, CV_8UC3, const_cast<std::uint8_t*>(lf.view_data(row, col)));
+  cv::Mat top_down;
+  cv::flip(view, top_down, 0);  // st rows run bottom-up in the file
+  cv::Mat bgr;
+  cv::cvtColor(top_down, bgr, cv::COLOR_RGB2BGR);
+  return bgr;
+}
+
+TEST(GridImport, ABlenderGridOfAPlaneBecomesViewsThatAgreeOnIt) {
+  const fs::path dir = WriteBlenderGrid("lfcam_import_blender_", 3, 40.0);
+  const ImportedGrid grid = ScanGridFolder(dir, false);
+  EXPECT_EQ(grid.naming, GridNaming::kBlender);
+  ASSERT_EQ(grid.rows, 3);
+  ASSERT_EQ(grid.cols, 3);
+  EXPECT_NEAR(grid.pitch_mm, 40.0, 1e-6);
+  // lfcam's (0, 0) is the bottom left seen from behind: the exporter's last row, last column.
+  EXPECT_NE(grid.view(0, 0).file.find("Cam_02_02_"), std::string::npos) << grid.view(0, 0).file;
+  EXPECT_NEAR(grid.view(0, 0).x_mm, -40.0, 1e-6);
+  EXPECT_NEAR(grid.view(0, 0).y_mm, -40.0, 1e-6);
+
+  // The st-plane's distance, estimated from the views, is the plane's.
+  const ImportedSession session = MakeImportedSession(dir, grid, {});
+  EXPECT_TRUE(session.st_distance_estimated);
+  EXPECT_NEAR(session.focal_px, kFocalPx, 1e-9);
+  EXPECT_NEAR(session.st_distance_mm, kPlaneMm, 0.03 * kPlaneMm);
+
+  // With the st-plane on the textured plane, every view is the same picture of it, and the
+  // central one is the central camera's image.
+  ImportOptions exact;
+  exact.st_distance_mm = kPlaneMm;
+  const ImportedSession s = MakeImportedSession(dir, grid, exact);
+  BuildOptions b;
+  b.n_s = kWidth;
+  b.n_t = kHeight;
+  const LightField lf = BuildLightField(dir, s.manifest, s.calibration, b);
+  const cv::Rect inner(12, 12, kWidth - 24, kHeight - 24);  // away from the views' edges
+  const cv::Mat centre = ViewImage(lf, 1, 1);
+  EXPECT_GT(Psnr(centre(inner), cv::imread((dir / grid.view(1, 1).file).string())(inner)), 40.0);
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c)
+      EXPECT_GT(Psnr(ViewImage(lf, r, c)(inner), centre(inner)), 35.0) << r << "," << c;
+  // A mirrored convention would put the views 2 x 40 mm apart on the plane: far from agreeing.
+  EXPECT_EQ(lf.camera_center(0, 2), Vec3(40, -40, kPlaneMm));
+  fs::remove_all(dir);
+}
+
+TEST(GridImport, StanfordNamesNeedTheFocalLengthAndBadFoldersAreNamed) {
+  const fs::path dir = WriteBlenderGrid("lfcam_import_stanford_", 2, 30.0, false);
+  const ImportedGrid grid = ScanGridFolder(dir, false);
+  EXPECT_EQ(grid.naming, GridNaming::kStanford);
+  try {
+    MakeImportedSession(dir, grid, {});
+    ADD_FAILURE() << "imported without a focal length";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("--focal-px"), std::string::npos) << e.what();
+  }
+  ImportOptions o;
+  o.focal_px = kFocalPx;
+  EXPECT_NEAR(MakeImportedSession(dir, grid, o).st_distance_mm, kPlaneMm, 0.05 * kPlaneMm);
+
+  auto refused = [&](const std::string& what) {
+    try {
+      ScanGridFolder(dir, false);
+      ADD_FAILURE() << "accepted: " << what;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+    }
+  };
+  // An incomplete grid (and with --allow-missing, the hole named).
+  const std::string one = grid.view(1, 1).file;
+  fs::rename(dir / one, dir / "held");
+  refused("camera (1, 1) is missing");
+  EXPECT_EQ(ScanGridFolder(dir, true).missing, std::vector<std::string>{"camera (1, 1)"});
+  // A view of another size.
+  cv::imwrite((dir / one).string(), cv::Mat(10, 10, CV_8UC3, cv::Scalar(0)));
+  refused(one + ": 10x10");
+  // A name that does not parse; a name of the other convention.
+  fs::remove(dir / one);
+  fs::rename(dir / "held", dir / one);
+  cv::imwrite((dir / "notes.png").string(), cv::Mat(10, 10, CV_8UC3, cv::Scalar(0)));
+  refused("notes.png: the name does not parse");
+  fs::remove(dir / "notes.png");
+  fs::copy_file(dir / one, dir / "Cam_05_05_0_0_30_36.png");
+  refused("Cam_05_05_0_0_30_36.png the blender-grid way");
+  fs::remove(dir / "Cam_05_05_0_0_30_36.png");
+  // Not an image at all.
+  std::ofstream(dir / one) << "not a png";
+  refused(one);
+  fs::remove_all(dir);
+  EXPECT_THROW(ScanGridFolder(dir, false), Error);
+}
+
+TEST(GridImport, ADescribedFolderNeedsNoNames) {
+  const fs::path dir = WriteBlenderGrid("lfcam_import_described_", 2, 30.0);
+  // Rename the views plainly and describe them: view_ROW_COL.png, lfcam's grid.
+  const ImportedGrid named = ScanGridFolder(dir, false);
+  for (const GridView& v : named.views)
+    fs::rename(dir / v.file, dir / fmt::format("view_{}_{}.png", v.row, v.col));
+  std::ofstream(dir / kViewsDescriptionName) << nlohmann::json{
+      {"format", "lfcam-views"},
+      {"version", 1},
+      {"rows", 2},
+      {"cols", 2},
+      {"pitch_mm", 30.0},
+      {"focal_px", kFocalPx},
+      {"st_distance_mm", 1500},
+      {"pattern", "view_{row}_{col}.png"}}.dump();
+  const ImportedGrid grid = ScanGridFolder(dir, false);
+  EXPECT_EQ(grid.naming, GridNaming::kDescription);
+  EXPECT_EQ(grid.view(1, 0).file, "view_1_0.png");
+  EXPECT_NEAR(grid.view(1, 0).x_mm, -15.0, 1e-9);
+  EXPECT_NEAR(grid.view(1, 0).y_mm, 15.0, 1e-9);
+  const ImportedSession s = MakeImportedSession(dir, grid, {});
+  EXPECT_FALSE(s.st_distance_estimated);
+  EXPECT_EQ(s.st_distance_mm, 1500);
+  fs::remove_all(dir);
+}
+
+TEST(GridImport, TheShopDataSetImportsAndRenders) {
+  const fs::path shop = fs::path(LFCAM_SOURCE_DIR) / "../shared/data/shop-center-9x9";
+  if (!fs::is_directory(shop)) GTEST_SKIP() << shop << " is not here (../shared/data)";
+  const fs::path dir =
+      fs::temp_directory_path() / ("lfcam_import_shop_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string lf = (dir / "shop.lf").string();
+  auto run = testing::Lfcam("import " + shop.string() + " --out " + lf + " --json --quiet");
+  ASSERT_EQ(run.status, 0) << run.output;
+  const auto j = nlohmann::json::parse(run.output);
+  EXPECT_EQ(j["naming"], "blender-grid");
+  EXPECT_EQ(j["rows"], 9);
+  EXPECT_NEAR(j["pitch_mm"].get<double>(), 800.0 / 26, 1e-3);
+  EXPECT_NEAR(j["focal_px"].get<double>(), 800.0, 1e-9);  // 30 mm of a 36 mm sensor, 960 px
+  // Most of the shop lies about 8 m away (the data set's viewer focused at 8.1 m).
+  EXPECT_GT(j["st_distance_mm"].get<double>(), 7000);
+  EXPECT_LT(j["st_distance_mm"].get<double>(), 9500);
+  // The central view is the central camera's photograph, resampled onto itself.
+  ImportedGrid grid = ScanGridFolder(shop, false);
+  const LightField field = ReadLightField(lf);
+  const cv::Rect inner(16, 16, 960 - 32, 640 - 32);
+  EXPECT_GT(Psnr(ViewImage(field, 4, 4)(inner),
+                 cv::imread((shop / grid.view(4, 4).file).string())(inner)),
+            40.0);
+  run = testing::Lfcam("render " + lf + " --size 256 --out " + (dir / "r.png").string() +
+                       " --focal-length 700 --aperture 60 --integrator cameras --quiet");
+  EXPECT_EQ(run.status, 0) << run.output;
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace lfcam
