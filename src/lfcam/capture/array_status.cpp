@@ -15,7 +15,6 @@ namespace lfcam {
 
 namespace {
 
-constexpr std::size_t kMaxRequestThreads = 128;
 constexpr double kHotCelsius = 80.0;
 
 // What stops a node from capturing, and what is only worth a look, from its status.

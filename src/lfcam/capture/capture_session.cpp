@@ -19,7 +19,6 @@ namespace lfcam {
 namespace {
 
 namespace fs = std::filesystem;
-constexpr std::size_t kMaxRequestThreads = 128;
 
 double SecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

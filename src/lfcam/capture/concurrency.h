@@ -10,6 +10,9 @@
 
 namespace lfcam {
 
+// Requests to nodes at once (status, configure, capture): one thread each, up to this many.
+inline constexpr std::size_t kMaxRequestThreads = 128;
+
 template <typename Job>
 void RunConcurrently(std::size_t count, std::size_t max_threads, Job&& job) {
   std::atomic<std::size_t> next{0};

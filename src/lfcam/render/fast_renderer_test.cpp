@@ -20,7 +20,6 @@
 namespace lfcam {
 namespace {
 
-using render_test::Case;
 using render_test::Cases;
 using render_test::SmallPaperLightField;
 using render_test::TurnedStPlaneLightField;
@@ -40,7 +39,7 @@ TEST(FastRenderer, AgreesWithTheScalarReferenceOnEveryInstructionSet) {
   for (const std::int64_t t : targets) std::cout << " " << hwy::TargetName(t);
   std::cout << "\n";
   double worst = 0;
-  for (const Case& c : Cases()) {
+  for (const render_test::Case& c : Cases()) {
     const LightField& lf = c.turned ? TurnedStPlaneLightField() : SmallPaperLightField();
     const VirtualCamera camera(c.camera);
     CpuRenderOptions reference_options;

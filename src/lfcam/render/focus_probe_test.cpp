@@ -20,7 +20,7 @@ const Scene& PaperScene() {
 }
 
 // The paper's array, 10 x 10 views of 312 x 288 samples over the world board.
-const LightField& PaperLightField() {
+const LightField& FocusProbeLightField() {
   static const LightField lf = [] {
     SimulateLightFieldOptions o;
     o.n_s = 312;
@@ -45,7 +45,7 @@ struct Target {
 };
 
 TEST(FocusProbe, FindsTheDistanceOfWhatThePixelSees) {
-  const LightField& lf = PaperLightField();
+  const LightField& lf = FocusProbeLightField();
   const Vec3 centre = lf.slab().uv.center();
   // Points on the objects' fronts (the paper scene's layout: z = 3600 - distance).
   const Target targets[] = {{"globe", Vec3(370, 165, -300 + 40)},
@@ -76,7 +76,7 @@ TEST(FocusProbe, FindsTheDistanceOfWhatThePixelSees) {
 }
 
 TEST(FocusProbe, SaysWhenNoCameraSeesThePixel) {
-  const LightField& lf = PaperLightField();
+  const LightField& lf = FocusProbeLightField();
   VirtualCameraParams p;
   p.width = p.height = 64;
   p.eye = lf.slab().uv.center();
