@@ -17,5 +17,6 @@ void AddMontageCommand(CLI::App& app);
 void AddBenchCommand(CLI::App& app);
 void AddCaptureCommand(CLI::App& app);
 void AddImportCommand(CLI::App& app);
+void AddExportCommand(CLI::App& app);
 
 }  // namespace lfcam::cli

@@ -81,6 +81,7 @@ int main(int argc, char** argv) {
   lfcam::cli::AddCalibrateCommand(app);
   lfcam::cli::AddBuildCommand(app);
   lfcam::cli::AddImportCommand(app);
+  lfcam::cli::AddExportCommand(app);
   lfcam::cli::AddRenderCommand(app);
   lfcam::cli::AddViewCommand(app);
   lfcam::cli::AddOracleCommand(app);

@@ -10,7 +10,7 @@
 namespace lfcam {
 namespace {
 
-cv::Mat Pattern() {
+cv::Mat TestPattern() {
   cv::Mat m(64, 80, CV_8UC3);
   for (int y = 0; y < m.rows; ++y)
     for (int x = 0; x < m.cols; ++x)
@@ -20,7 +20,7 @@ cv::Mat Pattern() {
 }
 
 TEST(CompareImages, IdenticalImagesArePerfect) {
-  const cv::Mat a = Pattern();
+  const cv::Mat a = TestPattern();
   const auto r = CompareImages(a, a);
   EXPECT_TRUE(std::isinf(r.psnr_db));
   EXPECT_NEAR(r.ssim, 1.0, 1e-6);
@@ -28,7 +28,7 @@ TEST(CompareImages, IdenticalImagesArePerfect) {
 }
 
 TEST(CompareImages, PsnrMatchesItsDefinition) {
-  const cv::Mat a = Pattern();
+  const cv::Mat a = TestPattern();
   cv::Mat b = a.clone();
   // Change every channel of 10% of the pixels by 10: MSE = 0.1 * 100 = 10.
   int changed = 0;
@@ -43,7 +43,7 @@ TEST(CompareImages, PsnrMatchesItsDefinition) {
 }
 
 TEST(CompareImages, SsimFallsWithBlurAndMaskSelectsPixels) {
-  const cv::Mat a = Pattern();
+  const cv::Mat a = TestPattern();
   cv::Mat blurred;
   cv::GaussianBlur(a, blurred, {9, 9}, 3);
   const auto r = CompareImages(a, blurred);

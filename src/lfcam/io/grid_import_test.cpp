@@ -28,7 +28,7 @@ constexpr double kFocalPx = 200;
 constexpr int kWidth = 160, kHeight = 120;
 
 // A smooth random texture on the plane z = 0, 1 mm a texel, centred on the origin.
-cv::Mat Texture() {
+cv::Mat PlaneTexture() {
   cv::Mat t(1600, 1600, CV_32FC3);
   cv::randu(t, 0, 255);
   cv::GaussianBlur(t, t, {0, 0}, 6);
@@ -59,7 +59,7 @@ fs::path WriteBlenderGrid(const std::string& name, int n, double pitch, bool ble
   const fs::path dir = fs::temp_directory_path() / (name + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
-  const cv::Mat texture = Texture();
+  const cv::Mat texture = PlaneTexture();
   for (int rr = 0; rr < n; ++rr)
     for (int cc = 0; cc < n; ++cc) {
       const double y = ((n - 1) / 2.0 - rr) * pitch, x = ((n - 1) / 2.0 - cc) * pitch;

@@ -1,0 +1,229 @@
+#include "lfcam/io/lightfield_export.h"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <opencv2/core.hpp>
+
+#include "lfcam/core/error.h"
+#include "lfcam/core/image_io.h"
+#include "lfcam/core/json_input.h"
+
+namespace lfcam {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// The view's samples as an 8-bit sRGB image, top row first (st rows run bottom-up).
+cv::Mat ViewImage(const LightField& lf, int row, int col) {
+  const auto& d = lf.dims();
+  cv::Mat image(d.n_t, d.n_s, CV_8UC3);
+  if (lf.sample_type() == SampleType::kSrgb8) {
+    const cv::Mat view(d.n_t, d.n_s, CV_8UC3, const_cast<std::uint8_t*>(lf.view_data(row, col)));
+    cv::flip(view, image, 0);
+    return image;
+  }
+  cv::Mat linear(d.n_t, d.n_s, CV_32FC3);
+  for (int l = 0; l < d.n_t; ++l)
+    for (int k = 0; k < d.n_s; ++k) {
+      const Eigen::Vector3f c = lf.linear_rgb(row, col, k, l);
+      linear.at<cv::Vec3f>(d.n_t - 1 - l, k) = {c.x(), c.y(), c.z()};
+    }
+  return LinearToSrgb8Image(linear);
+}
+
+std::string ViewName(int row, int col) { return fmt::format("view_{:02d}_{:02d}.png", row, col); }
+
+nlohmann::json MatrixToJson(const Mat3& r, const Vec3& t) {
+  nlohmann::json m = nlohmann::json::array();
+  for (int i = 0; i < 3; ++i) m.push_back({r(i, 0), r(i, 1), r(i, 2), t(i)});
+  m.push_back({0.0, 0.0, 0.0, 1.0});
+  return m;
+}
+
+void WriteText(const fs::path& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+  if (!out) throw Error(fmt::format("{}: cannot write", path.string()));
+}
+
+}  // namespace
+
+ExportFormat ExportFormatFromString(const std::string& name) {
+  if (name == "png-views") return ExportFormat::kPngViews;
+  if (name == "nerf") return ExportFormat::kNerf;
+  if (name == "colmap") return ExportFormat::kColmap;
+  throw UsageError(fmt::format("--format '{}' is not png-views, nerf or colmap", name));
+}
+
+ViewCamera ViewAsCamera(const LightField& lf, int row, int col) {
+  const Slab& slab = lf.slab();
+  const ViewWindow& st = slab.st;
+  const Vec3 x_axis = st.x_axis.normalized();
+  const Vec3 y_axis = (st.y_axis - st.y_axis.dot(x_axis) * x_axis).normalized();
+  const Vec3 normal = x_axis.cross(y_axis);  // toward the cameras
+  const Vec3 c = lf.camera_center(row, col);
+  const double d = normal.dot(c - st.origin);  // the camera's height above the st-plane
+  if (!(d > 0))
+    throw Error(fmt::format("view ({}, {}): its camera is not in front of the st-plane", row, col));
+  const auto& dims = lf.dims();
+  const double ds = slab.st_domain.s_extent() / dims.n_s * st.width_mm;  // mm a sample
+  const double dt = slab.st_domain.t_extent() / dims.n_t * st.height_mm;
+  ViewCamera v;
+  v.width = dims.n_s;
+  v.height = dims.n_t;
+  v.fx = d / ds;
+  v.fy = d / dt;
+  // Sample k sits at s_of(k) * width along x_axis from the origin; pixel u = k.
+  const double x0 = x_axis.dot(st.origin - c) + lf.s_of(0) * st.width_mm;
+  const double y0 = y_axis.dot(st.origin - c) + lf.t_of(0) * st.height_mm;
+  v.cx = -v.fx * x0 / d;
+  v.cy = dims.n_t - 1 + v.fy * y0 / d;
+  Mat3 r;
+  r.col(0) = x_axis;
+  r.col(1) = -y_axis;
+  r.col(2) = -normal;
+  v.world_from_camera = {r, c};
+  return v;
+}
+
+ExportReport ExportLightField(const LightField& lf, ExportFormat format, const fs::path& out_dir) {
+  const fs::path out = out_dir.has_filename() ? out_dir : out_dir.parent_path();
+  std::error_code ec;
+  if (fs::exists(out, ec) && (!fs::is_directory(out, ec) || !fs::is_empty(out, ec)))
+    throw Error(fmt::format("{}: exists and is not an empty folder", out.string()));
+  const fs::path staging = out.string() + fmt::format(".partial-{}", ::getpid());
+  fs::remove_all(staging, ec);
+  struct Guard {
+    fs::path path;
+    bool keep = false;
+    ~Guard() {
+      std::error_code e;
+      if (!keep) fs::remove_all(path, e);
+    }
+  } guard{staging};
+  const auto& d = lf.dims();
+  const std::string image_folder = format == ExportFormat::kPngViews ? "views" : "images";
+  fs::create_directories(staging / image_folder, ec);
+  if (ec) throw Error(fmt::format("{}: cannot create: {}", staging.string(), ec.message()));
+
+  ExportReport report;
+  nlohmann::json views = nlohmann::json::array(), frames = nlohmann::json::array();
+  std::string cameras_txt =
+      "# Camera list with one line of data per camera:\n"
+      "#   CAMERA_ID, MODEL, WIDTH, HEIGHT, PARAMS[]\n";
+  std::string images_txt =
+      "# Image list with two lines of data per image:\n"
+      "#   IMAGE_ID, QW, QX, QY, QZ, TX, TY, TZ, CAMERA_ID, NAME\n"
+      "#   POINTS2D[] as (X, Y, POINT3D_ID)\n";
+  Vec3 centroid = Vec3::Zero();
+  for (int r = 0; r < d.rows; ++r)
+    for (int c = 0; c < d.cols; ++c) centroid += lf.camera_center(r, c) / double(d.view_count());
+  double reach_m = 0;  // the farthest st-window corner from the cameras' centroid
+  for (double s : {lf.slab().st_domain.s0, lf.slab().st_domain.s1})
+    for (double t : {lf.slab().st_domain.t0, lf.slab().st_domain.t1})
+      reach_m = std::max(reach_m, (lf.slab().st.point_at(s, t) - centroid).norm() / 1000.0);
+
+  int id = 0;
+  for (int r = 0; r < d.rows; ++r)
+    for (int c = 0; c < d.cols; ++c) {
+      ++id;
+      const std::string name = ViewName(r, c);
+      WriteImage(staging / image_folder / name, ViewImage(lf, r, c));
+      const ViewCamera v = ViewAsCamera(lf, r, c);
+      const Mat3& rot = v.world_from_camera.rotation;
+      const Vec3& centre = v.world_from_camera.translation;
+      views.push_back({{"row", r},
+                       {"col", c},
+                       {"file", image_folder + "/" + name},
+                       {"center_mm", {centre.x(), centre.y(), centre.z()}},
+                       {"width", v.width},
+                       {"height", v.height},
+                       {"fx", v.fx},
+                       {"fy", v.fy},
+                       {"cx", v.cx},
+                       {"cy", v.cy},
+                       {"world_from_camera", MatrixToJson(rot, centre)}});
+      // NeRF: camera-to-world with OpenGL's axes (x right, y up, z back), metres.
+      Mat3 gl = rot;
+      gl.col(1) = -rot.col(1);
+      gl.col(2) = -rot.col(2);
+      frames.push_back({{"file_path", image_folder + "/" + name},
+                        {"transform_matrix", MatrixToJson(gl, centre / 1000.0)},
+                        {"fl_x", v.fx},
+                        {"fl_y", v.fy},
+                        {"cx", v.cx + 0.5},
+                        {"cy", v.cy + 0.5},
+                        {"w", v.width},
+                        {"h", v.height}});
+      // COLMAP: world-to-camera, Hamilton quaternion (w, x, y, z); pixel corners at integers.
+      const Mat3 camera_from_world = rot.transpose();
+      const Eigen::Quaterniond q(camera_from_world);
+      const Vec3 t = -(camera_from_world * centre);
+      cameras_txt += fmt::format("{} PINHOLE {} {} {:.17g} {:.17g} {:.17g} {:.17g}\n", id, v.width,
+                                 v.height, v.fx, v.fy, v.cx + 0.5, v.cy + 0.5);
+      images_txt +=
+          fmt::format("{} {:.17g} {:.17g} {:.17g} {:.17g} {:.17g} {:.17g} {:.17g} {} {}\n\n", id,
+                      q.w(), q.x(), q.y(), q.z(), t.x(), t.y(), t.z(), id, name);
+    }
+  report.views = id;
+
+  if (format == ExportFormat::kPngViews) {
+    report.main_file = out / "cameras.json";
+    WriteText(staging / "cameras.json",
+              JsonToText({{"format", "lfcam-views-export"},
+                          {"version", 1},
+                          {"rows", d.rows},
+                          {"cols", d.cols},
+                          {"units", "mm, lfcam's world frame (docs/conventions.md)"},
+                          {"camera_convention",
+                           "OpenCV: x right, y down, z forward; pixel (0, 0) "
+                           "the centre of the top-left pixel"},
+                          {"views", views}},
+                         2) +
+                  "\n");
+  } else if (format == ExportFormat::kNerf) {
+    report.main_file = out / "transforms.json";
+    const ViewCamera centre = ViewAsCamera(lf, d.rows / 2, d.cols / 2);
+    int aabb = 1;
+    while (aabb < 128 && aabb < reach_m) aabb *= 2;
+    WriteText(staging / "transforms.json", JsonToText({{"camera_model", "OPENCV"},
+                                                       {"fl_x", centre.fx},
+                                                       {"fl_y", centre.fy},
+                                                       {"cx", centre.cx + 0.5},
+                                                       {"cy", centre.cy + 0.5},
+                                                       {"w", centre.width},
+                                                       {"h", centre.height},
+                                                       {"k1", 0.0},
+                                                       {"k2", 0.0},
+                                                       {"p1", 0.0},
+                                                       {"p2", 0.0},
+                                                       {"aabb_scale", aabb},
+                                                       {"frames", frames}},
+                                                      2) +
+                                               "\n");
+  } else {
+    report.main_file = out / "sparse/0/images.txt";
+    fs::create_directories(staging / "sparse/0", ec);
+    WriteText(staging / "sparse/0/cameras.txt",
+              cameras_txt + fmt::format("# Number of cameras: {}\n", id));
+    WriteText(staging / "sparse/0/images.txt", images_txt);
+    WriteText(staging / "sparse/0/points3D.txt",
+              "# 3D point list with one line of data per point:\n"
+              "#   POINT3D_ID, X, Y, Z, R, G, B, ERROR, TRACK[] as (IMAGE_ID, POINT2D_IDX)\n"
+              "# Number of points: 0\n");
+  }
+  if (fs::exists(out, ec)) fs::remove(out, ec);
+  fs::rename(staging, out, ec);
+  if (ec)
+    throw Error(
+        fmt::format("{}: cannot move the export into place: {}", out.string(), ec.message()));
+  guard.keep = true;
+  return report;
+}
+
+}  // namespace lfcam
