@@ -199,7 +199,7 @@ cv::Mat PreviewSheet(const ArrayConfig& array, const SharedKey& key, int tile_wi
   ContactSheetOptions options;
   options.columns = array.cols;
   options.tile_width = tile_width;
-  options.title = fmt::format("lfcam capture preview: {}x{} array", array.rows, array.cols);
+  options.title = fmt::format("preview {}x{}", array.rows, array.cols);
   return MakeContactSheet(tiles, labels, options);
 }
 

@@ -282,6 +282,21 @@ TEST_F(CaptureFaults, GroupsFireStaggeredLikeThePapersWorkaround) {
   EXPECT_LT(*report.skew_ms, 100.0);
 }
 
+TEST_F(CaptureFaults, PreviewsComeFromEveryNodeThatAnswers) {
+  StartAndConfigure();
+  const std::string jpeg =
+      NodeClient(array_->address(0), array_->key()).GetBytes("/v1/preview?width=100");
+  const cv::Mat preview =
+      cv::imdecode(cv::Mat(1, int(jpeg.size()), CV_8UC1, (void*)jpeg.data()), cv::IMREAD_COLOR);
+  ASSERT_FALSE(preview.empty());
+  EXPECT_LE(preview.cols, 100);  // 640 wide, scaled by 1/8 in the decoder: 80
+  EXPECT_GE(preview.cols, 50);
+  array_->Kill(array_->index(1, 1));
+  const cv::Mat sheet = PreviewSheet(array_->Config(), array_->key(), 64);
+  EXPECT_GE(sheet.cols, 2 * 64);  // the array's two columns, the dead node a grey tile
+  EXPECT_GE(sheet.rows, 2 * 48);
+}
+
 // Raw HTTP against a node: what an attacker on the LAN could send.
 class NodeSecurity : public CaptureFaults {
  protected:

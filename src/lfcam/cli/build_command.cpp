@@ -56,10 +56,7 @@ void AddBuildCommand(CLI::App& app) {
     std::tie(o.n_s, o.n_t) = ParseSize("--st-res", flags->st_res, kMaxStSamplesPerSide);
     if (!flags->st_domain.empty()) o.st_domain = ParseStDomain("--st-domain", flags->st_domain);
     LightFieldWriteOptions w;
-    if (flags->compression == "zstd")
-      w.compression = Compression::kZstd;
-    else if (flags->compression != "none")
-      throw UsageError(fmt::format("--compress: '{}' is not none or zstd", flags->compression));
+    w.compression = ParseCompression("--compress", flags->compression);
     o.allow_missing = flags->allow_missing;
     o.shot = flags->shot;
     o.resampling =

@@ -69,10 +69,7 @@ void AddImportCommand(CLI::App& app) {
     b.resampling = FlagValue("--resampling", [&] { return ResamplingFromString(f->resampling); });
     b.allow_missing = f->allow_missing;
     LightFieldWriteOptions w;
-    if (f->compression == "zstd")
-      w.compression = Compression::kZstd;
-    else if (f->compression != "none")
-      throw UsageError(fmt::format("--compress: '{}' is not none or zstd", f->compression));
+    w.compression = ParseCompression("--compress", f->compression);
     RequireWritableOutput(f->out, "--out");
 
     const ImportedGrid grid = ScanGridFolder(f->dir, f->allow_missing);

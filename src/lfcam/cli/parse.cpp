@@ -63,4 +63,10 @@ StDomain ParseStDomain(const std::string& flag, const std::string& text) {
   return {d[0], d[1], d[2], d[3]};
 }
 
+Compression ParseCompression(const std::string& flag, const std::string& text) {
+  if (text == "none") return Compression::kNone;
+  if (text == "zstd") return Compression::kZstd;
+  throw UsageError(fmt::format("{}: '{}' is not none or zstd", flag, text));
+}
+
 }  // namespace lfcam::cli

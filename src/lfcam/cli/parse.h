@@ -6,6 +6,7 @@
 
 #include "lfcam/core/error.h"
 #include "lfcam/core/geometry.h"
+#include "lfcam/core/lightfield_file.h"
 #include "lfcam/core/slab.h"
 
 namespace lfcam::cli {
@@ -30,5 +31,8 @@ std::pair<int, int> ParseSize(const std::string& flag, const std::string& text, 
 
 // "S0,T0,S1,T1": the sampled st domain, S1 > S0, T1 > T0, each within +-kMaxStDomainBound.
 StDomain ParseStDomain(const std::string& flag, const std::string& text);
+
+// "none" or "zstd": how a light field file's samples are stored (`build`, `import`).
+Compression ParseCompression(const std::string& flag, const std::string& text);
 
 }  // namespace lfcam::cli

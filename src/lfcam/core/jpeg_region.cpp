@@ -2,53 +2,23 @@
 
 #include <fmt/format.h>
 
-#include <csetjmp>
-#include <cstdio>
 #include <cstdlib>
 #include <vector>
-// jpeglib.h needs FILE and size_t declared first.
-#include <jerror.h>
-#include <jpeglib.h>
 
 #include "lfcam/core/error.h"
+#include "lfcam/core/libjpeg_errors.h"
 #include "lfcam/core/limits.h"
 
 namespace lfcam {
 namespace {
-
-// libjpeg reports errors through a callback that must not return: it jumps back here with the
-// message, and the caller throws once no libjpeg frame is on the stack.
-struct ErrorManager {
-  jpeg_error_mgr base;
-  std::jmp_buf jump;
-  char message[JMSG_LENGTH_MAX];
-  bool truncated;
-};
-
-void OnError(j_common_ptr cinfo) {
-  auto* e = reinterpret_cast<ErrorManager*>(cinfo->err);
-  (*cinfo->err->format_message)(cinfo, e->message);
-  std::longjmp(e->jump, 1);
-}
-
-// Warnings (data libjpeg can decode around) stay quiet, except a premature end of the file: the
-// rows after it would be grey, so that is an error.
-void OnMessage(j_common_ptr cinfo, int level) {
-  if (level < 0 && cinfo->err->msg_code == JWRN_JPEG_EOF)
-    reinterpret_cast<ErrorManager*>(cinfo->err)->truncated = true;
-}
 
 // The decode itself, with only trivially destructible locals between setjmp and longjmp.
 // Returns an empty string on success, else libjpeg's message.
 std::string Decode(const std::uint8_t* data, std::size_t size, int reduction, cv::Rect region,
                    JpegRegion* out) {
   jpeg_decompress_struct cinfo;
-  ErrorManager error;
-  cinfo.err = jpeg_std_error(&error.base);
-  error.base.error_exit = OnError;
-  error.base.emit_message = OnMessage;
-  error.message[0] = '\0';
-  error.truncated = false;
+  LibjpegErrors error;
+  cinfo.err = error.install();
   // Changed after setjmp and read after a longjmp: volatile, so the value is not stale.
   std::uint8_t* volatile pixels = nullptr;
   std::size_t stride = 0;

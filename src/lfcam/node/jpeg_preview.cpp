@@ -2,43 +2,22 @@
 
 #include <fmt/format.h>
 
-// clang-format off
-#include <cstdio>
-#include <jpeglib.h>
-// clang-format on
-#include <csetjmp>
 #include <vector>
 
 #include "lfcam/core/error.h"
+#include "lfcam/core/libjpeg_errors.h"
 
 namespace lfcam {
-
-namespace {
-
-struct ErrorManager {
-  jpeg_error_mgr base;
-  std::jmp_buf jump;
-  char message[JMSG_LENGTH_MAX];
-};
-
-void OnError(j_common_ptr info) {
-  auto* manager = reinterpret_cast<ErrorManager*>(info->err);
-  info->err->format_message(info, manager->message);
-  std::longjmp(manager->jump, 1);
-}
-
-}  // namespace
 
 std::string ScaledJpeg(std::string_view jpeg, int max_width, int quality, const std::string& name) {
   jpeg_decompress_struct in{};
   jpeg_compress_struct out{};
-  ErrorManager errors{};
+  LibjpegErrors errors;
   std::vector<unsigned char> pixels;
   unsigned char* buffer = nullptr;
   unsigned long size = 0;
-  in.err = jpeg_std_error(&errors.base);
-  errors.base.error_exit = OnError;
-  out.err = &errors.base;
+  in.err = errors.install();
+  out.err = in.err;
   jpeg_create_decompress(&in);
   jpeg_create_compress(&out);
   auto cleanup = [&] {
