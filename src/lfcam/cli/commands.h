@@ -18,5 +18,6 @@ void AddBenchCommand(CLI::App& app);
 void AddCaptureCommand(CLI::App& app);
 void AddImportCommand(CLI::App& app);
 void AddExportCommand(CLI::App& app);
+void AddDepthCommand(CLI::App& app);
 
 }  // namespace lfcam::cli

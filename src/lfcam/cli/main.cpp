@@ -82,6 +82,7 @@ int main(int argc, char** argv) {
   lfcam::cli::AddBuildCommand(app);
   lfcam::cli::AddImportCommand(app);
   lfcam::cli::AddExportCommand(app);
+  lfcam::cli::AddDepthCommand(app);
   lfcam::cli::AddRenderCommand(app);
   lfcam::cli::AddViewCommand(app);
   lfcam::cli::AddOracleCommand(app);

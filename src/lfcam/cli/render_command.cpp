@@ -18,7 +18,10 @@
 #include "lfcam/core/lightfield_file.h"
 #include "lfcam/core/limits.h"
 #include "lfcam/core/progress.h"
+#include "lfcam/depth/depth_set.h"
+#include "lfcam/depth/plane_sweep.h"
 #include "lfcam/render/cpu_renderer.h"
+#include "lfcam/render/depth_aware_sampler.h"
 #include "lfcam/sim/oracle.h"
 
 namespace lfcam::cli {
@@ -44,12 +47,12 @@ double SecondsSince(std::chrono::steady_clock::time_point start) {
 void AddRenderCommand(CLI::App& app) {
   auto* render = app.add_subcommand("render", "Render a light field through the virtual camera");
   struct Flags {
-    std::string input, out, hit_mask;
+    std::string input, out, hit_mask, depth;
     CameraFlags camera;
     BackendFlags backend;
     int threads = 0, repeat = 1;
     std::string interpolation = "quadrilinear", integrator = "lens-samples";
-    bool quiet = false, reference = false;
+    bool quiet = false, reference = false, antialias = false;
   };
   auto flags = std::make_shared<Flags>();
   render->add_option("lightfield", flags->input, "Light field file (.lf)")->required();
@@ -77,8 +80,17 @@ void AddRenderCommand(CLI::App& app) {
       "--interpolation", flags->interpolation,
       "With lens-samples: quadrilinear (the paper's; smooth out-of-focus blur, "
       "noisy at low --lens-rate) or focal-plane (each camera read along its own ray "
-      "through the point in focus; Isaksen et al. 2000)");
+      "through the point in focus; Isaksen et al. 2000) or depth (each camera read where the "
+      "scene point the ray hits projects into it, occlusion-checked: no ghosts between cameras, "
+      "true blur at every depth; needs depth maps, --depth)");
   interpolation_option->capture_default_str();
+  render->add_option("--depth", flags->depth,
+                     "With --interpolation depth: the views' depth maps (a folder from `lfcam "
+                     "depth --all`); without it the maps the frame needs are estimated first");
+  render->add_flag("--antialias", flags->antialias,
+                   "With --interpolation depth: spread each pixel's rays over its area on the "
+                   "film (a sensor's pixel) instead of through its centre (the paper's pixel): "
+                   "sharp edges without stair steps; a pinhole pixel casts 4 rays");
   flags->backend.AddTo(*render);
   render->add_flag("--reference", flags->reference,
                    "Use the scalar reference renderer (one pixel at a time, every ray in double "
@@ -114,6 +126,38 @@ void AddRenderCommand(CLI::App& app) {
     const std::unique_ptr<FrameRenderer> renderer = BackendFlags::Open(backend);
     const LightField lf = ReadLightField(flags->input);
     const VirtualCamera camera = flags->camera.MakeCamera(lf.slab().uv);
+    DepthSet depth;
+    if (options.interpolation == Interpolation::kDepth) {
+      if (options.integrator != Integrator::kLensSamples)
+        throw UsageError("--interpolation depth goes with --integrator lens-samples");
+      if (!flags->depth.empty()) {
+        depth = ReadDepthSet(flags->depth, lf);
+      } else {
+        depth = DepthSet(lf.dims());
+        const std::vector<bool> needed = DepthViewsNeeded(lf, camera);
+        const int count = int(std::count(needed.begin(), needed.end(), true));
+        const auto start = std::chrono::steady_clock::now();
+        ProgressBar progress("estimating depth", count, ProgressWanted(flags->quiet));
+        const auto advance = progress.callback();
+        EstimateDepthSet(
+            lf, depth,
+            [&](int r, int c) { return bool(needed[std::size_t(r) * lf.dims().cols + c]); }, {},
+            [&](int, int) {
+              if (advance) advance(1);
+            });
+        progress.finish();
+        if (!flags->quiet)
+          fmt::print(stderr,
+                     "estimated the depth of the {} views this frame reads in {:.1f} s (`lfcam "
+                     "depth {} --all --out DIR` keeps them for --depth DIR)\n",
+                     count, SecondsSince(start), flags->input);
+      }
+      options.depth = &depth;
+      options.antialias = flags->antialias;
+    } else if (!flags->depth.empty() || flags->antialias) {
+      throw UsageError(fmt::format("{}: only with --interpolation depth",
+                                   flags->antialias ? "--antialias" : "--depth"));
+    }
     ProgressBar progress("rendering",
                          std::int64_t(flags->repeat) * camera.width() * camera.height(),
                          ProgressWanted(flags->quiet));

@@ -15,6 +15,8 @@
 #include "lfcam/core/lightfield_file.h"
 #include "lfcam/core/limits.h"
 #include "lfcam/core/progress.h"
+#include "lfcam/depth/depth_set.h"
+#include "lfcam/sim/depth_truth.h"
 #include "lfcam/sim/simulate_lightfield.h"
 
 namespace lfcam::cli {
@@ -53,7 +55,7 @@ void AddSimulateCommand(CLI::App& app) {
       simulate->add_subcommand("lightfield", "Write the light field an ideal array captures");
   struct Flags {
     std::string scene = "paper", out, grid = "10x10", st_res = "1248x1152", st_domain = "0,0,1,1",
-                sample_type = "srgb8", compression = "none", centers_from;
+                sample_type = "srgb8", compression = "none", centers_from, depth_out;
     int supersampling = 2;
     bool quiet = false;
   };
@@ -77,6 +79,10 @@ void AddSimulateCommand(CLI::App& app) {
   command->add_option("--centers-from", flags->centers_from,
                       "Put the cameras where this ground_truth.json or calibration.json says "
                       "(cameras[].row, col, center) instead of on the ideal grid");
+  command->add_option("--depth-out", flags->depth_out,
+                      "Also write the true depth of every view (the first surface along each st "
+                      "sample's ray), as the folder `lfcam depth --all` writes and `lfcam render "
+                      "--interpolation depth --depth DIR` reads");
   command->add_flag("--quiet", flags->quiet, "No progress bar (it is drawn only on a terminal)");
   command->callback([flags] {
     SimulateLightFieldOptions o;
@@ -98,6 +104,12 @@ void AddSimulateCommand(CLI::App& app) {
     if (!flags->centers_from.empty())
       o.camera_centers = ReadCameraCenters(flags->centers_from, rows, cols);
     RequireWritableOutput(flags->out, "--out");
+    std::error_code ec;
+    if (!flags->depth_out.empty() && std::filesystem::exists(flags->depth_out, ec) &&
+        (!std::filesystem::is_directory(flags->depth_out, ec) ||
+         !std::filesystem::is_empty(flags->depth_out, ec)))
+      throw UsageError(
+          fmt::format("--depth-out {}: exists and is not an empty folder", flags->depth_out));
     const double bytes =
         double(rows) * cols * o.n_s * o.n_t * 3 * double(BytesPerChannel(o.sample_type));
     FlagValue(fmt::format("--grid {} --st-res {}", flags->grid, flags->st_res),
@@ -110,6 +122,13 @@ void AddSimulateCommand(CLI::App& app) {
     progress.finish();
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (!flags->depth_out.empty()) {
+      DepthSet truth(lf.dims());
+      for (int r = 0; r < rows; ++r)
+        for (int c = 0; c < cols; ++c) truth.set(GroundTruthDepth(scene, lf, r, c).map);
+      WriteDepthSet(flags->depth_out, truth,
+                    std::filesystem::path(flags->out).filename().string() + " (true depth)");
+    }
     WriteLightField(lf, flags->out, w);
     fmt::print("wrote {}: {}x{} views of {}x{} samples ({}, {:.1f} MB) in {:.1f} s\n", flags->out,
                rows, cols, o.n_s, o.n_t, ToString(o.sample_type), lf.total_bytes() / 1e6, seconds);

@@ -15,7 +15,7 @@ void AddViewCommand(CLI::App& app) {
   auto* view = app.add_subcommand(
       "view", "Explore a light field interactively (F1 in the window lists the keys)");
   struct Flags {
-    std::string input, window = "1280x960", camera, script, screenshot_prefix = "lfcam_view";
+    std::string input, window = "1280x960", camera, script, screenshot_prefix = "lfcam_view", depth;
     BackendFlags backend;
     int threads = 0;
     double scale = 1.0, budget_ms = 40;
@@ -41,6 +41,9 @@ void AddViewCommand(CLI::App& app) {
   view->add_option("--screenshot-prefix", flags->screenshot_prefix,
                    "F12 writes PREFIX_NNN.png and PREFIX_NNN.json (the view, for render --camera)")
       ->capture_default_str();
+  view->add_option("--depth", flags->depth,
+                   "The views' depth maps (a folder from `lfcam depth --all`): offers the depth "
+                   "lookup (no ghosts between cameras; rendered on the CPU)");
   view->add_option("--script", flags->script,
                    "Run the commands in FILE (docs/viewer.md), then quit: for tests and demos");
   view->callback([flags] {
@@ -57,6 +60,7 @@ void AddViewCommand(CLI::App& app) {
     o.threads = flags->threads;
     o.frame_budget_ms = flags->budget_ms;
     o.screenshot_prefix = flags->screenshot_prefix;
+    o.depth_dir = flags->depth;
     RunViewer(o);
   });
 }

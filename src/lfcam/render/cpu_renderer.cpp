@@ -7,12 +7,14 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include <cmath>
 #include <functional>
 #include <optional>
 #include <vector>
 
 #include "lfcam/core/error.h"
 #include "lfcam/render/camera_integrator.h"
+#include "lfcam/render/depth_aware_sampler.h"
 #include "lfcam/render/ray_setup.h"
 #include "lfcam/render/separable_frame.h"
 #include "lfcam/render/separable_kernels.h"
@@ -29,6 +31,13 @@ struct Frame {
   Interpolation interpolation;
   const CameraIntegratorFrame* cameras = nullptr;  // the cameras integrator, with an aperture
   int view_count = 0;
+  const DepthAwareSampler* depth = nullptr;  // Interpolation::kDepth
+  bool antialias = false;                    // with it: rays over the pixel's area
+
+  bool Sample(const Vec3& origin, const Vec3& direction, float rgb[3], const Vec3& p_o) const {
+    if (depth) return depth->Sample(origin, direction, rgb);
+    return sampler.Sample(origin, direction, rgb, interpolation, p_o);
+  }
 };
 
 // The cameras integrator: every camera under the footprint, read along its own ray through p_o
@@ -60,8 +69,41 @@ int RenderPixelCameras(const Frame& frame, int i, int j, float* weights, float o
   return read;
 }
 
+// The depth lookup's antialiased pixel: its rays spread over the pixel's area on the film as well
+// as over the lens, as a sensor's pixel integrates (otherwise, as in the paper, every ray passes
+// through the pixel's centre). A pinhole's pixel takes 2 x 2 film points; with an aperture, lens
+// sample m takes film point m of the R2 sequence (Roberts 2018), uncorrelated with the lens
+// pattern.
+int RenderPixelDepth(const Frame& frame, int i, int j, float out[3]) {
+  const VirtualCamera& camera = frame.camera;
+  float sum[3] = {0, 0, 0}, rgb[3];
+  int hits = 0;
+  const auto add = [&](const Vec3& origin, const Vec3& direction) {
+    if (!frame.depth->Sample(origin, direction, rgb)) return;
+    for (int c = 0; c < 3; ++c) sum[c] += rgb[c];
+    ++hits;
+  };
+  if (camera.is_pinhole()) {
+    for (int a = 0; a < 2; ++a)
+      for (int b = 0; b < 2; ++b)
+        add(camera.e_c(), camera.direction_through(i + 0.25 + 0.5 * b, j + 0.25 + 0.5 * a));
+  } else {
+    constexpr double kA1 = 0.7548776662466927, kA2 = 0.5698402909980532;  // 1/g, 1/g^2 (plastic)
+    for (std::size_t m = 0; m < frame.lens_points.size(); ++m) {
+      const double x = std::fmod(0.5 + kA1 * double(m), 1.0);
+      const double y = std::fmod(0.5 + kA2 * double(m), 1.0);
+      const Vec3 p_o = camera.focus_point(camera.direction_through(i + x, j + y));
+      add(frame.lens_points[m], p_o - frame.lens_points[m]);
+    }
+  }
+  const float inv = hits > 0 ? 1.0f / float(hits) : 0.0f;
+  for (int c = 0; c < 3; ++c) out[c] = sum[c] * inv;
+  return hits;
+}
+
 // The average radiance over the rays of pixel (i, j) that hit the slab; returns their number.
 int RenderPixel(const Frame& frame, int i, int j, float out[3]) {
+  if (frame.depth && frame.antialias) return RenderPixelDepth(frame, i, j, out);
   const VirtualCamera& camera = frame.camera;
   const Vec3 direction = camera.pixel_direction(i, j);
   // p_o: where the central ray meets the plane of focus; every lens ray passes through it.
@@ -69,10 +111,10 @@ int RenderPixel(const Frame& frame, int i, int j, float out[3]) {
   float sum[3] = {0, 0, 0}, rgb[3];
   int hits = 0;
   if (camera.is_pinhole()) {
-    hits = frame.sampler.Sample(camera.e_c(), direction, sum, frame.interpolation, p_o) ? 1 : 0;
+    hits = frame.Sample(camera.e_c(), direction, sum, p_o) ? 1 : 0;
   } else {
     for (const Vec3& lens : frame.lens_points) {
-      if (!frame.sampler.Sample(lens, p_o - lens, rgb, frame.interpolation, p_o)) continue;
+      if (!frame.Sample(lens, p_o - lens, rgb, p_o)) continue;
       sum[0] += rgb[0];
       sum[1] += rgb[1];
       sum[2] += rgb[2];
@@ -110,6 +152,17 @@ RenderResult RenderReference(const LightField& lf, const VirtualCamera& camera,
   for (const Vec2& disk : camera.lens_samples())
     frame.lens_points.push_back(camera.lens_point(disk));
   std::optional<CameraIntegratorFrame> cameras;
+  std::optional<DepthAwareSampler> depth;
+  if (options.interpolation == Interpolation::kDepth) {
+    if (options.integrator != Integrator::kLensSamples)
+      throw Error(
+          "the depth lookup reads each lens sample's own scene point: it goes with the "
+          "lens-samples integrator, not the cameras integrator");
+    if (!options.depth) throw Error("the depth lookup needs the views' depth maps");
+    depth.emplace(lf, *options.depth, sampler);
+    frame.depth = &*depth;
+    frame.antialias = options.antialias;
+  }
   if (options.integrator == Integrator::kCameras) {
     // A pinhole's limit is the focal-plane lookup itself.
     frame.interpolation = Interpolation::kFocalPlane;
@@ -147,7 +200,7 @@ RenderResult RenderReference(const LightField& lf, const VirtualCamera& camera,
                       render_tile);
   });
   result.rays_hit = hits_per_thread.combine(std::plus<>());
-  result.path = "reference";
+  result.path = frame.depth ? "reference (depth lookup)" : "reference";
   result.rays = frame.cameras ? result.rays_hit
                               : static_cast<long long>(camera.width()) * camera.height() *
                                     static_cast<long long>(frame.lens_points.size());
@@ -301,7 +354,9 @@ RenderResult RenderFast(const LightField& lf, const VirtualCamera& camera,
 
 RenderResult RenderLightFieldCpu(const LightField& lf, const VirtualCamera& camera,
                                  const CpuRenderOptions& options) {
-  if (options.reference || !FastKernelsSupport(lf)) return RenderReference(lf, camera, options);
+  if (options.reference || !FastKernelsSupport(lf) ||
+      options.interpolation == Interpolation::kDepth)
+    return RenderReference(lf, camera, options);
   return RenderFast(lf, camera, options);
 }
 

@@ -9,6 +9,7 @@
 
 #include "lfcam/core/lightfield.h"
 #include "lfcam/core/progress.h"
+#include "lfcam/depth/depth_set.h"
 #include "lfcam/render/lightfield_sampler.h"
 #include "lfcam/render/virtual_camera.h"
 
@@ -30,6 +31,12 @@ struct CpuRenderOptions {
   // The scalar reference instead of the vectorised kernels (which also stand back for it where
   // they cannot read the light field: see FastKernelsSupport).
   bool reference = false;
+  // The views' depth maps, for Interpolation::kDepth (which the scalar path renders, on every
+  // core): a map for every camera the frame reads (DepthViewsNeeded).
+  const DepthSet* depth = nullptr;
+  // With the depth lookup: spread each pixel's rays over its area on the film (a sensor pixel's
+  // box filter) instead of through its centre (the paper's pixel).
+  bool antialias = false;
 };
 
 struct RenderResult {

@@ -77,13 +77,17 @@ GlRenderOptions GlOptions(const FrameRenderOptions& options) {
 
 RenderResult FrameRenderer::Render(const LightField& lf, const VirtualCamera& camera,
                                    const FrameRenderOptions& options) const {
-  if (gl_) return gl_->Render(lf, camera, GlOptions(options));
+  // The depth-aware lookup has no shader yet: the CPU renders it, whatever the backend.
+  if (gl_ && options.interpolation != Interpolation::kDepth)
+    return gl_->Render(lf, camera, GlOptions(options));
   CpuRenderOptions o;
   o.integrator = options.integrator;
   o.interpolation = options.interpolation;
   o.threads = options.threads;
   o.reference = options.reference;
   o.progress = options.progress;
+  o.depth = options.depth;
+  o.antialias = options.antialias;
   return RenderLightFieldCpu(lf, camera, o);
 }
 

@@ -22,6 +22,8 @@ struct FrameRenderOptions {
   bool reference = false;                 // CPU: the scalar reference
   int workgroup_x = 16, workgroup_y = 8;  // GL
   ProgressCallback progress;              // CPU only
+  const DepthSet* depth = nullptr;        // Interpolation::kDepth (CPU only: GL hands it over)
+  bool antialias = false;                 // with it (CpuRenderOptions::antialias)
 };
 
 // The GL renderer's share of the options.

@@ -22,6 +22,8 @@ namespace lfcam {
 enum class Interpolation {
   kQuadrilinear,  // the paper's: (u, v, s, t) of the ray itself
   kFocalPlane,    // Isaksen et al.: each camera's own ray through p_o
+  kDepth,         // each camera read where the scene point the ray hits projects (depth maps:
+                  // render/depth_aware_sampler.h)
 };
 std::string ToString(Interpolation interpolation);
 Interpolation InterpolationFromString(const std::string& name);  // throws lfcam::Error
@@ -101,6 +103,12 @@ class LightFieldSampler {
     rgb[0] = acc[0];
     rgb[1] = acc[1];
     rgb[2] = acc[2];
+  }
+
+  // acc += w * view (row, col) read bilinearly at continuous sample coordinates (k, l) (sample
+  // centres at integers; clamped to the sampled domain).
+  void AccumulateAt(int row, int col, double k, double l, float w, float acc[3]) const {
+    AccumulateView(row, col, AxisLerp::At(k, n_s_), AxisLerp::At(l, n_t_), w, acc);
   }
 
   // acc += w * camera (row, col) read where its own ray toward p_o meets the st-plane

@@ -20,14 +20,23 @@ Integrator IntegratorFromString(const std::string& name) {
 }
 
 std::string ToString(Interpolation interpolation) {
-  return interpolation == Interpolation::kQuadrilinear ? "quadrilinear" : "focal-plane";
+  switch (interpolation) {
+    case Interpolation::kQuadrilinear:
+      return "quadrilinear";
+    case Interpolation::kFocalPlane:
+      return "focal-plane";
+    case Interpolation::kDepth:
+      return "depth";
+  }
+  return "?";
 }
 
 Interpolation InterpolationFromString(const std::string& name) {
   if (name == "quadrilinear") return Interpolation::kQuadrilinear;
   if (name == "focal-plane") return Interpolation::kFocalPlane;
-  throw Error(
-      fmt::format("unknown interpolation '{}' (expected quadrilinear or focal-plane)", name));
+  if (name == "depth") return Interpolation::kDepth;
+  throw Error(fmt::format(
+      "unknown interpolation '{}' (expected quadrilinear, focal-plane or depth)", name));
 }
 
 }  // namespace lfcam

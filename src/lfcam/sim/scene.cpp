@@ -8,12 +8,14 @@
 
 namespace lfcam {
 
-double Scene::FirstHitDistance(const Ray& ray) const {
-  double nearest = std::numeric_limits<double>::infinity();
+double Scene::FirstHitDistance(const Ray& ray) const { return FirstHit(ray).t; }
+
+Scene::Hit Scene::FirstHit(const Ray& ray) const {
+  Hit first{std::numeric_limits<double>::infinity(), -1};
   SurfaceHit hit;
-  for (const auto& object : objects)
-    if (object.shape->Intersect(ray, 1e-9, nearest, &hit)) nearest = hit.t;
-  return nearest;
+  for (std::size_t i = 0; i < objects.size(); ++i)
+    if (objects[i].shape->Intersect(ray, 1e-9, first.t, &hit)) first = {hit.t, int(i)};
+  return first;
 }
 
 Vec3 Scene::Radiance(const Ray& ray) const {

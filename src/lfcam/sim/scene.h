@@ -43,6 +43,13 @@ class Scene {
   Vec3 Radiance(const Ray& ray) const;
   // Distance t of the first surface along `ray`, or +inf.
   double FirstHitDistance(const Ray& ray) const;
+  // The first surface along `ray`: its distance t (+inf when none) and the index of its object
+  // in `objects` (-1 when none).
+  struct Hit {
+    double t;
+    int object;
+  };
+  Hit FirstHit(const Ray& ray) const;
 
   // The slab of the scene's ideal rig, with the given st domain.
   Slab IdealSlab(const StDomain& domain = {}) const { return {rig.array, rig.board, domain}; }

@@ -63,7 +63,7 @@ bool DrawCameraWindow(ViewSettings& view, const ArrayPlane& array, bool* open) {
 }
 
 bool DrawRenderingWindow(ViewSettings& view, double& render_scale, const FrameStats& stats,
-                         bool* open) {
+                         bool has_depth, bool* open) {
   bool changed = false;
   ImGui::SetNextWindowPos(ImVec2(10, ImGui::GetFontSize() * 17), ImGuiCond_FirstUseEver);
   if (ImGui::Begin("Rendering (F3)", open, ImGuiWindowFlags_AlwaysAutoResize)) {
@@ -73,10 +73,15 @@ bool DrawRenderingWindow(ViewSettings& view, double& render_scale, const FrameSt
       view.integrator = integrator == 1 ? Integrator::kCameras : Integrator::kLensSamples;
       changed = true;
     }
-    int lookup = view.interpolation == Interpolation::kFocalPlane ? 1 : 0;
+    const Interpolation lookups[] = {Interpolation::kQuadrilinear, Interpolation::kFocalPlane,
+                                     Interpolation::kDepth};
+    int lookup = int(std::find(std::begin(lookups), std::end(lookups), view.interpolation) -
+                     std::begin(lookups));
     if (view.integrator == Integrator::kLensSamples &&
-        ImGui::Combo("lookup", &lookup, "quadrilinear (paper)\0focal plane\0")) {
-      view.interpolation = lookup == 1 ? Interpolation::kFocalPlane : Interpolation::kQuadrilinear;
+        ImGui::Combo("lookup", &lookup,
+                     has_depth ? "quadrilinear (paper)\0focal plane\0depth (no ghosts, cpu)\0"
+                               : "quadrilinear (paper)\0focal plane\0")) {
+      view.interpolation = lookups[lookup];
       changed = true;
     }
     if (view.integrator == Integrator::kLensSamples) {

@@ -17,6 +17,7 @@
 #include "lfcam/core/error.h"
 #include "lfcam/core/image_io.h"
 #include "lfcam/core/lightfield_file.h"
+#include "lfcam/depth/depth_set.h"
 #include "lfcam/render/focus_probe.h"
 #include "lfcam/viewer/control_windows.h"
 #include "lfcam/viewer/frame_display.h"
@@ -32,9 +33,10 @@ using Clock = std::chrono::steady_clock;
 
 class Viewer {
  public:
-  Viewer(const ViewerOptions& options, LightField lf)
+  Viewer(const ViewerOptions& options, LightField lf, DepthSet depth)
       : options_(options),
         lf_(std::move(lf)),
+        depth_(std::move(depth)),
         window_(options.width, options.height, "lfcam view: " + options.light_field) {
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
@@ -51,6 +53,7 @@ class Viewer {
     render_options.threads = options.threads;
     render_options.workgroup_x = options.workgroup_x;
     render_options.workgroup_y = options.workgroup_y;
+    if (depth_.count() > 0) render_options.depth = &depth_;
     scheduler_ =
         std::make_unique<FrameScheduler>(lf_, *renderer_, render_options, options.frame_budget_ms);
     render_scale_ = options.render_scale;
@@ -366,7 +369,10 @@ class Viewer {
     } else if (name == "integrator") {
       view_.integrator = IntegratorFromString(value);
     } else if (name == "interpolation") {
-      view_.interpolation = InterpolationFromString(value);
+      const Interpolation interpolation = InterpolationFromString(value);
+      if (interpolation == Interpolation::kDepth && depth_.count() == 0)
+        throw Error("the depth lookup needs the views' depth maps: open the viewer with --depth");
+      view_.interpolation = interpolation;
     } else if (name == "scale") {
       const double s = number();
       if (!(s >= 0.05 && s <= 2)) throw Error("scale must be 0.05 to 2");
@@ -403,7 +409,8 @@ class Viewer {
     bool changed = false;
     if (panels_.camera) changed |= DrawCameraWindow(view_, lf_.slab().uv, &panels_.camera);
     if (panels_.rendering)
-      changed |= DrawRenderingWindow(view_, render_scale_, stats_, &panels_.rendering);
+      changed |=
+          DrawRenderingWindow(view_, render_scale_, stats_, depth_.count() > 0, &panels_.rendering);
     DrawHelpOverlay(&panels_.help);
     if (changed) Changed();
     ImGui::Render();
@@ -435,6 +442,7 @@ class Viewer {
 
   const ViewerOptions& options_;
   LightField lf_;
+  DepthSet depth_;  // empty without --depth
   GlfwWindow window_;
   std::unique_ptr<FrameDisplay> display_;
   std::unique_ptr<FrameRenderer> renderer_;
@@ -461,7 +469,9 @@ void RunViewer(const ViewerOptions& options) {
   LightField lf = ReadLightField(options.light_field);
   if (!options.script.empty()) ReadViewerScript(options.script);
   if (!options.view_file.empty()) ReadViewFile(options.view_file);
-  Viewer viewer(options, std::move(lf));
+  DepthSet depth;
+  if (!options.depth_dir.empty()) depth = ReadDepthSet(options.depth_dir, lf);
+  Viewer viewer(options, std::move(lf), std::move(depth));
   viewer.Run();
 }
 

@@ -21,6 +21,7 @@ struct ViewerOptions {
   std::string script;                            // run these commands, then quit (viewer_script.h)
   std::string screenshot_prefix = "lfcam_view";  // F12: PREFIX_NNN.png and .json
   double frame_budget_ms = 40;  // frames costlier than this render reduced while moving
+  std::string depth_dir;        // the views' depth maps (`lfcam depth --all`): the depth lookup
 };
 
 // Opens the light field (before any window: a missing or corrupt file is an lfcam::Error and no

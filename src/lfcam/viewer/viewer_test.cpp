@@ -163,6 +163,42 @@ TEST_F(Viewer, AccumulatesCostlyLensSampleFramesToWhatRenderWrites) {
   std::cout << run.output << "accumulated against render --camera: " << same.dump() << "\n";
 }
 
+TEST_F(Viewer, OffersTheDepthLookupWithDepthMapsAndItsScreenshotRendersAgainOffline) {
+  // A small array with the simulator's true depth maps (what `lfcam depth --all` estimates).
+  const CommandResult made = Lfcam(
+      "simulate lightfield --scene paper --grid 4x4 --st-res 156x144 --supersampling 1 --quiet "
+      "--out " +
+      Path("small.lf") + " --depth-out " + Path("small_depth"));
+  ASSERT_EQ(made.status, 0) << made.output;
+  Write("depth.script",
+        "window 160 120\n"
+        "set integrator lens-samples\n"
+        "set interpolation depth\n"
+        "set focal-length 300\n"
+        "wait\n"
+        "screenshot " +
+            Path("depth.png") +
+            "\n"
+            "quit\n");
+  CommandResult run = View(Path("small.lf") + " --depth " + Path("small_depth") + " --script " +
+                           Path("depth.script") + " --window 160x120");
+  ASSERT_EQ(run.status, 0) << run.output;
+  const CommandResult again =
+      Lfcam("render " + Path("small.lf") + " --camera " + Path("depth.json") + " --depth " +
+            Path("small_depth") + " --out " + Path("depth_again.png"));
+  ASSERT_EQ(again.status, 0) << again.output;
+  EXPECT_NE(again.output.find("depth lookup"), std::string::npos) << again.output;
+  const auto same = nlohmann::json::parse(
+      Lfcam("compare --json " + Path("depth.png") + " " + Path("depth_again.png")).output);
+  if (!same["psnr_db"].is_null()) {
+    EXPECT_GE(same["psnr_db"].get<double>(), 40.0) << same.dump();
+  }
+  // Without depth maps the lookup is refused, naming the flag.
+  run = View(Path("small.lf") + " --script " + Path("depth.script") + " --window 160x120");
+  EXPECT_NE(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("--depth"), std::string::npos) << run.output;
+}
+
 TEST_F(Viewer, RefusesMissingOrCorruptFilesBeforeAnyWindow) {
   CommandResult run = View(Path("missing.lf"));
   EXPECT_EQ(run.status, 1) << run.output;

@@ -1,0 +1,163 @@
+// `lfcam depth FILE --out depth.png [--view R,C | --all] [--depth-range NEAR,FAR] [--reach N]
+// [--json]`: depth from the light field itself (depth/plane_sweep.h; docs/depth.md).
+#include <fmt/core.h>
+
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "lfcam/cli/commands.h"
+#include "lfcam/cli/parse.h"
+#include "lfcam/core/atomic_file.h"
+#include "lfcam/core/error.h"
+#include "lfcam/core/json_input.h"
+#include "lfcam/core/lightfield_file.h"
+#include "lfcam/core/progress.h"
+#include "lfcam/depth/depth_set.h"
+#include "lfcam/depth/plane_sweep.h"
+
+namespace lfcam::cli {
+namespace {
+
+// What a map holds, for people and --json.
+nlohmann::json Summary(const DepthMap& map) {
+  double sum = 0, confident = 0, lo = INFINITY, hi = -INFINITY;
+  const int n = map.n_s() * map.n_t();
+  for (int l = 0; l < map.n_t(); ++l)
+    for (int k = 0; k < map.n_s(); ++k) {
+      const float d = map.depth.at<float>(l, k);
+      if (!std::isfinite(d)) continue;
+      lo = std::min(lo, double(d));
+      hi = std::max(hi, double(d));
+      sum += d;
+      confident += !map.confidence.empty() && map.confidence.at<float>(l, k) >= 0.25f;
+    }
+  return {{"view", {map.row, map.col}},
+          {"n_s", map.n_s()},
+          {"n_t", map.n_t()},
+          {"range_mm", {map.range.near_mm, map.range.far_mm}},
+          {"min_mm", std::isfinite(lo) ? lo : 0.0},
+          {"max_mm", std::isfinite(hi) ? hi : 0.0},
+          {"mean_mm", n > 0 ? sum / n : 0.0},
+          {"confident_share", n > 0 ? confident / n : 0.0}};
+}
+
+}  // namespace
+
+void AddDepthCommand(CLI::App& app) {
+  auto* command = app.add_subcommand(
+      "depth", "Estimate depth maps from the light field itself (plane sweep), with confidence");
+  struct Flags {
+    std::string input, out, view, range;
+    bool all = false, json = false, quiet = false;
+    int reach = 4;
+  };
+  auto f = std::make_shared<Flags>();
+  command->add_option("lightfield", f->input, "Light field file (.lf)")->required();
+  command
+      ->add_option("--out", f->out,
+                   "Depth PNG to write (16-bit; with NAME.confidence.png and NAME.preview.png "
+                   "beside it); with --all, the folder for every view's map")
+      ->required();
+  command->add_option("--view", f->view, "The view R,C (default: the central one)");
+  command->add_flag("--all", f->all,
+                    "Every view, one depth range for all: the folder that `lfcam render "
+                    "--interpolation depth --depth DIR` reads");
+  command->add_option("--depth-range", f->range,
+                      "NEAR,FAR in mm from the array's plane (default: found by a coarse sweep)");
+  command
+      ->add_option("--reach", f->reach, "Cameras compared each way along the view's row and column")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 64));
+  command->add_flag("--json", f->json, "Print what was estimated as JSON");
+  command->add_flag("--quiet", f->quiet, "No progress bar (it is drawn only on a terminal)");
+  command->callback([f] {
+    if (f->all && !f->view.empty()) throw UsageError("--view and --all: give one of them");
+    PlaneSweepOptions options;
+    options.reach = f->reach;
+    if (!f->range.empty()) {
+      const auto v = ParseNumbers("--depth-range", f->range, 2);
+      options.range = DepthRange{v[0], v[1]};
+      if (!options.range->valid())
+        throw UsageError(fmt::format("--depth-range {}: needs 0 < NEAR < FAR (mm)", f->range));
+    }
+    std::error_code ec;
+    if (f->all) {
+      if (std::filesystem::exists(f->out, ec) &&
+          (!std::filesystem::is_directory(f->out, ec) || !std::filesystem::is_empty(f->out, ec)))
+        throw UsageError(fmt::format("--out {}: exists and is not an empty folder", f->out));
+    } else {
+      if (std::filesystem::path(f->out).extension() != ".png")
+        throw UsageError(fmt::format("--out {}: a depth map is a .png", f->out));
+      RequireWritableOutput(f->out, "--out");
+    }
+    const LightField lf = ReadLightField(f->input);
+    const auto& d = lf.dims();
+    if (d.view_count() < 2)
+      throw Error(fmt::format("{}: depth needs at least two views; it has {}x{}", f->input, d.rows,
+                              d.cols));
+    int row = (d.rows - 1) / 2, col = (d.cols - 1) / 2;
+    if (!f->view.empty()) {
+      const auto v = ParseNumbers("--view", f->view, 2);
+      if (v[0] != std::floor(v[0]) || v[1] != std::floor(v[1]) || v[0] < 0 || v[1] < 0 ||
+          v[0] >= d.rows || v[1] >= d.cols)
+        throw UsageError(
+            fmt::format("--view {}: not a view of the {}x{} grid (rows and columns "
+                        "count from 0)",
+                        f->view, d.rows, d.cols));
+      row = int(v[0]);
+      col = int(v[1]);
+    }
+    const auto start = std::chrono::steady_clock::now();
+    const auto seconds = [&] {
+      return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    };
+    nlohmann::json report = {{"lightfield", f->input}, {"out", f->out}};
+    if (f->all) {
+      DepthSet set(d);
+      ProgressBar progress("depth of every view", std::int64_t(d.view_count()),
+                           ProgressWanted(f->quiet));
+      const auto advance = progress.callback();
+      EstimateDepthSet(
+          lf, set, [](int, int) { return true; }, options,
+          [&](int, int) {
+            if (advance) advance(1);
+          });
+      progress.finish();
+      WriteDepthSet(f->out, set, std::filesystem::path(f->input).filename().string());
+      report["views"] = set.count();
+      report["range_mm"] = {set.range().near_mm, set.range().far_mm};
+      report["central"] = Summary(set.at((d.rows - 1) / 2, (d.cols - 1) / 2));
+      report["seconds"] = seconds();
+      if (f->json) {
+        fmt::print("{}\n", JsonToText(report, 2));
+        return;
+      }
+      fmt::print("wrote {} depth maps to {} (range {:.0f} .. {:.0f} mm) in {:.1f} s\n", set.count(),
+                 f->out, set.range().near_mm, set.range().far_mm, seconds());
+      return;
+    }
+    const DepthMap map = EstimateDepth(lf, row, col, options);
+    WriteDepthFiles(
+        f->out, map,
+        JsonToText({{"lightfield", std::filesystem::path(f->input).filename().string()}}));
+    report["map"] = Summary(map);
+    report["confidence"] = ConfidencePathFor(f->out).string();
+    report["preview"] = PreviewPathFor(f->out).string();
+    report["seconds"] = seconds();
+    if (f->json) {
+      fmt::print("{}\n", JsonToText(report, 2));
+      return;
+    }
+    const nlohmann::json& s = report["map"];
+    fmt::print(
+        "wrote {} (view {},{}: {}x{}, {:.0f} .. {:.0f} mm, {:.0f}% confident), {} and {} in "
+        "{:.1f} s\n",
+        f->out, row, col, map.n_s(), map.n_t(), s["min_mm"].get<double>(),
+        s["max_mm"].get<double>(), 100.0 * s["confident_share"].get<double>(),
+        report["confidence"].get<std::string>(), report["preview"].get<std::string>(), seconds());
+  });
+}
+
+}  // namespace lfcam::cli

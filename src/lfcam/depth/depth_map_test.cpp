@@ -1,0 +1,128 @@
+#include "lfcam/depth/depth_map.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+
+#include "lfcam/core/atomic_file.h"
+#include "lfcam/core/test_support.h"
+#include "lfcam/depth/depth_set.h"
+
+namespace lfcam {
+namespace {
+
+namespace fs = std::filesystem;
+
+DepthMap Ramp(int row, int col, int n_s = 40, int n_t = 30) {
+  DepthMap map;
+  map.row = row;
+  map.col = col;
+  map.range = {3000, 7000};
+  map.depth.create(n_t, n_s, CV_32FC1);
+  map.confidence.create(n_t, n_s, CV_32FC1);
+  for (int l = 0; l < n_t; ++l)
+    for (int k = 0; k < n_s; ++k) {
+      map.depth.at<float>(l, k) = float(3000 + 100 * k + 7 * l);
+      map.confidence.at<float>(l, k) = float(l) / (n_t - 1);
+    }
+  map.depth.at<float>(2, 3) = NAN;  // unknown
+  return map;
+}
+
+void WriteBytes(const fs::path& path, const std::string& bytes) {
+  std::ofstream(path, std::ios::binary) << bytes;
+}
+
+TEST(DepthMapFile, RoundTripsDepthRangeViewAndConfidence) {
+  const fs::path dir = testing::MakeScratchDir("lfcam_depth_map");
+  const DepthMap map = Ramp(2, 5);
+  WriteDepthFiles(dir / "d.png", map);
+  ASSERT_TRUE(fs::exists(dir / "d.confidence.png"));
+  ASSERT_TRUE(fs::exists(dir / "d.preview.png"));
+  DepthMap back = ReadDepthPng(dir / "d.png");
+  ReadConfidencePng(dir / "d.confidence.png", back);
+  EXPECT_EQ(back.row, 2);
+  EXPECT_EQ(back.col, 5);
+  EXPECT_DOUBLE_EQ(back.range.near_mm, 3000);
+  EXPECT_DOUBLE_EQ(back.range.far_mm, 7000);
+  ASSERT_EQ(back.depth.size(), map.depth.size());
+  const double step = 4000.0 / 65534.0;  // one code
+  for (int l = 0; l < map.n_t(); ++l)
+    for (int k = 0; k < map.n_s(); ++k) {
+      const float a = map.depth.at<float>(l, k), b = back.depth.at<float>(l, k);
+      if (std::isnan(a)) {
+        EXPECT_TRUE(std::isnan(b));
+        continue;
+      }
+      ASSERT_NEAR(b, std::clamp(a, 3000.0f, 7000.0f), step) << k << "," << l;
+      ASSERT_NEAR(back.confidence.at<float>(l, k), map.confidence.at<float>(l, k), 0.5 / 255);
+    }
+  // On disk the map is upright: the top row of the PNG is the highest st row.
+  const cv::Mat raw = cv::imread((dir / "d.png").string(), cv::IMREAD_UNCHANGED);
+  ASSERT_EQ(raw.type(), CV_16UC1);
+  EXPECT_LT(raw.at<std::uint16_t>(0, 0), raw.at<std::uint16_t>(0, 1));             // deeper along k
+  EXPECT_GT(raw.at<std::uint16_t>(0, 0), raw.at<std::uint16_t>(raw.rows - 1, 0));  // and up l
+  // The preview is an RGB picture with a scale bar beside the map.
+  const cv::Mat preview = DepthPreview(map);
+  EXPECT_EQ(preview.type(), CV_8UC3);
+  EXPECT_EQ(preview.rows, map.n_t());
+  EXPECT_GT(preview.cols, map.n_s());
+}
+
+TEST(DepthMapFile, RefusesWhatIsNotADepthMapNamingTheFile) {
+  const fs::path dir = testing::MakeScratchDir("lfcam_depth_bad");
+  cv::imwrite((dir / "plain.png").string(), cv::Mat(8, 8, CV_16UC1, cv::Scalar(5)));
+  EXPECT_NE(testing::ErrorOf([&] { ReadDepthPng(dir / "plain.png"); }).find("plain.png"),
+            std::string::npos);
+  const std::string good = EncodeDepthPng(Ramp(0, 0));
+  WriteBytes(dir / "cut.png", good.substr(0, good.size() / 2));
+  EXPECT_NE(testing::ErrorOf([&] { ReadDepthPng(dir / "cut.png"); }).find("cut.png"),
+            std::string::npos);
+  WriteBytes(dir / "missing.png", "");
+  EXPECT_NE(testing::ErrorOf([&] { ReadDepthPng(dir / "nothere.png"); }), "");
+  // Metadata that lies about the range.
+  std::string bad = good;
+  const auto at = bad.find("\"far_mm\":7000");
+  ASSERT_NE(at, std::string::npos);
+  bad.replace(at, 13, "\"far_mm\":1000");  // same length: the CRC is now wrong, the text is read
+  WriteBytes(dir / "range.png", bad);
+  EXPECT_NE(testing::ErrorOf([&] { ReadDepthPng(dir / "range.png"); }), "");
+  DepthMap map = Ramp(0, 0);
+  EXPECT_NE(testing::ErrorOf([&] { ReadConfidencePng(dir / "plain.png", map); }), "");
+}
+
+TEST(DepthSetFolder, RoundTripsAndRefusesAnotherLightFieldsMaps) {
+  const fs::path dir = testing::MakeScratchDir("lfcam_depth_set");
+  const LightFieldDims dims{2, 3, 40, 30};
+  DepthSet set(dims);
+  set.set(Ramp(0, 0));
+  set.set(Ramp(1, 2));
+  EXPECT_EQ(set.count(), 2);
+  EXPECT_THROW(set.set(Ramp(0, 1, 41, 30)), Error);  // wrong size
+  EXPECT_THROW(set.set(Ramp(2, 0)), Error);          // outside the grid
+  WriteDepthSet(dir / "set", set, "test.lf");
+  Slab slab;
+  slab.uv.rows = 2;
+  slab.uv.cols = 3;
+  const LightField lf(dims, SampleType::kSrgb8, slab);
+  const DepthSet back = ReadDepthSet(dir / "set", lf);
+  EXPECT_EQ(back.count(), 2);
+  EXPECT_TRUE(back.has(1, 2));
+  EXPECT_FALSE(back.has(0, 1));
+  EXPECT_NEAR(back.at(1, 2).depth.at<float>(3, 4), 3000 + 400 + 21, 0.1);
+  EXPECT_THROW(back.at(0, 1), Error);
+  const LightField other({2, 3, 40, 31}, SampleType::kSrgb8, slab);
+  EXPECT_NE(testing::ErrorOf([&] { ReadDepthSet(dir / "set", other); }).find("depth.json"),
+            std::string::npos);
+  // A view file that escapes the folder is refused.
+  WriteBytes(dir / "set" / "depth.json",
+             R"({"format": "lfcam-depth-set", "version": 1, "rows": 2, "cols": 3, "n_s": 40,
+                 "n_t": 30, "views": [{"row": 0, "col": 0, "file": "../x.png"}]})");
+  EXPECT_NE(testing::ErrorOf([&] { ReadDepthSet(dir / "set", lf); }).find("plain name"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace lfcam

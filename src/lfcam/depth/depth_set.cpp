@@ -1,0 +1,166 @@
+#include "lfcam/depth/depth_set.h"
+
+#include <fmt/format.h>
+#include <tbb/parallel_for.h>
+
+#include <atomic>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "lfcam/core/atomic_file.h"
+#include "lfcam/core/error.h"
+#include "lfcam/core/input_file.h"
+#include "lfcam/core/json_input.h"
+#include "lfcam/core/limits.h"
+#include "lfcam/depth/plane_sweep.h"
+
+namespace lfcam {
+
+namespace fs = std::filesystem;
+
+const DepthMap& DepthSet::at(int row, int col) const {
+  if (row < 0 || row >= dims_.rows || col < 0 || col >= dims_.cols || !has(row, col))
+    throw Error(fmt::format("no depth map for view ({}, {})", row, col));
+  return *maps_[index(row, col)];
+}
+
+void DepthSet::set(DepthMap map) {
+  if (map.row < 0 || map.row >= dims_.rows || map.col < 0 || map.col >= dims_.cols)
+    throw Error(fmt::format("depth map of view ({}, {}) outside the {}x{} grid", map.row, map.col,
+                            dims_.rows, dims_.cols));
+  if (map.n_s() != dims_.n_s || map.n_t() != dims_.n_t)
+    throw Error(
+        fmt::format("depth map of view ({}, {}) is {}x{}; the light field's views are {}x{}",
+                    map.row, map.col, map.n_s(), map.n_t(), dims_.n_s, dims_.n_t));
+  const std::size_t i = index(map.row, map.col);
+  maps_[i] = std::move(map);
+}
+
+int DepthSet::count() const {
+  int n = 0;
+  for (const auto& m : maps_) n += m.has_value();
+  return n;
+}
+
+DepthRange DepthSet::range() const {
+  DepthRange r{INFINITY, 0};
+  for (const auto& m : maps_)
+    if (m) r = {std::min(r.near_mm, m->range.near_mm), std::max(r.far_mm, m->range.far_mm)};
+  return r.valid() ? r : DepthRange{};
+}
+
+void EstimateDepthSet(const LightField& lf, DepthSet& set,
+                      const std::function<bool(int, int)>& needed, const PlaneSweepOptions& options,
+                      const std::function<void(int, int)>& progress) {
+  const auto& d = lf.dims();
+  std::vector<std::pair<int, int>> todo;
+  for (int r = 0; r < d.rows; ++r)
+    for (int c = 0; c < d.cols; ++c)
+      if (!set.has(r, c) && needed(r, c)) todo.emplace_back(r, c);
+  if (todo.empty()) return;
+  PlaneSweepOptions o = options;
+  if (!o.range) {
+    o.range = set.count() > 0 ? set.range()
+                              : EstimateDepthRange(lf, (d.rows - 1) / 2, (d.cols - 1) / 2, o);
+  }
+  std::mutex mutex;
+  std::atomic<int> done{0};
+  tbb::parallel_for(std::size_t(0), todo.size(), [&](std::size_t i) {
+    DepthMap map = EstimateDepth(lf, todo[i].first, todo[i].second, o);
+    std::lock_guard lock(mutex);
+    set.set(std::move(map));
+    if (progress) progress(++done, int(todo.size()));
+  });
+}
+
+std::string DepthFileName(int row, int col) {
+  return fmt::format("depth_{:02d}_{:02d}.png", row, col);
+}
+
+void WriteDepthSet(const fs::path& dir, const DepthSet& set, const std::string& source_name) {
+  const auto& d = set.dims();
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) throw Error(fmt::format("{}: cannot create the folder ({})", dir.string(), ec.message()));
+  const DepthRange range = set.range();
+  nlohmann::json index = {{"format", "lfcam-depth-set"},
+                          {"version", 1},
+                          {"lightfield", source_name},
+                          {"rows", d.rows},
+                          {"cols", d.cols},
+                          {"n_s", d.n_s},
+                          {"n_t", d.n_t},
+                          {"near_mm", range.near_mm},
+                          {"far_mm", range.far_mm},
+                          {"views", nlohmann::json::array()}};
+  std::vector<std::unique_ptr<AtomicFileWriter>> writers;
+  const auto add = [&](const fs::path& p, const std::string& bytes) {
+    writers.push_back(std::make_unique<AtomicFileWriter>(p));
+    writers.back()->write(bytes.data(), bytes.size());
+  };
+  for (int r = 0; r < d.rows; ++r)
+    for (int c = 0; c < d.cols; ++c) {
+      if (!set.has(r, c)) continue;
+      DepthMap map = set.at(r, c);
+      map.range = range;  // one range for the set
+      const fs::path file = dir / DepthFileName(r, c);
+      add(file, EncodeDepthPng(map));
+      add(ConfidencePathFor(file), EncodeConfidencePng(map));
+      index["views"].push_back({{"row", r}, {"col", c}, {"file", file.filename().string()}});
+    }
+  const int cr = (d.rows - 1) / 2, cc = (d.cols - 1) / 2;
+  if (set.has(cr, cc)) {
+    cv::Mat bgr;
+    cv::cvtColor(DepthPreview(set.at(cr, cc)), bgr, cv::COLOR_RGB2BGR);
+    std::vector<std::uint8_t> png;
+    cv::imencode(".png", bgr, png);
+    add(dir / "preview.png", std::string(png.begin(), png.end()));
+  }
+  add(dir / "depth.json", index.dump(2) + "\n");
+  CommitAll(writers);
+}
+
+DepthSet ReadDepthSet(const fs::path& dir, const LightField& lf) {
+  const fs::path index_path = dir / "depth.json";
+  const std::string where = index_path.string();
+  const auto bytes = ReadFileBytes(index_path, kMaxJsonBytes, "depth set index");
+  const nlohmann::json index = ParseJsonBounded(
+      std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), where);
+  JsonFormatVersion(index, "lfcam-depth-set", 1, "depth set", where);
+  const auto& d = lf.dims();
+  const auto dim = [&](const char* key) {
+    return int(JsonInteger(index, key, 1, kMaxStSamplesPerSide, where));
+  };
+  const int rows = dim("rows"), cols = dim("cols"), n_s = dim("n_s"), n_t = dim("n_t");
+  if (rows != d.rows || cols != d.cols || n_s != d.n_s || n_t != d.n_t)
+    throw Error(
+        fmt::format("{}: made for a {}x{} grid of {}x{} views; this light field is {}x{} "
+                    "of {}x{}",
+                    where, rows, cols, n_s, n_t, d.rows, d.cols, d.n_s, d.n_t));
+  DepthSet set(d);
+  const nlohmann::json& views = JsonField(index, "views", where);
+  if (!views.is_array()) throw Error(fmt::format("{}: \"views\" must be an array", where));
+  for (std::size_t i = 0; i < views.size(); ++i) {
+    const std::string at = fmt::format("{}: views[{}]", where, i);
+    const std::string name = JsonString(views[i], "file", at);
+    if (name.empty() || name.find('/') != std::string::npos || name.starts_with("."))
+      throw Error(fmt::format("{}: file \"{}\" must be a plain name in the folder", at, name));
+    const int row = int(JsonInteger(views[i], "row", 0, d.rows - 1, at));
+    const int col = int(JsonInteger(views[i], "col", 0, d.cols - 1, at));
+    const fs::path file = dir / name;
+    DepthMap map = ReadDepthPng(file);
+    if (map.row != row || map.col != col)
+      throw Error(fmt::format("{}: holds view ({}, {}), the index says ({}, {})", file.string(),
+                              map.row, map.col, row, col));
+    if (map.n_s() != d.n_s || map.n_t() != d.n_t)
+      throw Error(fmt::format("{}: is {}x{}, the light field's views are {}x{}", file.string(),
+                              map.n_s(), map.n_t(), d.n_s, d.n_t));
+    if (fs::exists(ConfidencePathFor(file))) ReadConfidencePng(ConfidencePathFor(file), map);
+    set.set(std::move(map));
+  }
+  if (set.count() == 0) throw Error(fmt::format("{}: lists no views", where));
+  return set;
+}
+
+}  // namespace lfcam

@@ -1,0 +1,54 @@
+#pragma once
+// The depth maps of a light field's views, all in one depth range: what depth-aware rendering
+// reads (`lfcam render --interpolation depth --depth DIR`), written by `lfcam depth --all`.
+//
+// On disk, a folder: depth.json (format "lfcam-depth-set", version 1: the light field's grid
+// and st resolution, the range, one entry per view with its file) and per view
+// depth_RR_CC.png with depth_RR_CC.confidence.png (depth/depth_map.h's files), plus
+// preview.png, the central view's colour preview.
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <vector>
+
+#include "lfcam/core/lightfield.h"
+#include "lfcam/depth/depth_map.h"
+
+namespace lfcam {
+
+class DepthSet {
+ public:
+  DepthSet() = default;
+  explicit DepthSet(const LightFieldDims& dims) : dims_(dims), maps_(dims.view_count()) {}
+
+  const LightFieldDims& dims() const { return dims_; }
+  bool has(int row, int col) const { return maps_[index(row, col)].has_value(); }
+  const DepthMap& at(int row, int col) const;  // throws lfcam::Error when missing
+  void set(DepthMap map);                      // checks its shape against dims()
+  int count() const;                           // views with a map
+  // The union of the maps' ranges.
+  DepthRange range() const;
+
+ private:
+  std::size_t index(int row, int col) const { return std::size_t(row) * dims_.cols + col; }
+  LightFieldDims dims_;
+  std::vector<std::optional<DepthMap>> maps_;
+};
+
+// Fills in the views for which `needed(row, col)` is true and that have no map yet, by the
+// plane sweep (depth/plane_sweep.h) over one range (estimated once, from the central view,
+// when `range` is empty), in parallel. `progress` is told each view as it is done.
+struct PlaneSweepOptions;
+void EstimateDepthSet(const LightField& lf, DepthSet& set,
+                      const std::function<bool(int row, int col)>& needed,
+                      const PlaneSweepOptions& options,
+                      const std::function<void(int done, int total)>& progress = {});
+
+void WriteDepthSet(const std::filesystem::path& dir, const DepthSet& set,
+                   const std::string& source_name);
+// Reads a depth set for `lf`; throws lfcam::Error naming the file when it does not match.
+DepthSet ReadDepthSet(const std::filesystem::path& dir, const LightField& lf);
+
+std::string DepthFileName(int row, int col);  // depth_RR_CC.png
+
+}  // namespace lfcam

@@ -1,0 +1,42 @@
+#pragma once
+// Tests only: a small scene whose depths are easy to state, and its light field. A textured wall
+// 5 m from the array (D = 5000 mm) behind a textured plate at 3.2 m (D = 3200 mm) that hides
+// part of it, in front of the `paper` scene's rig (array at z = 3600, view window at z = 0), seen
+// by a 7 x 7 grid of 240 x 220 st samples. `turn_deg` turns the view window (the st-plane) about
+// the vertical: a slab whose planes are not parallel.
+#include <cmath>
+#include <memory>
+#include <numbers>
+
+#include "lfcam/sim/scene.h"
+#include "lfcam/sim/simulate_lightfield.h"
+
+namespace lfcam::testing {
+
+inline Scene TwoPlaneScene(double turn_deg = 0.0) {
+  Scene scene = MakePaperScene();
+  scene.name = "two planes";
+  scene.objects.clear();
+  const double a = turn_deg * std::numbers::pi / 180.0;
+  scene.rig.board.x_axis = Vec3(std::cos(a), 0.0, -std::sin(a));
+  scene.Add("wall",
+            std::make_shared<RectangleShape>(Vec3(300, 275, -1400), Vec3::UnitX(), Vec3::UnitY(),
+                                             1500, 1500),
+            Texture{Pattern::kNoise, {0.1, 0.15, 0.3}, {0.9, 0.8, 0.6}, 20, 3});
+  scene.Add(
+      "plate",
+      std::make_shared<RectangleShape>(Vec3(330, 250, 400), Vec3::UnitX(), Vec3::UnitY(), 110, 90),
+      Texture{Pattern::kNoise, {0.6, 0.1, 0.05}, {0.95, 0.9, 0.3}, 12, 9});
+  return scene;
+}
+
+inline LightField TwoPlaneLightField(const Scene& scene) {
+  SimulateLightFieldOptions o;
+  o.rows = o.cols = 7;
+  o.n_s = 240;
+  o.n_t = 220;
+  o.supersampling = 1;
+  return SimulateLightField(scene, o);
+}
+
+}  // namespace lfcam::testing

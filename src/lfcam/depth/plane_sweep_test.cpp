@@ -1,0 +1,99 @@
+#include "lfcam/depth/plane_sweep.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "lfcam/core/error.h"
+#include "lfcam/depth/depth_test_scene.h"
+#include "lfcam/sim/depth_truth.h"
+
+namespace lfcam {
+namespace {
+
+// The share of samples of `object` (not within `margin` samples of another object, nor of the
+// view's edge) whose estimated depth is within `tolerance` (relative) of the truth.
+double ShareWithin(const DepthTruth& truth, const DepthMap& estimate, int object, double tolerance,
+                   int margin = 3) {
+  int total = 0, good = 0;
+  const int w = truth.map.n_s(), h = truth.map.n_t();
+  for (int l = margin; l < h - margin; ++l)
+    for (int k = margin; k < w - margin; ++k) {
+      bool interior = true;
+      for (int dl = -margin; dl <= margin && interior; ++dl)
+        for (int dk = -margin; dk <= margin && interior; ++dk)
+          interior = truth.object.at<int>(l + dl, k + dk) == object;
+      if (!interior) continue;
+      ++total;
+      const double t = truth.map.depth.at<float>(l, k), e = estimate.depth.at<float>(l, k);
+      good += std::abs(e - t) <= tolerance * t;
+    }
+  EXPECT_GT(total, 100) << "object " << object;
+  return total > 0 ? double(good) / total : 0.0;
+}
+
+class PlaneSweep : public ::testing::TestWithParam<double> {};
+
+TEST_P(PlaneSweep, FindsTheDepthOfBothPlanesWhateverTheStPlanesTurn) {
+  const Scene scene = testing::TwoPlaneScene(GetParam());
+  const LightField lf = testing::TwoPlaneLightField(scene);
+  const DepthTruth truth = GroundTruthDepth(scene, lf, 3, 3);
+  // The range found by the coarse sweep holds both planes.
+  const DepthRange range = EstimateDepthRange(lf, 3, 3);
+  EXPECT_LT(range.near_mm, 3200.0);
+  EXPECT_GT(range.far_mm, 5000.0);
+  EXPECT_GT(range.near_mm, 1800.0);
+  EXPECT_LT(range.far_mm, 72000.0);
+  PlaneSweepOptions options;
+  options.reach = 3;
+  const DepthMap map = EstimateDepth(lf, 3, 3, options);
+  ASSERT_EQ(map.n_s(), 240);
+  ASSERT_EQ(map.n_t(), 220);
+  EXPECT_EQ(map.row, 3);
+  EXPECT_EQ(map.col, 3);
+  EXPECT_GE(ShareWithin(truth, map, 0, 0.01), 0.9);  // the wall (behind the st-plane)
+  EXPECT_GE(ShareWithin(truth, map, 1, 0.01), 0.9);  // the plate (in front of it)
+  // Confidence is high on the textured planes.
+  EXPECT_GT(cv::mean(map.confidence)[0], 0.35);
+}
+
+INSTANTIATE_TEST_SUITE_P(StPlane, PlaneSweep, ::testing::Values(0.0, 12.0));
+
+TEST(PlaneSweepConfidence, IsLowWhereThereIsNoTexture) {
+  Scene scene = testing::TwoPlaneScene();
+  scene.objects[0].texture = Texture{Pattern::kConstant, {0.5, 0.5, 0.5}, {0, 0, 0}, 1};
+  const LightField lf = testing::TwoPlaneLightField(scene);
+  const DepthTruth truth = GroundTruthDepth(scene, lf, 3, 3);
+  PlaneSweepOptions options;
+  options.range = DepthRange{2500, 8000};
+  options.reach = 2;
+  const DepthMap map = EstimateDepth(lf, 3, 3, options);
+  double flat = 0, textured = 0;
+  int n_flat = 0, n_textured = 0;
+  for (int l = 0; l < map.n_t(); ++l)
+    for (int k = 0; k < map.n_s(); ++k) {
+      const bool plate = truth.object.at<int>(l, k) == 1;
+      (plate ? textured : flat) += map.confidence.at<float>(l, k);
+      ++(plate ? n_textured : n_flat);
+    }
+  EXPECT_LT(flat / n_flat, 0.2);
+  EXPECT_GT(textured / n_textured, 0.3);
+}
+
+TEST(PlaneSweepInput, RefusesASingleViewAndAViewOutsideTheGrid) {
+  SimulateLightFieldOptions o;
+  o.rows = o.cols = 1;
+  o.n_s = o.n_t = 16;
+  o.supersampling = 1;
+  const LightField single = SimulateLightField(testing::TwoPlaneScene(), o);
+  EXPECT_THROW(EstimateDepth(single, 0, 0, {}), Error);
+  o.rows = o.cols = 2;
+  const LightField two = SimulateLightField(testing::TwoPlaneScene(), o);
+  EXPECT_THROW(EstimateDepth(two, 2, 0, {}), Error);
+  PlaneSweepOptions bad;
+  bad.range = DepthRange{5000, 3000};
+  EXPECT_THROW(EstimateDepth(two, 0, 0, bad), Error);
+}
+
+}  // namespace
+}  // namespace lfcam

@@ -1,0 +1,208 @@
+#include "lfcam/render/depth_aware_sampler.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "lfcam/core/error.h"
+#include "lfcam/depth/plane_sweep.h"
+
+namespace lfcam {
+
+DepthAwareSampler::DepthAwareSampler(const LightField& lf, const DepthSet& depth,
+                                     const LightFieldSampler& colour)
+    : colour_(colour),
+      slab_(lf.slab()),
+      rows_(lf.dims().rows),
+      cols_(lf.dims().cols),
+      n_s_(lf.dims().n_s),
+      n_t_(lf.dims().n_t) {
+  if (!(depth.dims() == lf.dims()))
+    throw Error("the depth maps were made for another light field (grid or st resolution differ)");
+  for (int r = 0; r < rows_; ++r)
+    for (int c = 0; c < cols_; ++c) {
+      Camera camera;
+      camera.center = lf.camera_center(r, c);
+      if (depth.has(r, c)) {
+        const cv::Mat& m = depth.at(r, c).depth;
+        camera.depth = m.ptr<float>(0);
+        camera.stride = m.step1();
+      }
+      cameras_.push_back(camera);
+    }
+  const DepthRange range = depth.range();
+  if (!range.valid()) throw Error("depth-aware rendering needs depth maps; none were given");
+  q_near_ = 1.1 / range.near_mm;
+  q_far_ = 0.9 / range.far_mm;
+  const double ds = slab_.st.width_mm * slab_.st_domain.s_extent() / n_s_;
+  const double dt = slab_.st.height_mm * slab_.st_domain.t_extent() / n_t_;
+  unit_q_ = std::min(ds, dt) / (slab_.separation_mm() * slab_.uv.pitch_mm);
+  st_origin_ = slab_.st.origin;
+  n_st_ = slab_.st.normal();
+  s_scaled_ = slab_.st.x_axis / slab_.st.width_mm;
+  t_scaled_ = slab_.st.y_axis / slab_.st.height_mm;
+  s0_ = slab_.st_domain.s0;
+  t0_ = slab_.st_domain.t0;
+  s_to_k_ = n_s_ / slab_.st_domain.s_extent();
+  t_to_l_ = n_t_ / slab_.st_domain.t_extent();
+}
+
+double DepthAwareSampler::tolerance(double q) const { return std::max(unit_q_, 0.015 * q); }
+
+bool DepthAwareSampler::Project(int c, const Vec3& p, double& k, double& l) const {
+  const Vec3& center = cameras_[std::size_t(c)].center;
+  const Vec3 d = p - center;
+  const double n_st = n_st_.dot(d);
+  if (n_st == 0.0) return false;
+  const Vec3 at = center + (n_st_.dot(st_origin_ - center) / n_st) * d - st_origin_;
+  k = (at.dot(s_scaled_) - s0_) * s_to_k_ - 0.5;
+  l = (at.dot(t_scaled_) - t0_) * t_to_l_ - 0.5;
+  return true;
+}
+
+float DepthAwareSampler::DepthAt(int c, double k, double l) const {
+  const Camera& camera = cameras_[std::size_t(c)];
+  if (!camera.depth) return NAN;
+  if (!(k >= -0.5 && k < n_s_ - 0.5 && l >= -0.5 && l < n_t_ - 0.5)) return NAN;
+  const int ki = std::clamp(int(std::lround(k)), 0, n_s_ - 1);
+  const int li = std::clamp(int(std::lround(l)), 0, n_t_ - 1);
+  return camera.depth[std::size_t(li) * camera.stride + std::size_t(ki)];
+}
+
+bool DepthAwareSampler::Read(int c, const Vec3& p, double q, float w, float acc[3]) const {
+  double k, l;
+  if (!Project(c, p, k, l)) return false;
+  // Camera c sees p when the sample nearest to p's projection has p's depth.
+  const float d = DepthAt(c, k, l);
+  if (!(std::isfinite(d) && d > 0.0f && std::abs(1.0 / d - q) <= tolerance(q))) return false;
+  if (acc) colour_.AccumulateAt(c / cols_, c % cols_, k, l, w, acc);
+  return true;
+}
+
+double DepthAwareSampler::March(int c, const Vec3& origin, const Vec3& direction) const {
+  const Vec3& n = slab_.uv.n_ca;
+  const double n_dir = n.dot(direction);
+  if (n_dir >= 0.0) return -1.0;  // the ray runs away from the scene
+  const double origin_depth = DepthOf(slab_, origin);
+  const auto point = [&](double q) {
+    return Vec3(origin + ((origin_depth - 1.0 / q) / n_dir) * direction);
+  };
+  // The range's part in front of the ray's origin.
+  const double q_a = std::min(q_near_, 1.0 / (std::max(origin_depth, 0.0) + 1.0)), q_b = q_far_;
+  if (!(q_a > q_b)) return -1.0;
+  double k_a, l_a, k_b, l_b;
+  if (!Project(c, point(q_a), k_a, l_a) || !Project(c, point(q_b), k_b, l_b)) return -1.0;
+  const double travel = std::hypot(k_b - k_a, l_b - l_a);
+  const int steps =
+      std::clamp(int(std::ceil(std::max(2.0 * travel, (q_a - q_b) / unit_q_))), 4, 2048);
+  bool have_previous = false;
+  double prev_q = 0, prev_g = 0, prev_qc = 0;
+  for (int i = 0; i <= steps; ++i) {
+    const double q = q_a + (q_b - q_a) * i / steps;
+    double k, l;
+    const float d = Project(c, point(q), k, l) ? DepthAt(c, k, l) : NAN;
+    if (!(std::isfinite(d) && d > 0.0f)) {
+      have_previous = false;
+      continue;
+    }
+    const double qc = 1.0 / d, g = q - qc;  // g > 0: the ray's point lies in front of the surface
+    if (have_previous) {
+      if (prev_g > 0.0 && g <= 0.0 && std::abs(qc - prev_qc) <= 2.0 * tolerance(q))
+        return prev_q + (q - prev_q) * prev_g / (prev_g - g);
+    } else if (std::abs(g) <= tolerance(q)) {
+      return q;  // the march starts on the surface (the edge of a view, or of known depth)
+    }
+    have_previous = true;
+    prev_q = q;
+    prev_g = g;
+    prev_qc = qc;
+  }
+  return -1.0;
+}
+
+bool DepthAwareSampler::Sample(const Vec3& origin, const Vec3& direction, float rgb[3]) const {
+  const auto c = slab_.intersect({origin, direction});
+  if (!c || !slab_.contains(*c)) return false;
+  const AxisLerp col = AxisLerp::At(c->u * cols_ - 0.5, cols_);
+  const AxisLerp row = AxisLerp::At(c->v * rows_ - 0.5, rows_);
+  struct Neighbour {
+    int index;
+    float weight;
+  };
+  Neighbour around[4];
+  int count = 0;
+  const int rs[2] = {row.i0, row.i1}, cs[2] = {col.i0, col.i1};
+  const float wr[2] = {1.0f - row.w1, row.w1}, wc[2] = {1.0f - col.w1, col.w1};
+  for (int a = 0; a < 2; ++a)
+    for (int b = 0; b < 2; ++b)
+      if (wr[a] * wc[b] > 0.0f) around[count++] = {rs[a] * cols_ + cs[b], wr[a] * wc[b]};
+
+  const double n_dir = slab_.uv.n_ca.dot(direction), origin_depth = DepthOf(slab_, origin);
+  const auto point = [&](double q) {
+    return Vec3(origin + ((origin_depth - 1.0 / q) / n_dir) * direction);
+  };
+  // Each camera's hit, put to all of them.
+  double best_q = -1.0;
+  float best_support = 0.0f;
+  for (int i = 0; i < count; ++i) {
+    const double q = March(around[i].index, origin, direction);
+    if (q <= 0.0) continue;
+    const Vec3 p = point(q);
+    float support = 0.0f;
+    for (int j = 0; j < count; ++j)
+      if (Read(around[j].index, p, q, 0.0f, nullptr)) support += around[j].weight;
+    if (support > best_support + 1e-6f || (support > best_support - 1e-6f && q > best_q)) {
+      best_support = support;
+      best_q = q;
+    }
+  }
+  if (best_q > 0.0) {
+    const Vec3 p = point(best_q);
+    float acc[3] = {0, 0, 0}, total = 0.0f;
+    for (int j = 0; j < count; ++j)
+      if (Read(around[j].index, p, best_q, around[j].weight, acc)) total += around[j].weight;
+    if (total > 0.0f) {
+      for (int ch = 0; ch < 3; ++ch) rgb[ch] = acc[ch] / total;
+      return true;
+    }
+  }
+  colour_.Fetch(c->u, c->v, c->s, c->t, rgb);  // no depth found: the paper's lookup
+  return true;
+}
+
+std::vector<bool> DepthViewsNeeded(const LightField& lf, const VirtualCamera& camera) {
+  const auto& d = lf.dims();
+  std::vector<bool> needed(d.view_count(), false);
+  const Slab& slab = lf.slab();
+  const auto mark = [&](const Vec3& origin, const Vec3& direction) {
+    const auto c = slab.intersect({origin, direction});
+    if (!c || !slab.contains(*c)) return;
+    const int col = int(std::floor(c->u * d.cols - 0.5)),
+              row = int(std::floor(c->v * d.rows - 0.5));
+    for (int r = row - 1; r <= row + 2; ++r)
+      for (int k = col - 1; k <= col + 2; ++k)
+        if (r >= 0 && r < d.rows && k >= 0 && k < d.cols)
+          needed[std::size_t(r) * d.cols + std::size_t(k)] = true;
+  };
+  std::vector<Vec3> lens;
+  for (const Vec2& disk : camera.lens_samples()) lens.push_back(camera.lens_point(disk));
+  const auto lattice = [](int n) {
+    std::vector<int> at;
+    for (int i = 0; i < n; i += 8) at.push_back(i);
+    if (at.back() != n - 1) at.push_back(n - 1);
+    return at;
+  };
+  for (int j : lattice(camera.height()))
+    for (int i : lattice(camera.width())) {
+      const Vec3 direction = camera.pixel_direction(i, j);
+      if (camera.is_pinhole()) {
+        mark(camera.e_c(), direction);
+        continue;
+      }
+      const Vec3 p_o = camera.focus_point(direction);
+      for (const Vec3& x : lens) mark(x, p_o - x);
+    }
+  return needed;
+}
+
+}  // namespace lfcam

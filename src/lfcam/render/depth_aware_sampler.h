@@ -1,0 +1,72 @@
+#pragma once
+// Depth-aware lookup (`--interpolation depth`): a ray is read from the cameras around where it
+// crosses the uv-plane, as the paper's lookup does, but each camera is read where the scene point
+// that the ray hits projects into it, found from the views' depth maps (depth/depth_set.h), and
+// a camera whose depth map disagrees with that point (it sees something in front of it) does not
+// contribute. Pinhole views between cameras then show no ghosts, and the lens samples of an
+// aperture each see the scene point they would really see, so the blur is right at every depth.
+//
+// Finding the point: each of the (up to four) cameras marches along the ray from the near end
+// of the depth range to the far end, in steps of inverse depth small enough that the point's
+// projection into that camera moves at most half a sample, and stops where the ray passes from
+// in front of the surface it sees to behind it without a jump in that surface's depth (a jump
+// means the ray passed behind an occluding edge). Each camera's hit is then put to the others:
+// the hit most of the cameras' weight agrees with wins (the nearest on a tie), and the cameras
+// that agree are blended with their bilinear weights renormalised. A ray no camera finds a hit
+// for falls back to the paper's lookup.
+#include <vector>
+
+#include "lfcam/core/lightfield.h"
+#include "lfcam/depth/depth_set.h"
+#include "lfcam/render/lightfield_sampler.h"
+#include "lfcam/render/virtual_camera.h"
+
+namespace lfcam {
+
+// The views a frame through `camera` can read (row-major): the cameras around where its rays
+// cross the uv-plane, traced for a lattice of pixels (every 8th, and the last row and column)
+// and every lens sample, grown by one camera each way. The depth maps to make for it.
+std::vector<bool> DepthViewsNeeded(const LightField& lf, const VirtualCamera& camera);
+
+class DepthAwareSampler {
+ public:
+  // `lf`, `depth` and `colour` must outlive the sampler; `depth` must hold a map for every
+  // camera a ray can be read from (DepthViewsNeeded).
+  DepthAwareSampler(const LightField& lf, const DepthSet& depth, const LightFieldSampler& colour);
+
+  // Radiance along the line (origin, direction); false when it misses the slab.
+  bool Sample(const Vec3& origin, const Vec3& direction, float rgb[3]) const;
+
+  // The inverse-depth tolerance of the occlusion test (1/mm) at inverse depth q.
+  double tolerance(double q) const;
+
+ private:
+  struct Camera {
+    const float* depth = nullptr;  // the view's map, row l, column k
+    std::size_t stride = 0;        // floats per row
+    Vec3 center;
+  };
+  // Continuous sample coordinates of world point p in camera c's view; false when its line runs
+  // parallel to the st-plane.
+  bool Project(int c, const Vec3& p, double& k, double& l) const;
+  // Camera c's depth (mm) at the nearest sample to (k, l); NaN outside the view or unknown.
+  float DepthAt(int c, double k, double l) const;
+  // Whether camera c sees point p (inverse depth q), not something in front of or behind it (the
+  // depth of the sample nearest to p's projection). If so, and `acc` is given, acc += w times
+  // the view read there bilinearly.
+  bool Read(int c, const Vec3& p, double q, float w, float acc[3]) const;
+  // The inverse depth where the ray (origin, direction) hits the surface camera c sees, or a
+  // negative number when it hits none.
+  double March(int c, const Vec3& origin, const Vec3& direction) const;
+
+  const LightFieldSampler& colour_;
+  const Slab& slab_;
+  int rows_, cols_, n_s_, n_t_;
+  std::vector<Camera> cameras_;  // row-major
+  double q_near_, q_far_;        // the depth range's ends, widened a little
+  double unit_q_;                // inverse depth that moves a point one sample between neighbours
+  Vec3 st_origin_, n_st_, s_scaled_, t_scaled_;
+  double s0_, t0_, s_to_k_, t_to_l_;
+};
+
+}  // namespace lfcam
