@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/ximgproc/edge_filter.hpp>
 #include <opencv2/ximgproc/weighted_median_filter.hpp>
@@ -273,8 +274,14 @@ void RefineEdges(const SweepSetup& setup, const SweepResult& sweep, int radius, 
   mask.convertTo(mask, CV_8U, 1.0 / 255.0);
   if (cv::countNonZero(mask) == 0) return;
   const cv::Mat filled = label.clone();
-  cv::ximgproc::weightedMedianFilter(guide, filled, label, radius, 25.5, cv::ximgproc::WMF_EXP,
-                                     mask);
+  {
+    // OpenCV 4.6's weighted median is not safe to run twice at once (two views' maps estimated
+    // in parallel crash in it): one at a time.
+    static std::mutex one_at_a_time;
+    std::lock_guard lock(one_at_a_time);
+    cv::ximgproc::weightedMedianFilter(guide, filled, label, radius, 25.5, cv::ximgproc::WMF_EXP,
+                                       mask);
+  }
   // Where the window held no confident sample the filter has nothing to say: keep the fill.
   cv::Mat near_confident;
   cv::boxFilter(mask, near_confident, CV_32F, {2 * radius + 1, 2 * radius + 1}, {-1, -1}, false);
