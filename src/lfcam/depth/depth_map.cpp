@@ -55,7 +55,7 @@ std::string InsertAfterHeader(const std::vector<std::uint8_t>& png, const std::s
 }
 
 // The tEXt chunks of a PNG, keyword -> text (malformed chunks end the walk).
-std::map<std::string, std::string> TextChunks(const std::vector<std::uint8_t>& png) {
+std::map<std::string, std::string> TextChunks(std::span<const std::uint8_t> png) {
   std::map<std::string, std::string> texts;
   std::size_t at = kPngSignatureBytes;
   while (at + 12 <= png.size()) {
@@ -126,13 +126,15 @@ std::string EncodeDepthPng(const DepthMap& map, const std::string& extra_json) {
 }
 
 DepthMap ReadDepthPng(const fs::path& path) {
-  const auto bytes = ReadFileBytes(path, kMaxEncodedImageBytes, "depth map");
+  return DecodeDepthPng(ReadFileBytes(path, kMaxEncodedImageBytes, "depth map"), path.string());
+}
+
+DepthMap DecodeDepthPng(std::span<const std::uint8_t> bytes, const std::string& where) {
   const auto texts = TextChunks(bytes);
   const auto it = texts.find(kTextKey);
   if (it == texts.end())
-    throw Error(fmt::format("{}: not an lfcam depth map (no \"{}\" text chunk in the PNG)",
-                            path.string(), kTextKey));
-  const std::string where = path.string();
+    throw Error(fmt::format("{}: not an lfcam depth map (no \"{}\" text chunk in the PNG)", where,
+                            kTextKey));
   const nlohmann::json meta = ParseJsonBounded(it->second, where + " (depth metadata)");
   DepthMap map;
   map.range = {JsonNumber(meta, "near_mm", where), JsonNumber(meta, "far_mm", where)};
@@ -142,11 +144,11 @@ DepthMap ReadDepthPng(const fs::path& path) {
   map.row = int(JsonInteger(view[0], "", 0, kMaxViewsPerSide - 1, where + ": view row"));
   map.col = int(JsonInteger(view[1], "", 0, kMaxViewsPerSide - 1, where + ": view col"));
   if (!map.range.valid())
-    throw Error(fmt::format("{}: invalid depth range {} .. {} mm", path.string(), map.range.near_mm,
+    throw Error(fmt::format("{}: invalid depth range {} .. {} mm", where, map.range.near_mm,
                             map.range.far_mm));
-  const cv::Mat coded = DecodeImageBytes(bytes, path.string());
+  const cv::Mat coded = DecodeImageBytes(bytes, where);
   if (coded.type() != CV_16UC1)
-    throw Error(fmt::format("{}: a depth map must be a 16-bit grey PNG", path.string()));
+    throw Error(fmt::format("{}: a depth map must be a 16-bit grey PNG", where));
   const double near = map.range.near_mm, span = map.range.far_mm - map.range.near_mm;
   map.depth.create(coded.size(), CV_32FC1);
   for (int l = 0; l < map.n_t(); ++l) {

@@ -15,8 +15,10 @@
 // view are in the PNG's text chunks (key "lfcam-depth", a JSON object; also the plain keys
 // "depth_near_mm" and "depth_far_mm" for other tools). Beside it: an 8-bit confidence PNG
 // (0 .. 255 for 0 .. 1) and a colour preview for people.
+#include <cstdint>
 #include <filesystem>
 #include <opencv2/core.hpp>
+#include <span>
 #include <string>
 
 namespace lfcam {
@@ -47,6 +49,8 @@ std::string EncodeDepthPng(const DepthMap& map, const std::string& extra_json = 
 // Reads a depth PNG written by EncodeDepthPng (the confidence is not read: ReadConfidencePng).
 // Throws lfcam::Error naming the file when it is not one.
 DepthMap ReadDepthPng(const std::filesystem::path& path);
+// The same from the file's bytes; `name` is for messages.
+DepthMap DecodeDepthPng(std::span<const std::uint8_t> bytes, const std::string& name);
 // The 8-bit confidence PNG's bytes, and reading it back into `map.confidence`.
 std::string EncodeConfidencePng(const DepthMap& map);
 void ReadConfidencePng(const std::filesystem::path& path, DepthMap& map);

@@ -41,7 +41,7 @@ double LinearPsnr(const cv::Mat& a, const cv::Mat& b) {
   return 10.0 * std::log10(1.0 / std::max(mse, 1e-30));
 }
 
-struct Case {
+struct IntegratorCase {
   const char* name;
   Vec3 eye, look_at;
   double focal_length, focus_distance, aperture;
@@ -53,11 +53,13 @@ struct Case {
 // away from the array's normal (its footprint taken as the disk of the same area), breathing
 // on and off.
 TEST(CameraIntegrator, IsTheLimitOfLensSamplesWithTheFocalPlaneLookup) {
-  for (const Case& c : {
-           Case{"on the array", {300, 275, 3600}, {300, 275, 0}, 500, 3900, 192, true},
-           Case{"behind", {300, 275, 4600}, {300, 275, 0}, 400, 4700, 192, true},
-           Case{"in front, no breathing", {250, 300, 3000}, {250, 300, 0}, 300, 3400, 96, false},
-           Case{"turned 2.8 degrees", {300, 275, 3600}, {450, 200, 0}, 500, 4000, 192, true},
+  for (const IntegratorCase& c : {
+           IntegratorCase{"on the array", {300, 275, 3600}, {300, 275, 0}, 500, 3900, 192, true},
+           IntegratorCase{"behind", {300, 275, 4600}, {300, 275, 0}, 400, 4700, 192, true},
+           IntegratorCase{
+               "in front, no breathing", {250, 300, 3000}, {250, 300, 0}, 300, 3400, 96, false},
+           IntegratorCase{
+               "turned 2.8 degrees", {300, 275, 3600}, {450, 200, 0}, 500, 4000, 192, true},
        }) {
     SCOPED_TRACE(c.name);
     VirtualCameraParams p;

@@ -47,12 +47,13 @@ TEST(DepthHeldOut, TheShopsLeftOutViewsRenderFromTheRest) {
   // World x is the name's second number, y minus its first (docs/format.md): column 12 is at
   // x = 30.77 mm, row 12 at y = -30.77 mm.
   const double pitch = 800.0 / 26.0;
-  struct Case {
+  struct LeftOut {
     int row, col;
     double x, y;
     int nearest_row, nearest_col;
   };
-  for (const Case& c : {Case{13, 12, pitch, 0.0, 13, 11}, Case{12, 12, pitch, -pitch, 13, 13}}) {
+  for (const LeftOut& c :
+       {LeftOut{13, 12, pitch, 0.0, 13, 11}, LeftOut{12, 12, pitch, -pitch, 13, 13}}) {
     const std::string camera = fmt::format(
         "--eye {},{},8628 --look-at {},{},0 --focal-length 46.6667 --no-breathing --size 480x320 "
         "--quiet",

@@ -1,0 +1,86 @@
+// `lfcam depth`, `render --interpolation depth --depth` and `simulate lightfield --depth-out` as a
+// user runs them: the files, --json, and the refusals (exit 2 for usage, 1 for bad input, with
+// nothing written).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "lfcam/cli/cli_test_support.h"
+#include "lfcam/core/test_support.h"
+
+namespace lfcam {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::Lfcam;
+
+class DepthCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = testing::MakeScratchDir("lfcam_depth_cli");
+    const auto run = Lfcam(
+        "simulate lightfield --grid 3x3 --st-res 64x56 --supersampling 1 "
+        "--quiet --out " +
+        P("p.lf") + " --depth-out " + P("truth"));
+    ASSERT_EQ(run.status, 0) << run.output;
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string P(const std::string& name) const { return (dir_ / name).string(); }
+  fs::path dir_;
+};
+
+TEST_F(DepthCli, WritesAMapItsConfidenceAndPreviewAndAFolderForRendering) {
+  auto run = Lfcam("depth " + P("p.lf") + " --out " + P("d.png") + " --json");
+  ASSERT_EQ(run.status, 0) << run.output;
+  const auto j = nlohmann::json::parse(run.output);
+  EXPECT_EQ(j["map"]["view"], nlohmann::json({1, 1}));
+  EXPECT_EQ(j["map"]["n_s"], 64);
+  EXPECT_TRUE(fs::exists(P("d.png")) && fs::exists(P("d.confidence.png")) &&
+              fs::exists(P("d.preview.png")));
+  run = Lfcam("depth " + P("p.lf") + " --all --quiet --out " + P("set"));
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_TRUE(fs::exists(P("set/depth.json")) && fs::exists(P("set/depth_02_02.png")));
+  // The set renders, as do the simulator's true maps, and without maps they are estimated.
+  for (const std::string& maps :
+       {" --depth " + P("set"), " --depth " + P("truth"), std::string()}) {
+    run = Lfcam("render " + P("p.lf") + " --size 48 --interpolation depth --quiet --out " +
+                P("r.png") + maps);
+    ASSERT_EQ(run.status, 0) << run.output;
+    EXPECT_NE(run.output.find("depth lookup"), std::string::npos) << run.output;
+  }
+}
+
+TEST_F(DepthCli, RefusesBadFlagsAndBadMapsWritingNothing) {
+  const auto refused = [&](const std::string& args, int status, const std::string& names) {
+    const auto run = Lfcam(args);
+    EXPECT_EQ(run.status, status) << args << "\n" << run.output;
+    EXPECT_NE(run.output.find(names), std::string::npos) << args << "\n" << run.output;
+  };
+  refused("depth " + P("p.lf") + " --out " + P("x.png") + " --view 3,0", 2, "--view");
+  refused("depth " + P("p.lf") + " --out " + P("x.png") + " --view 1.5,0", 2, "--view");
+  refused("depth " + P("p.lf") + " --out " + P("x.png") + " --depth-range 5000,3000", 2,
+          "--depth-range");
+  refused("depth " + P("p.lf") + " --out " + P("x.jpg"), 2, "--out");
+  refused("depth " + P("p.lf") + " --out " + P("x.png") + " --all --view 1,1", 2, "--view");
+  refused("depth " + P("p.lf") + " --all --out " + P("truth"), 2, "not an empty folder");
+  refused("render " + P("p.lf") + " --out " + P("r.png") + " --depth " + P("truth"), 2, "--depth");
+  refused("render " + P("p.lf") + " --out " + P("r.png") +
+              " --interpolation depth "
+              "--integrator cameras",
+          2, "lens-samples");
+  refused("render " + P("p.lf") + " --out " + P("r.png") + " --interpolation depth --depth " +
+              P("nothere"),
+          1, "depth.json");
+  // A damaged map is named; no image is written.
+  std::ofstream(P("truth/depth_01_01.png"), std::ios::trunc) << "not a png";
+  refused("render " + P("p.lf") + " --out " + P("r.png") + " --interpolation depth --depth " +
+              P("truth"),
+          1, "depth_01_01.png");
+  EXPECT_FALSE(fs::exists(P("r.png")));
+  EXPECT_FALSE(fs::exists(P("x.png")));
+}
+
+}  // namespace
+}  // namespace lfcam
