@@ -42,9 +42,10 @@ TEST_F(DepthCli, WritesAMapItsConfidenceAndPreviewAndAFolderForRendering) {
   run = Lfcam("depth " + P("p.lf") + " --all --quiet --out " + P("set"));
   ASSERT_EQ(run.status, 0) << run.output;
   EXPECT_TRUE(fs::exists(P("set/depth.json")) && fs::exists(P("set/depth_02_02.png")));
-  // The set renders, as do the simulator's true maps, and without maps they are estimated.
-  for (const std::string& maps :
-       {" --depth " + P("set"), " --depth " + P("truth"), std::string()}) {
+  // The set renders (through an aperture too), as do the simulator's true maps, and without
+  // maps they are estimated.
+  for (const std::string& maps : {" --depth " + P("set") + " --aperture 40 --antialias",
+                                  " --depth " + P("truth"), std::string()}) {
     run = Lfcam("render " + P("p.lf") + " --size 48 --interpolation depth --quiet --out " +
                 P("r.png") + maps);
     ASSERT_EQ(run.status, 0) << run.output;
