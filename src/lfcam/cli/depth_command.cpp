@@ -82,11 +82,8 @@ void AddDepthCommand(CLI::App& app) {
       if (!options.range->valid())
         throw UsageError(fmt::format("--depth-range {}: needs 0 < NEAR < FAR (mm)", f->range));
     }
-    std::error_code ec;
     if (f->all) {
-      if (std::filesystem::exists(f->out, ec) &&
-          (!std::filesystem::is_directory(f->out, ec) || !std::filesystem::is_empty(f->out, ec)))
-        throw UsageError(fmt::format("--out {}: exists and is not an empty folder", f->out));
+      RequireNewOrEmptyFolder("--out", f->out);
     } else {
       if (std::filesystem::path(f->out).extension() != ".png")
         throw UsageError(fmt::format("--out {}: a depth map is a .png", f->out));

@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "lfcam/cli/commands.h"
+#include "lfcam/cli/parse.h"
 #include "lfcam/core/error.h"
 #include "lfcam/core/lightfield_file.h"
 #include "lfcam/io/lightfield_export.h"
@@ -23,10 +24,7 @@ void AddExportCommand(CLI::App& app) {
   command->add_option("--out", f->out, "The folder to write (new or empty)")->required();
   command->callback([f] {
     const ExportFormat format = ExportFormatFromString(f->format);
-    std::error_code ec;
-    if (std::filesystem::exists(f->out, ec) &&
-        (!std::filesystem::is_directory(f->out, ec) || !std::filesystem::is_empty(f->out, ec)))
-      throw UsageError(fmt::format("--out {}: exists and is not an empty folder", f->out));
+    RequireNewOrEmptyFolder("--out", f->out);
     const LightField lf = ReadLightField(f->input);
     const ExportReport report = ExportLightField(lf, format, f->out);
     fmt::print("wrote {} views and their cameras to {} ({})\n", report.views, f->out,

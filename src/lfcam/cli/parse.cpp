@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <filesystem>
 
 #include "lfcam/core/error.h"
 #include "lfcam/core/limits.h"
@@ -61,6 +62,13 @@ StDomain ParseStDomain(const std::string& flag, const std::string& text) {
       throw UsageError(
           fmt::format("{}: {} is outside -{}..{}", flag, x, kMaxStDomainBound, kMaxStDomainBound));
   return {d[0], d[1], d[2], d[3]};
+}
+
+void RequireNewOrEmptyFolder(const std::string& flag, const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec) &&
+      (!std::filesystem::is_directory(path, ec) || !std::filesystem::is_empty(path, ec)))
+    throw UsageError(fmt::format("{} {}: exists and is not an empty folder", flag, path));
 }
 
 Compression ParseCompression(const std::string& flag, const std::string& text) {

@@ -104,12 +104,7 @@ void AddSimulateCommand(CLI::App& app) {
     if (!flags->centers_from.empty())
       o.camera_centers = ReadCameraCenters(flags->centers_from, rows, cols);
     RequireWritableOutput(flags->out, "--out");
-    std::error_code ec;
-    if (!flags->depth_out.empty() && std::filesystem::exists(flags->depth_out, ec) &&
-        (!std::filesystem::is_directory(flags->depth_out, ec) ||
-         !std::filesystem::is_empty(flags->depth_out, ec)))
-      throw UsageError(
-          fmt::format("--depth-out {}: exists and is not an empty folder", flags->depth_out));
+    if (!flags->depth_out.empty()) RequireNewOrEmptyFolder("--depth-out", flags->depth_out);
     const double bytes =
         double(rows) * cols * o.n_s * o.n_t * 3 * double(BytesPerChannel(o.sample_type));
     FlagValue(fmt::format("--grid {} --st-res {}", flags->grid, flags->st_res),

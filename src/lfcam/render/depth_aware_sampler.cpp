@@ -37,27 +37,12 @@ DepthAwareSampler::DepthAwareSampler(const LightField& lf, const DepthSet& depth
   const double ds = slab_.st.width_mm * slab_.st_domain.s_extent() / n_s_;
   const double dt = slab_.st.height_mm * slab_.st_domain.t_extent() / n_t_;
   unit_q_ = std::min(ds, dt) / (slab_.separation_mm() * slab_.uv.pitch_mm);
-  st_origin_ = slab_.st.origin;
-  n_st_ = slab_.st.normal();
-  s_scaled_ = slab_.st.x_axis / slab_.st.width_mm;
-  t_scaled_ = slab_.st.y_axis / slab_.st.height_mm;
-  s0_ = slab_.st_domain.s0;
-  t0_ = slab_.st_domain.t0;
-  s_to_k_ = n_s_ / slab_.st_domain.s_extent();
-  t_to_l_ = n_t_ / slab_.st_domain.t_extent();
 }
 
 double DepthAwareSampler::tolerance(double q) const { return std::max(unit_q_, 0.015 * q); }
 
 bool DepthAwareSampler::Project(int c, const Vec3& p, double& k, double& l) const {
-  const Vec3& center = cameras_[std::size_t(c)].center;
-  const Vec3 d = p - center;
-  const double n_st = n_st_.dot(d);
-  if (n_st == 0.0) return false;
-  const Vec3 at = center + (n_st_.dot(st_origin_ - center) / n_st) * d - st_origin_;
-  k = (at.dot(s_scaled_) - s0_) * s_to_k_ - 0.5;
-  l = (at.dot(t_scaled_) - t0_) * t_to_l_ - 0.5;
-  return true;
+  return colour_.StSampleAt(cameras_[std::size_t(c)].center, p, k, l);
 }
 
 float DepthAwareSampler::DepthAt(int c, double k, double l) const {

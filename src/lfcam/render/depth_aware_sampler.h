@@ -65,8 +65,6 @@ class DepthAwareSampler {
   std::vector<Camera> cameras_;  // row-major
   double q_near_, q_far_;        // the depth range's ends, widened a little
   double unit_q_;                // inverse depth that moves a point one sample between neighbours
-  Vec3 st_origin_, n_st_, s_scaled_, t_scaled_;
-  double s0_, t0_, s_to_k_, t_to_l_;
 };
 
 }  // namespace lfcam

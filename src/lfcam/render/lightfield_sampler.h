@@ -111,17 +111,24 @@ class LightFieldSampler {
     AccumulateView(row, col, AxisLerp::At(k, n_s_), AxisLerp::At(l, n_t_), w, acc);
   }
 
+  // Where the line from `from` through `to` meets the st-plane, in continuous sample coordinates
+  // (k, l) (sample centres at integers, not clamped); false when it runs parallel to the plane.
+  bool StSampleAt(const Vec3& from, const Vec3& to, double& k, double& l) const {
+    const Vec3 d = to - from;
+    const double n_st = n_st_.dot(d);
+    if (n_st == 0.0) return false;
+    const Vec3 at_st = from + (n_st_.dot(st_origin_ - from) / n_st) * d - st_origin_;
+    k = (at_st.dot(s_scaled_) - s0_) * s_to_k_ - 0.5;
+    l = (at_st.dot(t_scaled_) - t0_) * t_to_l_ - 0.5;
+    return true;
+  }
+
   // acc += w * camera (row, col) read where its own ray toward p_o meets the st-plane
   // (bilinearly, clamped to the sampled domain).
   void AccumulateFocused(int row, int col, const Vec3& p_o, float w, float acc[3]) const {
-    const Vec3& center = camera_centers_[std::size_t(row) * cols_ + col];
-    const Vec3 d = p_o - center;
-    const double n_st = n_st_.dot(d);
-    if (n_st == 0.0) return;
-    const Vec3 at_st = center + (n_st_.dot(st_origin_ - center) / n_st) * d - st_origin_;
-    const AxisLerp k = AxisLerp::At((at_st.dot(s_scaled_) - s0_) * s_to_k_ - 0.5, n_s_);
-    const AxisLerp l = AxisLerp::At((at_st.dot(t_scaled_) - t0_) * t_to_l_ - 0.5, n_t_);
-    AccumulateView(row, col, k, l, w, acc);
+    double k, l;
+    if (!StSampleAt(camera_centers_[std::size_t(row) * cols_ + col], p_o, k, l)) return;
+    AccumulateAt(row, col, k, l, w, acc);
   }
 
  private:

@@ -163,7 +163,27 @@ TEST_F(Viewer, AccumulatesCostlyLensSampleFramesToWhatRenderWrites) {
   std::cout << run.output << "accumulated against render --camera: " << same.dump() << "\n";
 }
 
-TEST_F(Viewer, OffersTheDepthLookupWithDepthMapsAndItsScreenshotRendersAgainOffline) {
+// Without the suite's paper.lf: a small array of its own.
+class ViewerWithDepth : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (!HaveXvfb()) {
+      if (Required()) FAIL() << "LFCAM_REQUIRE_GL=1 but xvfb-run is not installed";
+      GTEST_SKIP() << "xvfb-run is not installed: the viewer needs a (virtual) screen";
+    }
+    dir_ = fs::temp_directory_path() / ("lfcam_viewer_depth_" + std::to_string(::getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string Path(const std::string& name) const { return (dir_ / name).string(); }
+  void Write(const std::string& name, const std::string& text) const {
+    std::ofstream(Path(name)) << text;
+  }
+  fs::path dir_;
+};
+
+TEST_F(ViewerWithDepth, OffersTheDepthLookupAndItsScreenshotRendersAgainOffline) {
   // A small array with the simulator's true depth maps (what `lfcam depth --all` estimates).
   const CommandResult made = Lfcam(
       "simulate lightfield --scene paper --grid 4x4 --st-res 156x144 --supersampling 1 --quiet "
