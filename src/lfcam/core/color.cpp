@@ -30,14 +30,17 @@ const std::array<float, 256>& SrgbDecodeTable() {
   return table;
 }
 
-std::uint8_t LinearToSrgb8Table(float linear) {
+const std::array<std::uint8_t, 65536>& LinearToSrgb8EncodeTable() {
   static const std::array<std::uint8_t, 65536> table = [] {
     std::array<std::uint8_t, 65536> t{};
     for (int i = 0; i < 65536; ++i) t[std::size_t(i)] = LinearToSrgb8(float(i) / 65535.0f);
     return t;
   }();
-  const float x = linear > 0.0f ? std::min(linear, 1.0f) : 0.0f;  // NaN -> 0
-  return table[std::size_t(x * 65535.0f + 0.5f)];
+  return table;
+}
+
+std::uint8_t LinearToSrgb8Table(float linear) {
+  return LinearToSrgb8With(LinearToSrgb8EncodeTable(), linear);
 }
 
 }  // namespace lfcam

@@ -2,6 +2,7 @@
 // sRGB <-> linear light. Every average lfcam takes (supersampling, resampling, the lens
 // integral) is taken in linear light; 8-bit values are sRGB-encoded.
 #include <array>
+#include <cstddef>
 #include <cstdint>
 
 namespace lfcam {
@@ -16,5 +17,13 @@ const std::array<float, 256>& SrgbDecodeTable();
 // Encoding through a table of 2^16 steps of linear light: LinearToSrgb8 to within one code
 // (exact except where the value lies within 1/131070 of a rounding boundary), for bulk work.
 std::uint8_t LinearToSrgb8Table(float linear);
+
+// The table behind LinearToSrgb8Table, for loops that encode many values with
+// LinearToSrgb8With (the same result, without a call per value).
+const std::array<std::uint8_t, 65536>& LinearToSrgb8EncodeTable();
+inline std::uint8_t LinearToSrgb8With(const std::array<std::uint8_t, 65536>& table, float linear) {
+  const float x = linear > 0.0f ? (linear < 1.0f ? linear : 1.0f) : 0.0f;  // NaN -> 0
+  return table[static_cast<std::size_t>(x * 65535.0f + 0.5f)];
+}
 
 }  // namespace lfcam

@@ -1,5 +1,7 @@
 #include "lfcam/sim/board_radiance.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 #include <memory>
@@ -75,6 +77,63 @@ PixelRadiance BoardInFrontOf(const BoardSpec& board, const Rigid3& world_from_bo
     if (on_board < 1) out += (1 - on_board) * background();
     return out;
   };
+}
+
+PixelRuns BoardFootprintRuns(const BoardSpec& board, const Rigid3& world_from_board,
+                             const SimulatedModule& module, const cv::Mat& directions,
+                             const BoardAppearance& look) {
+  const int width = directions.cols, height = directions.rows;
+  const Rigid3 board_from_world = world_from_board.inverse();
+  const Vec3 o = board_from_world * module.world_from_camera.translation;
+  const Mat3& r = board_from_world.rotation;
+  // Where the ray through a pixel's centre meets the board's plane (z = 0), if in front.
+  auto hit = [&](int x, int y, Vec2* at) {
+    const cv::Vec3f w = directions.at<cv::Vec3f>(y, x);
+    const Vec3 d = r * Vec3(w[0], w[1], w[2]);
+    if (std::abs(d.z()) < 1e-12) return false;
+    const double t = -o.z() / d.z();
+    if (!(t > 0)) return false;
+    *at = Vec2(o.x() + t * d.x(), o.y() + t * d.y());
+    return true;
+  };
+  const double margin = look.margin_squares * board.square_mm;
+  const double bx0 = -margin, bx1 = board.width_mm() + margin;
+  const double by0 = -margin, by1 = board.height_mm() + margin;
+  constexpr int kStep = 8;
+  PixelRuns runs(std::size_t(height), cv::Vec2i(0, 0));
+  tbb::parallel_for(0, height, [&](int y) {
+    const int y_next = y + 1 < height ? y + 1 : y - 1;
+    int begin = width, end = 0;
+    int a = 0;
+    Vec2 ha = Vec2::Zero(), va = Vec2::Zero();
+    bool a_ok = hit(a, y, &ha) && hit(a, y_next, &va);
+    while (a < width - 1) {
+      const int b = std::min(a + kStep, width - 1);
+      Vec2 hb = Vec2::Zero(), vb = Vec2::Zero();
+      const bool b_ok = hit(b, y, &hb) && hit(b, y_next, &vb);
+      // Where the board's plane is behind the camera at one end only, its horizon crosses the
+      // stretch: kept. Behind at both ends, the board is out of sight there.
+      bool keep = a_ok != b_ok;
+      if (a_ok && b_ok) {
+        // The pixels from a to b lie along the chord from ha to hb; their footprints reach no
+        // farther than a pixel's step along the row and down the column.
+        const double grow = (hb - ha).norm() + (va - ha).norm() + (vb - hb).norm();
+        keep = std::min(ha.x(), hb.x()) - grow < bx1 && std::max(ha.x(), hb.x()) + grow > bx0 &&
+               std::min(ha.y(), hb.y()) - grow < by1 && std::max(ha.y(), hb.y()) + grow > by0;
+      }
+      if (keep) {
+        begin = std::min(begin, a);
+        end = std::max(end, b + 1);
+      }
+      a = b;
+      ha = hb;
+      va = vb;
+      a_ok = b_ok;
+    }
+    if (width == 1) begin = 0, end = 1;
+    runs[std::size_t(y)] = begin < end ? cv::Vec2i(begin, end) : cv::Vec2i(0, 0);
+  });
+  return runs;
 }
 
 PixelRadiance SceneRadiance(const Scene& scene, int n) {

@@ -24,6 +24,14 @@ double BlackAreaFraction(const BoardSpec& board, double x0, double x1, double y0
 PixelRadiance BoardInFrontOf(const BoardSpec& board, const Rigid3& world_from_board,
                              const Scene& scene, const BoardAppearance& appearance = {});
 
+// The pixels of `module` whose footprint may reach `board` (with its margin) at
+// `world_from_board`, a run of columns a row: outside them BoardInFrontOf gives what stands
+// behind. Conservative: the rays of every 8th pixel are traced and each stretch between two is
+// kept when the board, grown by the stretch's extent on its plane, meets it.
+PixelRuns BoardFootprintRuns(const BoardSpec& board, const Rigid3& world_from_board,
+                             const SimulatedModule& module, const cv::Mat& directions,
+                             const BoardAppearance& appearance = {});
+
 // Pixel radiance of `scene` alone, supersampled n x n over the pixel footprint.
 PixelRadiance SceneRadiance(const Scene& scene, int supersampling);
 

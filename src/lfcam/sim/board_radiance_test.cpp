@@ -2,7 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <numbers>
 #include <random>
+
+#include "lfcam/sim/scene.h"
 
 namespace lfcam {
 namespace {
@@ -36,6 +39,59 @@ TEST(BoardRadiance, BlackAreaIsTheExactShareUnderTheFootprint) {
   EXPECT_NEAR(BlackAreaFraction(b, 31, 32, 1, 2), 0.0, 1e-12);
   // Outside the squared area: the white margin.
   EXPECT_NEAR(BlackAreaFraction(b, -20, -10, 5, 10), 0.0, 1e-12);
+}
+
+// A 320 x 240 module with a wide lens's distortion, 1 m from the world origin, looking down -z.
+SimulatedModule DistortedModule() {
+  SimulatedModule m;
+  m.intrinsics = NominalPiCamera(320, 240);
+  m.intrinsics.distortion = {0.1, -0.2, 0.0005, -0.0007, 0.06};
+  m.world_from_camera = {WorldFromCameraRotation(Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()),
+                         Vec3(0, 0, 1000)};
+  return m;
+}
+
+// A board turned by `tilt` degrees about y and `roll` about z, its centre at `center`.
+Rigid3 BoardPose(const BoardSpec& b, double tilt, double roll, const Vec3& center) {
+  const double degree = std::numbers::pi / 180;
+  const Mat3 r = (Eigen::AngleAxisd(roll * degree, Vec3::UnitZ()) *
+                  Eigen::AngleAxisd(tilt * degree, Vec3::UnitY()))
+                     .toRotationMatrix();
+  return {r, center - r * Vec3(0.5 * b.width_mm(), 0.5 * b.height_mm(), 0)};
+}
+
+TEST(BoardRadiance, FootprintRunsHoldEveryPixelTheBoardChanges) {
+  const SimulatedModule module = DistortedModule();
+  const cv::Mat directions = ModuleRayDirections(module);
+  const Scene scene = MakePaperScene();
+  const cv::Mat behind = RenderRadiance(module, directions, SceneRadiance(scene, 1));
+  const BoardSpec board{10, 7, 30.0};
+  struct Case {
+    const char* what;
+    Rigid3 pose;
+    double min_share, max_share;  // of the image's pixels inside the runs
+  };
+  const Case cases[] = {
+      {"head-on, in the middle", BoardPose(board, 0, 0, Vec3(0, 0, 0)), 0.05, 0.6},
+      {"tilted and rolled, off-centre", BoardPose(board, 35, 20, Vec3(150, -80, 100)), 0.05, 0.7},
+      {"partly out of view", BoardPose(board, -20, 5, Vec3(480, 250, 0)), 0.01, 0.5},
+      {"filling the view", BoardPose(board, 0, 0, Vec3(0, 0, 700)), 0.99, 1.0},
+      {"behind the camera", BoardPose(board, 0, 0, Vec3(0, 0, 1500)), 0.0, 0.0},
+  };
+  for (const Case& c : cases) {
+    const PixelRadiance radiance = BoardInFrontOf(board, c.pose, scene);
+    const PixelRuns runs = BoardFootprintRuns(board, c.pose, module, directions);
+    ASSERT_EQ(int(runs.size()), module.intrinsics.height) << c.what;
+    const cv::Mat everywhere = RenderRadiance(module, directions, radiance, &behind);
+    const cv::Mat in_runs = RenderRadiance(module, directions, radiance, &behind, &runs);
+    // Not one pixel differs: every pixel outside the runs is exactly what stands behind.
+    EXPECT_EQ(cv::norm(everywhere, in_runs, cv::NORM_INF), 0.0) << c.what;
+    double inside = 0;
+    for (const cv::Vec2i& run : runs) inside += std::max(0, run[1] - run[0]);
+    const double share = inside / double(module.intrinsics.width * module.intrinsics.height);
+    EXPECT_GE(share, c.min_share) << c.what;
+    EXPECT_LE(share, c.max_share) << c.what;
+  }
 }
 
 }  // namespace

@@ -106,92 +106,128 @@ Vec3 ToVec3(const cv::Vec3f& v) { return {v[0], v[1], v[2]}; }
 class NoiseSource {
  public:
   explicit NoiseSource(std::uint64_t seed) : state_(seed) {}
-  double Gaussian() {
+  float Gaussian() {
     std::uint64_t z = (state_ += 0x9E3779B97F4A7C15ull);
     z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
     z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
     z ^= z >> 31;
-    const double sum = double(z & 0xFFFF) + double((z >> 16) & 0xFFFF) +
-                       double((z >> 32) & 0xFFFF) + double(z >> 48);
+    const auto sum = float(std::uint32_t(z & 0xFFFF) + std::uint32_t((z >> 16) & 0xFFFF) +
+                           std::uint32_t((z >> 32) & 0xFFFF) + std::uint32_t(z >> 48));
     // Four uniforms on [0, 1): mean 2, variance 1/3.
-    return (sum / 65536.0 - 2.0) * 1.7320508075688772;
+    return (sum * (1.0f / 65536.0f) - 2.0f) * 1.7320508f;
   }
 
  private:
   std::uint64_t state_;
 };
 
-// Calls f(x, y, ray, dx, dy) for every pixel, rows in parallel.
-template <typename F>
-void ForEachPixelRay(const SimulatedModule& module, const cv::Mat& directions, F&& f) {
+void RequireModuleImage(const SimulatedModule& module, const cv::Mat& image, const char* what) {
   const CameraIntrinsics& c = module.intrinsics;
-  if (directions.rows != c.height || directions.cols != c.width || directions.type() != CV_32FC3)
-    throw Error("the direction map does not match the module");
+  if (image.rows != c.height || image.cols != c.width || image.type() != CV_32FC3)
+    throw Error(fmt::format("the {} does not match the module", what));
+}
+
+}  // namespace
+
+cv::Mat RenderRadiance(const SimulatedModule& module, const cv::Mat& directions,
+                       const PixelRadiance& radiance, const cv::Mat* behind,
+                       const PixelRuns* runs) {
+  const CameraIntrinsics& c = module.intrinsics;
+  RequireModuleImage(module, directions, "direction map");
+  if (behind) RequireModuleImage(module, *behind, "background image");
+  if (runs && (!behind || int(runs->size()) != c.height))
+    throw Error("pixel runs need a background image and one run per row");
+  cv::Mat out = behind ? behind->clone() : cv::Mat(c.height, c.width, CV_32FC3);
   const Vec3 origin = module.world_from_camera.translation;
   tbb::parallel_for(tbb::blocked_range<int>(0, c.height, 8), [&](const auto& rows) {
     for (int y = rows.begin(); y != rows.end(); ++y) {
       const auto* d = directions.ptr<cv::Vec3f>(y);
       const auto* d_down = directions.ptr<cv::Vec3f>(y + 1 < c.height ? y + 1 : y - 1);
       const double dy_sign = y + 1 < c.height ? 1.0 : -1.0;
-      for (int x = 0; x < c.width; ++x) {
+      auto* o = out.ptr<cv::Vec3f>(y);
+      const int begin = runs ? std::max(0, (*runs)[std::size_t(y)][0]) : 0;
+      const int end = runs ? std::min(c.width, (*runs)[std::size_t(y)][1]) : c.width;
+      for (int x = begin; x < end; ++x) {
+        // The ray through the pixel's centre, and its change one pixel right and down.
         const Vec3 dir = ToVec3(d[x]);
         const int xn = x + 1 < c.width ? x + 1 : x - 1;
         const Vec3 dx = (ToVec3(d[xn]) - dir) * (x + 1 < c.width ? 1.0 : -1.0);
         const Vec3 dy = (ToVec3(d_down[x]) - dir) * dy_sign;
-        f(x, y, Ray{origin, dir}, dx, dy);
+        Vec3 back;
+        if (behind) back = ToVec3(o[x]);
+        const Vec3 v = radiance(Ray{origin, dir}, dx, dy, behind ? &back : nullptr);
+        o[x] = cv::Vec3f(float(v.x()), float(v.y()), float(v.z()));
       }
     }
   });
+  return out;
 }
+
+namespace {
+
+// What the sensor does to one row of radiance, with everything it needs held by value: the
+// byte stores may alias anything reached through a pointer, so nothing is reloaded per pixel.
+struct SensorRow {
+  int width = 0, height = 0;
+  float half_diagonal2 = 1, v0 = 0, v1 = 0;
+  float gain[3] = {1, 1, 1};
+  bool noisy = false;
+  float full_well = 1, read_variance = 0;
+  std::uint64_t seed = 0;
+  const std::array<std::uint8_t, 65536>* table = nullptr;
+
+  void operator()(int y, const float* in, std::uint8_t* out) const {
+    // One noise stream per row, so rows may run in any order and on any thread.
+    NoiseSource noise(seed * 0xD1B54A32D192ED03ull + std::uint64_t(y) * 0x9FB21C65ull);
+    const float py = float(y) - 0.5f * float(height - 1);
+    for (int x = 0; x < width; ++x) {
+      const float px = float(x) - 0.5f * float(width - 1);
+      const float rho2 = (px * px + py * py) / half_diagonal2;
+      const float falloff = 1.0f + rho2 * (v0 + rho2 * v1);
+      for (int ch = 0; ch < 3; ++ch) {
+        float v = in[3 * x + ch] * gain[ch] * falloff;
+        if (noisy) {
+          const float electrons = std::max(0.0f, v) * full_well;
+          const float sigma = std::sqrt(electrons + read_variance);
+          v = (electrons + sigma * noise.Gaussian()) / full_well;
+        }
+        out[3 * x + ch] = LinearToSrgb8With(*table, v);
+      }
+    }
+  }
+};
 
 }  // namespace
 
-cv::Mat RenderRadiance(const SimulatedModule& module, const cv::Mat& directions,
-                       const PixelRadiance& radiance) {
-  cv::Mat out(module.intrinsics.height, module.intrinsics.width, CV_32FC3);
-  ForEachPixelRay(module, directions,
-                  [&](int x, int y, const Ray& ray, const Vec3& dx, const Vec3& dy) {
-                    const Vec3 v = radiance(ray, dx, dy, nullptr);
-                    out.at<cv::Vec3f>(y, x) = cv::Vec3f(float(v.x()), float(v.y()), float(v.z()));
-                  });
-  return out;
+cv::Mat ExposeRadiance(const SimulatedModule& module, const cv::Mat& radiance,
+                       const ExposureOptions& options) {
+  const CameraIntrinsics& c = module.intrinsics;
+  RequireModuleImage(module, radiance, "radiance image");
+  SensorRow sensor;
+  sensor.width = c.width;
+  sensor.height = c.height;
+  sensor.half_diagonal2 = float(0.25 * (double(c.width) * c.width + double(c.height) * c.height));
+  sensor.v0 = float(module.photometry.vignetting[0]);
+  sensor.v1 = float(module.photometry.vignetting[1]);
+  for (int ch = 0; ch < 3; ++ch) sensor.gain[ch] = float(module.photometry.gain[ch]);
+  sensor.noisy = options.noise;
+  sensor.full_well = float(options.full_well);
+  sensor.read_variance = float(options.read_noise * options.read_noise);
+  sensor.seed = options.noise_seed;
+  sensor.table = &LinearToSrgb8EncodeTable();
+  cv::Mat image(c.height, c.width, CV_8UC3);
+  tbb::parallel_for(tbb::blocked_range<int>(0, c.height, 8), [&](const auto& rows) {
+    const SensorRow row = sensor;
+    for (int y = rows.begin(); y != rows.end(); ++y)
+      row(y, radiance.ptr<float>(y), image.ptr<std::uint8_t>(y));
+  });
+  return image;
 }
 
 cv::Mat ExposeModule(const SimulatedModule& module, const cv::Mat& directions,
                      const PixelRadiance& radiance, const ExposureOptions& options,
                      const cv::Mat* behind) {
-  const CameraIntrinsics& c = module.intrinsics;
-  if (behind && (behind->rows != c.height || behind->cols != c.width || behind->type() != CV_32FC3))
-    throw Error("the background image does not match the module");
-  const double half_diagonal2 = 0.25 * (double(c.width) * c.width + double(c.height) * c.height);
-  cv::Mat image(c.height, c.width, CV_8UC3);
-  ForEachPixelRay(
-      module, directions, [&](int x, int y, const Ray& ray, const Vec3& dx, const Vec3& dy) {
-        // One noise stream per pixel, so rows may run in any order and on any thread.
-        NoiseSource noise(options.noise_seed * 0xD1B54A32D192ED03ull +
-                          std::uint64_t(y) * std::uint64_t(c.width) + std::uint64_t(x));
-        Vec3 back;
-        if (behind) {
-          const cv::Vec3f b = behind->at<cv::Vec3f>(y, x);
-          back = Vec3(b[0], b[1], b[2]);
-        }
-        Vec3 value = radiance(ray, dx, dy, behind ? &back : nullptr);
-        const double px = x - 0.5 * (c.width - 1), py = y - 0.5 * (c.height - 1);
-        const double falloff = module.photometry.falloff((px * px + py * py) / half_diagonal2);
-        value = value.cwiseProduct(module.photometry.gain) * falloff;
-        cv::Vec3b encoded;
-        for (int ch = 0; ch < 3; ++ch) {
-          double v = value[ch];
-          if (options.noise) {
-            const double electrons = std::max(0.0, v) * options.full_well;
-            const double sigma = std::sqrt(electrons + options.read_noise * options.read_noise);
-            v = (electrons + sigma * noise.Gaussian()) / options.full_well;
-          }
-          encoded[ch] = LinearToSrgb8Table(float(v));
-        }
-        image.at<cv::Vec3b>(y, x) = encoded;
-      });
-  return image;
+  return ExposeRadiance(module, RenderRadiance(module, directions, radiance, behind), options);
 }
 
 }  // namespace lfcam

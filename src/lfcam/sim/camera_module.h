@@ -64,15 +64,28 @@ struct ExposureOptions {
 // computed once per module and shared by all its shots.
 cv::Mat ModuleRayDirections(const SimulatedModule& module);
 
-// The module's image, 8-bit sRGB RGB (CV_8UC3, row 0 at the top), with its photometry and noise.
-// `directions` is ModuleRayDirections(module). Rows are rendered in parallel.
-// `behind` (optional, CV_32FC3 linear, the module's size) is passed on to `radiance` per pixel.
+// For each image row, the columns [begin, end) where a radiance may differ from what stands
+// behind it (begin >= end: none). A shot that changes only part of the image (a board) renders
+// only there.
+using PixelRuns = std::vector<cv::Vec2i>;
+
+// The radiance each pixel sees, linear (CV_32FC3), without photometry or noise. `directions` is
+// ModuleRayDirections(module); rows are rendered in parallel. With `behind` (CV_32FC3, the
+// module's size), each pixel's value there is passed on to `radiance`; with `runs` too, pixels
+// outside them take `behind` as it is and `radiance` is not called for them.
+cv::Mat RenderRadiance(const SimulatedModule& module, const cv::Mat& directions,
+                       const PixelRadiance& radiance, const cv::Mat* behind = nullptr,
+                       const PixelRuns* runs = nullptr);
+
+// What the sensor records of `radiance` (CV_32FC3 linear, the module's size): the module's
+// photometry, shot and read noise, 8-bit sRGB RGB (CV_8UC3, row 0 at the top). Rows in parallel;
+// the noise is the same whatever the threads (one stream per row, from options.noise_seed).
+cv::Mat ExposeRadiance(const SimulatedModule& module, const cv::Mat& radiance,
+                       const ExposureOptions& options);
+
+// RenderRadiance, then ExposeRadiance.
 cv::Mat ExposeModule(const SimulatedModule& module, const cv::Mat& directions,
                      const PixelRadiance& radiance, const ExposureOptions& options,
                      const cv::Mat* behind = nullptr);
-
-// The radiance each pixel sees, linear (CV_32FC3), without photometry or noise.
-cv::Mat RenderRadiance(const SimulatedModule& module, const cv::Mat& directions,
-                       const PixelRadiance& radiance);
 
 }  // namespace lfcam

@@ -125,15 +125,21 @@ SimulatedArray::SimulatedArray(const Scene& scene, const CaptureSimulationOption
                    scene.rig.board_square_mm},
       modules_(MakeModules(array_, o.sensor_width, o.sensor_height, o.defects, o.seed)),
       board_poses_(IntrinsicsBoardPoses(array_, o.intrinsics_board, o.intrinsics_shots, o.seed)) {
+  auto board_plan = [&scene](ShotKind kind, std::string name, std::string dir,
+                             const BoardSpec& board, const Rigid3& world_from_board) {
+    return ShotPlan{kind, std::move(name), std::move(dir),
+                    BoardInFrontOf(board, world_from_board, scene),
+                    [board, world_from_board](const SimulatedModule& m, const cv::Mat& directions) {
+                      return BoardFootprintRuns(board, world_from_board, m, directions);
+                    }};
+  };
   for (int k = 0; k < o.intrinsics_shots; ++k)
-    plans_.push_back({ShotKind::kIntrinsics, fmt::format("shot_{:02d}", k),
-                      fmt::format("calib/intrinsics/shot_{:02d}", k),
-                      BoardInFrontOf(o.intrinsics_board, board_poses_[std::size_t(k)], scene)});
+    plans_.push_back(board_plan(ShotKind::kIntrinsics, fmt::format("shot_{:02d}", k),
+                                fmt::format("calib/intrinsics/shot_{:02d}", k), o.intrinsics_board,
+                                board_poses_[std::size_t(k)]));
   // The world frame is the world board's: it stands at the identity.
-  plans_.push_back(
-      {ShotKind::kWorld, "world", "calib/world", BoardInFrontOf(world_board_, Rigid3{}, scene)});
-  plans_.push_back(
-      {ShotKind::kScene, "scene", "scene", SceneRadiance(scene, o.scene_supersampling)});
+  plans_.push_back(board_plan(ShotKind::kWorld, "world", "calib/world", world_board_, Rigid3{}));
+  plans_.push_back({ShotKind::kScene, "scene", "scene", {}, {}});
 }
 
 std::optional<std::size_t> SimulatedArray::module_at(int row, int col) const {
@@ -152,14 +158,18 @@ cv::Mat SimulatedArray::Expose(std::size_t index, std::size_t s, ModuleCache& ca
   const SimulatedModule& m = modules_.at(index);
   const ShotPlan& plan = plans_.at(s);
   if (cache.directions.empty()) cache.directions = ModuleRayDirections(m);
-  // What stands behind the boards: the same for every board shot of this module.
-  if (plan.kind != ShotKind::kScene && cache.behind.empty())
-    cache.behind = RenderRadiance(m, cache.directions, SceneRadiance(scene_, 1));
+  if (cache.scene.empty())
+    cache.scene =
+        RenderRadiance(m, cache.directions, SceneRadiance(scene_, options_.scene_supersampling));
   ExposureOptions exposure;
   exposure.noise = options_.noise;
   exposure.noise_seed = options_.seed * 1000003ull + index * 131ull + s;
-  return ExposeModule(m, cache.directions, plan.radiance, exposure,
-                      plan.kind == ShotKind::kScene ? nullptr : &cache.behind);
+  if (!plan.radiance) return ExposeRadiance(m, cache.scene, exposure);
+  const PixelRuns runs = plan.runs ? plan.runs(m, cache.directions) : PixelRuns{};
+  return ExposeRadiance(
+      m,
+      RenderRadiance(m, cache.directions, plan.radiance, &cache.scene, plan.runs ? &runs : nullptr),
+      exposure);
 }
 
 CaptureSimulationResult SimulateCapture(const Scene& scene, const CaptureSimulationOptions& o,

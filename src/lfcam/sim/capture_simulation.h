@@ -53,11 +53,15 @@ class SimulatedArray {
   struct ShotPlan {
     ShotKind kind;
     std::string name, dir;  // "shot_03", "calib/intrinsics/shot_03"
+    // What stands before the scene (a board), or empty: the scene alone.
     PixelRadiance radiance;
+    // Where `radiance` may differ from the scene (empty: everywhere).
+    std::function<PixelRuns(const SimulatedModule&, const cv::Mat& directions)> runs;
   };
-  // What a module computes once and shares between its shots.
+  // What a module computes once and shares between its shots: its rays, and the scene's
+  // radiance (supersampled), which the scene shot records and the boards stand before.
   struct ModuleCache {
-    cv::Mat directions, behind;
+    cv::Mat directions, scene;
   };
 
   // `scene` must outlive the array.
