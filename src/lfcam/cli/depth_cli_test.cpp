@@ -53,6 +53,30 @@ TEST_F(DepthCli, WritesAMapItsConfidenceAndPreviewAndAFolderForRendering) {
   }
 }
 
+TEST_F(DepthCli, ExportsColmapPointsFromTheMaps) {
+  auto run = Lfcam("export " + P("p.lf") + " --format colmap --out " + P("colmap") + " --depth " +
+                   P("truth"));
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("points from the depth maps of 9 views"), std::string::npos)
+      << run.output;
+  std::ifstream points(P("colmap/sparse/0/points3D.txt"));
+  int lines = 0;
+  for (std::string line; std::getline(points, line);) lines += !line.empty() && line[0] != '#';
+  EXPECT_GT(lines, 50);
+  // Depth goes with COLMAP only, and must be this light field's.
+  run =
+      Lfcam("export " + P("p.lf") + " --format nerf --out " + P("nerf") + " --depth " + P("truth"));
+  EXPECT_EQ(run.status, 2) << run.output;
+  EXPECT_NE(run.output.find("--depth"), std::string::npos) << run.output;
+  run = Lfcam("simulate lightfield --grid 3x3 --st-res 32x28 --supersampling 1 --quiet --out " +
+              P("small.lf"));
+  ASSERT_EQ(run.status, 0) << run.output;
+  run = Lfcam("export " + P("small.lf") + " --format colmap --out " + P("colmap2") + " --depth " +
+              P("truth"));
+  EXPECT_EQ(run.status, 1) << run.output;
+  EXPECT_FALSE(fs::exists(P("nerf")) || fs::exists(P("colmap2")));
+}
+
 TEST_F(DepthCli, RefusesBadFlagsAndBadMapsWritingNothing) {
   const auto refused = [&](const std::string& args, int status, const std::string& names) {
     const auto run = Lfcam(args);

@@ -1,8 +1,10 @@
-// `lfcam export FILE --format png-views|nerf|colmap --out DIR`: a light field's views and
-// cameras for other tools (docs/format.md, "Exporting").
+// `lfcam export FILE --format png-views|nerf|colmap --out DIR [--depth DIR]`: a light field's
+// views and cameras for other tools (docs/format.md, "Exporting"); COLMAP's points from depth
+// maps (`lfcam depth --all`).
 #include <fmt/core.h>
 
 #include <memory>
+#include <optional>
 
 #include "lfcam/cli/commands.h"
 #include "lfcam/cli/parse.h"
@@ -16,19 +18,29 @@ void AddExportCommand(CLI::App& app) {
   auto* command = app.add_subcommand(
       "export", "Export the views and their cameras: PNGs, NeRF transforms.json or COLMAP");
   struct Flags {
-    std::string input, format, out;
+    std::string input, format, out, depth;
   };
   auto f = std::make_shared<Flags>();
   command->add_option("lightfield", f->input, "Light field file (.lf)")->required();
   command->add_option("--format", f->format, "png-views, nerf or colmap")->required();
   command->add_option("--out", f->out, "The folder to write (new or empty)")->required();
+  command->add_option("--depth", f->depth,
+                      "Depth maps of the light field (`lfcam depth --all`): COLMAP's "
+                      "points3D.txt gets points and tracks from them (--format colmap)");
   command->callback([f] {
     const ExportFormat format = ExportFormatFromString(f->format);
+    if (!f->depth.empty() && format != ExportFormat::kColmap)
+      throw UsageError("--depth goes with --format colmap (its points3D.txt)");
     RequireNewOrEmptyFolder("--out", f->out);
     const LightField lf = ReadLightField(f->input);
-    const ExportReport report = ExportLightField(lf, format, f->out);
+    std::optional<DepthSet> depth;
+    if (!f->depth.empty()) depth = ReadDepthSet(f->depth, lf);
+    const ExportReport report = ExportLightField(lf, format, f->out, depth ? &*depth : nullptr);
     fmt::print("wrote {} views and their cameras to {} ({})\n", report.views, f->out,
                report.main_file.string());
+    if (depth)
+      fmt::print("  {} points from the depth maps of {} views, seen {} times in all\n",
+                 report.points, depth->count(), report.observations);
   });
 }
 

@@ -11,6 +11,7 @@
 #include "lfcam/core/error.h"
 #include "lfcam/core/image_io.h"
 #include "lfcam/core/json_input.h"
+#include "lfcam/io/sparse_points.h"
 
 namespace lfcam {
 
@@ -91,7 +92,12 @@ ViewCamera ViewAsCamera(const LightField& lf, int row, int col) {
   return v;
 }
 
-ExportReport ExportLightField(const LightField& lf, ExportFormat format, const fs::path& out_dir) {
+ExportReport ExportLightField(const LightField& lf, ExportFormat format, const fs::path& out_dir,
+                              const DepthSet* depth) {
+  if (depth && format != ExportFormat::kColmap)
+    throw Error("depth maps are exported only as COLMAP's points (--format colmap)");
+  if (depth && !(depth->dims() == lf.dims()))
+    throw Error("the depth maps are not of this light field (another grid or st resolution)");
   const fs::path out = out_dir.has_filename() ? out_dir : out_dir.parent_path();
   std::error_code ec;
   if (fs::exists(out, ec) && (!fs::is_directory(out, ec) || !fs::is_empty(out, ec)))
@@ -128,6 +134,7 @@ ExportReport ExportLightField(const LightField& lf, ExportFormat format, const f
     for (double t : {lf.slab().st_domain.t0, lf.slab().st_domain.t1})
       reach_m = std::max(reach_m, (lf.slab().st.point_at(s, t) - centroid).norm() / 1000.0);
 
+  const SparsePoints points = depth ? PointsFromDepth(lf, *depth) : SparsePoints{};
   int id = 0;
   for (int r = 0; r < d.rows; ++r)
     for (int c = 0; c < d.cols; ++c) {
@@ -167,8 +174,17 @@ ExportReport ExportLightField(const LightField& lf, ExportFormat format, const f
       cameras_txt += fmt::format("{} PINHOLE {} {} {:.17g} {:.17g} {:.17g} {:.17g}\n", id, v.width,
                                  v.height, v.fx, v.fy, v.cx + 0.5, v.cy + 0.5);
       images_txt +=
-          fmt::format("{} {:.17g} {:.17g} {:.17g} {:.17g} {:.17g} {:.17g} {:.17g} {} {}\n\n", id,
+          fmt::format("{} {:.17g} {:.17g} {:.17g} {:.17g} {:.17g} {:.17g} {:.17g} {} {}\n", id,
                       q.w(), q.x(), q.y(), q.z(), t.x(), t.y(), t.z(), id, name);
+      // Its points: X, Y, POINT3D_ID (ids from 1).
+      if (depth) {
+        std::string line;
+        for (const SparseObservation& o : points.observations[std::size_t(id - 1)])
+          line += fmt::format("{}{:.3f} {:.3f} {}", line.empty() ? "" : " ", o.x, o.y, o.point + 1);
+        images_txt += line;
+        report.observations += points.observations[std::size_t(id - 1)].size();
+      }
+      images_txt += "\n";
     }
   report.views = id;
 
@@ -212,10 +228,22 @@ ExportReport ExportLightField(const LightField& lf, ExportFormat format, const f
     WriteText(staging / "sparse/0/cameras.txt",
               cameras_txt + fmt::format("# Number of cameras: {}\n", id));
     WriteText(staging / "sparse/0/images.txt", images_txt);
-    WriteText(staging / "sparse/0/points3D.txt",
-              "# 3D point list with one line of data per point:\n"
-              "#   POINT3D_ID, X, Y, Z, R, G, B, ERROR, TRACK[] as (IMAGE_ID, POINT2D_IDX)\n"
-              "# Number of points: 0\n");
+    std::string points_txt = fmt::format(
+        "# 3D point list with one line of data per point:\n"
+        "#   POINT3D_ID, X, Y, Z, R, G, B, ERROR, TRACK[] as (IMAGE_ID, POINT2D_IDX)\n"
+        "# Number of points: {}\n",
+        points.points.size());
+    for (std::size_t i = 0; i < points.points.size(); ++i) {
+      const SparsePoint& p = points.points[i];
+      // The error is 0: the poses are known, not estimated from these points.
+      points_txt += fmt::format("{} {:.4f} {:.4f} {:.4f} {} {} {} 0", i + 1, p.position_mm.x(),
+                                p.position_mm.y(), p.position_mm.z(), p.rgb[0], p.rgb[1], p.rgb[2]);
+      for (const auto& [view, index] : p.track)
+        points_txt += fmt::format(" {} {}", view + 1, index);
+      points_txt += "\n";
+    }
+    report.points = int(points.points.size());
+    WriteText(staging / "sparse/0/points3D.txt", points_txt);
   }
   if (fs::exists(out, ec)) fs::remove(out, ec);
   fs::rename(staging, out, ec);

@@ -7,12 +7,14 @@
 //   nerf       transforms.json (instant-ngp / nerfstudio: camera-to-world, OpenGL axes, metres)
 //              and images/;
 //   colmap     sparse/0/{cameras,images,points3D}.txt (COLMAP's text model: PINHOLE cameras,
-//              world-to-camera poses, millimetres; no points) and images/.
+//              world-to-camera poses, millimetres; points and their tracks from depth maps when
+//              given, io/sparse_points.h, else none) and images/.
 #include <filesystem>
 #include <string>
 
 #include "lfcam/core/geometry.h"
 #include "lfcam/core/lightfield.h"
+#include "lfcam/depth/depth_set.h"
 
 namespace lfcam {
 
@@ -30,12 +32,16 @@ ViewCamera ViewAsCamera(const LightField& lf, int row, int col);
 
 struct ExportReport {
   int views = 0;
+  int points = 0;  // COLMAP's 3D points
+  std::size_t observations = 0;
   std::filesystem::path main_file;  // cameras.json, transforms.json or sparse/0/images.txt
 };
 
 // Writes into `out_dir` (created; must be empty if it exists). Everything is written into a
-// sibling temporary folder renamed into place at the end. Throws lfcam::Error.
+// sibling temporary folder renamed into place at the end. `depth` (COLMAP only) gives
+// points3D.txt its points. Throws lfcam::Error.
 ExportReport ExportLightField(const LightField& lf, ExportFormat format,
-                              const std::filesystem::path& out_dir);
+                              const std::filesystem::path& out_dir,
+                              const DepthSet* depth = nullptr);
 
 }  // namespace lfcam

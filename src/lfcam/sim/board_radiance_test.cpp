@@ -66,19 +66,19 @@ TEST(BoardRadiance, FootprintRunsHoldEveryPixelTheBoardChanges) {
   const Scene scene = MakePaperScene();
   const cv::Mat behind = RenderRadiance(module, directions, SceneRadiance(scene, 1));
   const BoardSpec board{10, 7, 30.0};
-  struct Case {
+  struct BoardCase {
     const char* what;
     Rigid3 pose;
     double min_share, max_share;  // of the image's pixels inside the runs
   };
-  const Case cases[] = {
+  const BoardCase cases[] = {
       {"head-on, in the middle", BoardPose(board, 0, 0, Vec3(0, 0, 0)), 0.05, 0.6},
       {"tilted and rolled, off-centre", BoardPose(board, 35, 20, Vec3(150, -80, 100)), 0.05, 0.7},
       {"partly out of view", BoardPose(board, -20, 5, Vec3(480, 250, 0)), 0.01, 0.5},
       {"filling the view", BoardPose(board, 0, 0, Vec3(0, 0, 700)), 0.99, 1.0},
       {"behind the camera", BoardPose(board, 0, 0, Vec3(0, 0, 1500)), 0.0, 0.0},
   };
-  for (const Case& c : cases) {
+  for (const BoardCase& c : cases) {
     const PixelRadiance radiance = BoardInFrontOf(board, c.pose, scene);
     const PixelRuns runs = BoardFootprintRuns(board, c.pose, module, directions);
     ASSERT_EQ(int(runs.size()), module.intrinsics.height) << c.what;
