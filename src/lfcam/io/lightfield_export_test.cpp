@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "lfcam/core/error.h"
+#include "lfcam/io/colmap_text_test_support.h"
 #include "lfcam/render/render_test_cases.h"
 
 namespace lfcam {
@@ -129,54 +130,22 @@ TEST_P(Export, ColmapTextModelReadsBackInTheDocumentedFieldOrder) {
   const fs::path dir = Dir("colmap");
   fs::remove_all(dir);
   ExportLightField(lf, ExportFormat::kColmap, dir);
-  // cameras.txt: CAMERA_ID MODEL WIDTH HEIGHT fx fy cx cy (PINHOLE).
-  std::map<int, std::array<double, 4>> cameras;
-  std::ifstream cams(dir / "sparse/0/cameras.txt");
-  for (std::string line; std::getline(cams, line);) {
-    if (line.empty() || line[0] == '#') continue;
-    std::istringstream s(line);
-    int id, w, h;
-    std::string model;
-    std::array<double, 4> p;
-    s >> id >> model >> w >> h >> p[0] >> p[1] >> p[2] >> p[3];
-    EXPECT_EQ(model, "PINHOLE");
-    EXPECT_EQ(w, lf.dims().n_s);
-    cameras[id] = p;
+  const auto cameras = testing::ReadColmapCameras(dir / "sparse/0/cameras.txt");
+  for (const auto& [id, camera] : cameras) {
+    EXPECT_EQ(camera.model, "PINHOLE");
+    EXPECT_EQ(camera.width, lf.dims().n_s);
   }
-  // images.txt: IMAGE_ID QW QX QY QZ TX TY TZ CAMERA_ID NAME, then a line of 2D points.
-  struct Image {
-    Mat3 r;
-    Vec3 t;
-    int camera;
-    std::string name;
-  };
-  std::vector<Image> images;
-  std::ifstream imgs(dir / "sparse/0/images.txt");
-  bool points_line = false;
-  for (std::string line; std::getline(imgs, line);) {
-    if (!line.empty() && line[0] == '#') continue;
-    if (points_line) {
-      points_line = false;
-      continue;
-    }
-    std::istringstream s(line);
-    int id;
-    double qw, qx, qy, qz;
-    Image im;
-    s >> id >> qw >> qx >> qy >> qz >> im.t.x() >> im.t.y() >> im.t.z() >> im.camera >> im.name;
-    im.r = Eigen::Quaterniond(qw, qx, qy, qz).normalized().toRotationMatrix();
-    images.push_back(im);
-    points_line = true;
-  }
+  const auto images = testing::ReadColmapImages(dir / "sparse/0/images.txt");
   ASSERT_EQ(images.size(), lf.dims().view_count());
+  for (const auto& [id, image] : images) EXPECT_TRUE(image.points.empty());  // no depth given
   EXPECT_TRUE(fs::exists(dir / "sparse/0/points3D.txt"));
   ExpectProbesLand(
       lf, dir, "images",
       [&](int i, const Vec3& x) {
-        const Image& im = images[std::size_t(i)];
-        const auto& k = cameras.at(im.camera);
+        const testing::ColmapImage& im = images.at(i + 1);
+        const auto& k = cameras.at(im.camera).params;
         EXPECT_TRUE(fs::exists(dir / "images" / im.name));
-        return Project(im.r, im.t, k[0], k[1], k[2], k[3], x);
+        return Project(im.camera_from_world, im.t, k[0], k[1], k[2], k[3], x);
       },
       0.5);
   fs::remove_all(dir);

@@ -13,6 +13,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
 
+#include "lfcam/io/colmap_text_test_support.h"
 #include "lfcam/io/lightfield_export.h"
 #include "lfcam/render/render_test_cases.h"
 #include "lfcam/sim/depth_truth.h"
@@ -75,46 +76,8 @@ TEST(SparsePoints, ColmapPointsAndTracksReadBackAndReprojectOntoTheirPixels) {
   const ExportReport report = ExportLightField(lf, ExportFormat::kColmap, dir, &depth);
   ASSERT_GT(report.points, 100);
 
-  // cameras.txt: CAMERA_ID PINHOLE WIDTH HEIGHT fx fy cx cy.
-  std::map<int, std::array<double, 4>> cameras;
-  std::ifstream cams(dir / "sparse/0/cameras.txt");
-  for (std::string line; std::getline(cams, line);) {
-    if (line.empty() || line[0] == '#') continue;
-    std::istringstream s(line);
-    int id, w, h;
-    std::string model;
-    std::array<double, 4> k;
-    s >> id >> model >> w >> h >> k[0] >> k[1] >> k[2] >> k[3];
-    cameras[id] = k;
-  }
-  // images.txt: the pose line, then X Y POINT3D_ID triples.
-  struct Image {
-    Mat3 r;
-    Vec3 t;
-    int camera = 0;
-    std::string name;
-    std::vector<std::pair<Vec2, int>> points;
-  };
-  std::map<int, Image> images;
-  std::ifstream imgs(dir / "sparse/0/images.txt");
-  int current = -1;
-  for (std::string line; std::getline(imgs, line);) {
-    if (!line.empty() && line[0] == '#') continue;
-    std::istringstream s(line);
-    if (current < 0) {
-      double qw, qx, qy, qz;
-      Image im;
-      s >> current >> qw >> qx >> qy >> qz >> im.t.x() >> im.t.y() >> im.t.z() >> im.camera >>
-          im.name;
-      im.r = Eigen::Quaterniond(qw, qx, qy, qz).normalized().toRotationMatrix();
-      images[current] = im;
-    } else {
-      double x, y;
-      int id;
-      while (s >> x >> y >> id) images[current].points.push_back({Vec2(x, y), id});
-      current = -1;
-    }
-  }
+  const auto cameras = testing::ReadColmapCameras(dir / "sparse/0/cameras.txt");
+  const auto images = testing::ReadColmapImages(dir / "sparse/0/images.txt");
   ASSERT_EQ(images.size(), lf.dims().view_count());
   // points3D.txt: POINT3D_ID X Y Z R G B ERROR (IMAGE_ID POINT2D_IDX)...
   std::ifstream pts(dir / "sparse/0/points3D.txt");
@@ -134,13 +97,13 @@ TEST(SparsePoints, ColmapPointsAndTracksReadBackAndReprojectOntoTheirPixels) {
     while (s >> image_id >> index) {
       ++track;
       ASSERT_TRUE(images.count(image_id)) << "point " << id;
-      const Image& im = images.at(image_id);
+      const testing::ColmapImage& im = images.at(image_id);
       ASSERT_LT(std::size_t(index), im.points.size()) << "point " << id;
       const auto& [pixel, back] = im.points[std::size_t(index)];
       EXPECT_EQ(back, id) << "point " << id << " in image " << image_id;
       // Re-projected with the exported camera, the point lands on the pixel recorded for it.
-      const auto& k = cameras.at(im.camera);
-      const Vec3 q = im.r * x + im.t;
+      const auto& k = cameras.at(im.camera).params;
+      const Vec3 q = im.camera_from_world * x + im.t;
       EXPECT_NEAR(k[0] * q.x() / q.z() + k[2], pixel.x(), 2e-3) << "point " << id;
       EXPECT_NEAR(k[1] * q.y() / q.z() + k[3], pixel.y(), 2e-3) << "point " << id;
       // The view it came from holds its colour at that pixel (pixel centres at .5).
