@@ -53,7 +53,7 @@ TEST_F(DepthCli, WritesAMapItsConfidenceAndPreviewAndAFolderForRendering) {
   }
 }
 
-TEST_F(DepthCli, ExportsColmapPointsFromTheMaps) {
+TEST_F(DepthCli, ExportsPointsFromTheMapsForColmapAndNerf) {
   auto run = Lfcam("export " + P("p.lf") + " --format colmap --out " + P("colmap") + " --depth " +
                    P("truth"));
   ASSERT_EQ(run.status, 0) << run.output;
@@ -63,9 +63,15 @@ TEST_F(DepthCli, ExportsColmapPointsFromTheMaps) {
   int lines = 0;
   for (std::string line; std::getline(points, line);) lines += !line.empty() && line[0] != '#';
   EXPECT_GT(lines, 50);
-  // Depth goes with COLMAP only, and must be this light field's.
+  // And for NeRF a PLY that transforms.json names; not with plain PNG views; and the maps must
+  // be this light field's.
   run =
       Lfcam("export " + P("p.lf") + " --format nerf --out " + P("nerf") + " --depth " + P("truth"));
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("sparse_pc.ply"), std::string::npos) << run.output;
+  EXPECT_TRUE(fs::exists(P("nerf/sparse_pc.ply")));
+  run = Lfcam("export " + P("p.lf") + " --format png-views --out " + P("views") + " --depth " +
+              P("truth"));
   EXPECT_EQ(run.status, 2) << run.output;
   EXPECT_NE(run.output.find("--depth"), std::string::npos) << run.output;
   run = Lfcam("simulate lightfield --grid 3x3 --st-res 32x28 --supersampling 1 --quiet --out " +
@@ -74,7 +80,7 @@ TEST_F(DepthCli, ExportsColmapPointsFromTheMaps) {
   run = Lfcam("export " + P("small.lf") + " --format colmap --out " + P("colmap2") + " --depth " +
               P("truth"));
   EXPECT_EQ(run.status, 1) << run.output;
-  EXPECT_FALSE(fs::exists(P("nerf")) || fs::exists(P("colmap2")));
+  EXPECT_FALSE(fs::exists(P("views")) || fs::exists(P("colmap2")));
 }
 
 TEST_F(DepthCli, RefusesBadFlagsAndBadMapsWritingNothing) {

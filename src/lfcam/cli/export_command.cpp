@@ -1,6 +1,6 @@
 // `lfcam export FILE --format png-views|nerf|colmap --out DIR [--depth DIR]`: a light field's
-// views and cameras for other tools (docs/format.md, "Exporting"); COLMAP's points from depth
-// maps (`lfcam depth --all`).
+// views and cameras for other tools (docs/format.md, "Exporting"); 3D points from depth maps
+// (`lfcam depth --all`) for COLMAP and nerfstudio.
 #include <fmt/core.h>
 
 #include <memory>
@@ -25,12 +25,13 @@ void AddExportCommand(CLI::App& app) {
   command->add_option("--format", f->format, "png-views, nerf or colmap")->required();
   command->add_option("--out", f->out, "The folder to write (new or empty)")->required();
   command->add_option("--depth", f->depth,
-                      "Depth maps of the light field (`lfcam depth --all`): COLMAP's "
-                      "points3D.txt gets points and tracks from them (--format colmap)");
+                      "Depth maps of the light field (`lfcam depth --all`): 3D points from them, "
+                      "with their tracks in COLMAP's points3D.txt (--format colmap), or in "
+                      "sparse_pc.ply for nerfstudio's Gaussian splatting (--format nerf)");
   command->callback([f] {
     const ExportFormat format = ExportFormatFromString(f->format);
-    if (!f->depth.empty() && format != ExportFormat::kColmap)
-      throw UsageError("--depth goes with --format colmap (its points3D.txt)");
+    if (!f->depth.empty() && format == ExportFormat::kPngViews)
+      throw UsageError("--depth goes with --format colmap (points3D.txt) or nerf (sparse_pc.ply)");
     RequireNewOrEmptyFolder("--out", f->out);
     const LightField lf = ReadLightField(f->input);
     std::optional<DepthSet> depth;
@@ -38,9 +39,12 @@ void AddExportCommand(CLI::App& app) {
     const ExportReport report = ExportLightField(lf, format, f->out, depth ? &*depth : nullptr);
     fmt::print("wrote {} views and their cameras to {} ({})\n", report.views, f->out,
                report.main_file.string());
-    if (depth)
+    if (depth && format == ExportFormat::kColmap)
       fmt::print("  {} points from the depth maps of {} views, seen {} times in all\n",
                  report.points, depth->count(), report.observations);
+    else if (depth)
+      fmt::print("  {} points from the depth maps of {} views in sparse_pc.ply\n", report.points,
+                 depth->count());
   });
 }
 

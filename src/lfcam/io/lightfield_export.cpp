@@ -46,6 +46,21 @@ nlohmann::json MatrixToJson(const Mat3& r, const Vec3& t) {
   return m;
 }
 
+// An ASCII PLY of the points: x y z (world millimetres times `scale`), red green blue.
+std::string PointCloudPly(const SparsePoints& points, double scale) {
+  std::string text = fmt::format(
+      "ply\nformat ascii 1.0\ncomment lfcam: points from the light field's depth maps\n"
+      "element vertex {}\nproperty float x\nproperty float y\nproperty float z\n"
+      "property uchar red\nproperty uchar green\nproperty uchar blue\nend_header\n",
+      points.points.size());
+  for (const SparsePoint& p : points.points) {
+    const Vec3 x = p.position_mm * scale;
+    text += fmt::format("{:.7g} {:.7g} {:.7g} {} {} {}\n", x.x(), x.y(), x.z(), p.rgb[0], p.rgb[1],
+                        p.rgb[2]);
+  }
+  return text;
+}
+
 void WriteText(const fs::path& path, const std::string& text) {
   std::ofstream out(path, std::ios::binary);
   out << text;
@@ -94,8 +109,9 @@ ViewCamera ViewAsCamera(const LightField& lf, int row, int col) {
 
 ExportReport ExportLightField(const LightField& lf, ExportFormat format, const fs::path& out_dir,
                               const DepthSet* depth) {
-  if (depth && format != ExportFormat::kColmap)
-    throw Error("depth maps are exported only as COLMAP's points (--format colmap)");
+  if (depth && format == ExportFormat::kPngViews)
+    throw Error(
+        "depth maps are exported as points for COLMAP (--format colmap) or NeRF (--format nerf)");
   if (depth && !(depth->dims() == lf.dims()))
     throw Error("the depth maps are not of this light field (another grid or st resolution)");
   const fs::path out = out_dir.has_filename() ? out_dir : out_dir.parent_path();
@@ -207,21 +223,27 @@ ExportReport ExportLightField(const LightField& lf, ExportFormat format, const f
     const ViewCamera centre = ViewAsCamera(lf, d.rows / 2, d.cols / 2);
     int aabb = 1;
     while (aabb < 128 && aabb < reach_m) aabb *= 2;
-    WriteText(staging / "transforms.json", JsonToText({{"camera_model", "OPENCV"},
-                                                       {"fl_x", centre.fx},
-                                                       {"fl_y", centre.fy},
-                                                       {"cx", centre.cx + 0.5},
-                                                       {"cy", centre.cy + 0.5},
-                                                       {"w", centre.width},
-                                                       {"h", centre.height},
-                                                       {"k1", 0.0},
-                                                       {"k2", 0.0},
-                                                       {"p1", 0.0},
-                                                       {"p2", 0.0},
-                                                       {"aabb_scale", aabb},
-                                                       {"frames", frames}},
-                                                      2) +
-                                               "\n");
+    nlohmann::json transforms = {{"camera_model", "OPENCV"},
+                                 {"fl_x", centre.fx},
+                                 {"fl_y", centre.fy},
+                                 {"cx", centre.cx + 0.5},
+                                 {"cy", centre.cy + 0.5},
+                                 {"w", centre.width},
+                                 {"h", centre.height},
+                                 {"k1", 0.0},
+                                 {"k2", 0.0},
+                                 {"p1", 0.0},
+                                 {"p2", 0.0},
+                                 {"aabb_scale", aabb}};
+    if (depth) {
+      // nerfstudio's own key: the points its Gaussian splatting starts from, in the frames' world
+      // frame (metres).
+      transforms["ply_file_path"] = "sparse_pc.ply";
+      WriteText(staging / "sparse_pc.ply", PointCloudPly(points, 1e-3));
+      report.points = int(points.points.size());
+    }
+    transforms["frames"] = frames;
+    WriteText(staging / "transforms.json", JsonToText(transforms, 2) + "\n");
   } else {
     report.main_file = out / "sparse/0/images.txt";
     fs::create_directories(staging / "sparse/0", ec);

@@ -5,7 +5,8 @@
 // and principal point per view, rotation shared. Exported as
 //   png-views  views/view_RR_CC.png and cameras.json (lfcam's world frame, millimetres);
 //   nerf       transforms.json (instant-ngp / nerfstudio: camera-to-world, OpenGL axes, metres)
-//              and images/;
+//              and images/; with depth maps also sparse_pc.ply (the points, metres), named by
+//              transforms.json's "ply_file_path" (nerfstudio);
 //   colmap     sparse/0/{cameras,images,points3D}.txt (COLMAP's text model: PINHOLE cameras,
 //              world-to-camera poses, millimetres; points and their tracks from depth maps when
 //              given, io/sparse_points.h, else none) and images/.
@@ -38,8 +39,8 @@ struct ExportReport {
 };
 
 // Writes into `out_dir` (created; must be empty if it exists). Everything is written into a
-// sibling temporary folder renamed into place at the end. `depth` (COLMAP only) gives
-// points3D.txt its points. Throws lfcam::Error.
+// sibling temporary folder renamed into place at the end. `depth` (COLMAP and NeRF) gives
+// points3D.txt or sparse_pc.ply their points. Throws lfcam::Error.
 ExportReport ExportLightField(const LightField& lf, ExportFormat format,
                               const std::filesystem::path& out_dir,
                               const DepthSet* depth = nullptr);

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
 
@@ -120,6 +121,41 @@ TEST(SparsePoints, ColmapPointsAndTracksReadBackAndReprojectOntoTheirPixels) {
   fs::remove_all(dir);
 }
 
+TEST(SparsePoints, NerfGetsThemAsAPlyNamedInTransformsInMetres) {
+  const LightField& lf = render_test::SmallPaperLightField();
+  const DepthSet depth = TrueDepth(lf, MakePaperScene());
+  const fs::path dir = fs::temp_directory_path() / fmt::format("lfcam_sparse_nerf_{}", ::getpid());
+  fs::remove_all(dir);
+  const ExportReport report = ExportLightField(lf, ExportFormat::kNerf, dir, &depth);
+  const auto transforms = nlohmann::json::parse(std::ifstream(dir / "transforms.json"));
+  ASSERT_EQ(transforms.value("ply_file_path", ""), "sparse_pc.ply");
+  // The PLY's header, then x y z red green blue per vertex: the points, in metres.
+  std::ifstream ply(dir / "sparse_pc.ply");
+  std::string line;
+  std::size_t vertices = 0;
+  std::vector<std::string> properties;
+  while (std::getline(ply, line) && line != "end_header") {
+    std::istringstream s(line);
+    std::string word, type, name;
+    s >> word;
+    if (word == "element") s >> type >> vertices;
+    if (word == "property") s >> type >> name, properties.push_back(type + " " + name);
+  }
+  EXPECT_EQ(properties, (std::vector<std::string>{"float x", "float y", "float z", "uchar red",
+                                                  "uchar green", "uchar blue"}));
+  const SparsePoints points = PointsFromDepth(lf, depth);
+  ASSERT_EQ(vertices, points.points.size());
+  ASSERT_EQ(int(vertices), report.points);
+  for (const SparsePoint& p : points.points) {
+    Vec3 x;
+    int red, green, blue;
+    ASSERT_TRUE(ply >> x.x() >> x.y() >> x.z() >> red >> green >> blue);
+    EXPECT_LT((x * 1000.0 - p.position_mm).norm(), 1e-6 * p.position_mm.norm() + 1e-3);
+    EXPECT_EQ(cv::Vec3b(std::uint8_t(red), std::uint8_t(green), std::uint8_t(blue)), p.rgb);
+  }
+  fs::remove_all(dir);
+}
+
 TEST(SparsePoints, DepthOfAnotherLightFieldOrFormatIsRefused) {
   const LightField& lf = render_test::SmallPaperLightField();
   const fs::path dir = fs::temp_directory_path() / fmt::format("lfcam_sparse_bad_{}", ::getpid());
@@ -128,7 +164,7 @@ TEST(SparsePoints, DepthOfAnotherLightFieldOrFormatIsRefused) {
   const DepthSet wrong(other);
   EXPECT_THROW(ExportLightField(lf, ExportFormat::kColmap, dir, &wrong), Error);
   const DepthSet right(lf.dims());
-  EXPECT_THROW(ExportLightField(lf, ExportFormat::kNerf, dir, &right), Error);
+  EXPECT_THROW(ExportLightField(lf, ExportFormat::kPngViews, dir, &right), Error);
   EXPECT_FALSE(fs::exists(dir));
 }
 
