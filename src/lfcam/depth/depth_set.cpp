@@ -121,14 +121,10 @@ void WriteDepthSet(const fs::path& dir, const DepthSet& set, const std::string& 
   CommitAll(writers);
 }
 
-DepthSet ReadDepthSet(const fs::path& dir, const LightField& lf) {
-  const fs::path index_path = dir / "depth.json";
-  const std::string where = index_path.string();
-  const auto bytes = ReadFileBytes(index_path, kMaxJsonBytes, "depth set index");
-  const nlohmann::json index = ParseJsonBounded(
-      std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), where);
+std::vector<DepthSetEntry> ParseDepthSetIndex(std::string_view text, const LightFieldDims& d,
+                                              const std::string& where) {
+  const nlohmann::json index = ParseJsonBounded(text, where);
   JsonFormatVersion(index, "lfcam-depth-set", 1, "depth set", where);
-  const auto& d = lf.dims();
   const auto dim = [&](const char* key) {
     return int(JsonInteger(index, key, 1, kMaxStSamplesPerSide, where));
   };
@@ -138,28 +134,42 @@ DepthSet ReadDepthSet(const fs::path& dir, const LightField& lf) {
         fmt::format("{}: made for a {}x{} grid of {}x{} views; this light field is {}x{} "
                     "of {}x{}",
                     where, rows, cols, n_s, n_t, d.rows, d.cols, d.n_s, d.n_t));
-  DepthSet set(d);
   const nlohmann::json& views = JsonField(index, "views", where);
   if (!views.is_array()) throw Error(fmt::format("{}: \"views\" must be an array", where));
+  if (views.empty()) throw Error(fmt::format("{}: lists no views", where));
+  std::vector<DepthSetEntry> entries;
   for (std::size_t i = 0; i < views.size(); ++i) {
     const std::string at = fmt::format("{}: views[{}]", where, i);
-    const std::string name = JsonString(views[i], "file", at);
-    if (name.empty() || name.find('/') != std::string::npos || name.starts_with("."))
-      throw Error(fmt::format("{}: file \"{}\" must be a plain name in the folder", at, name));
-    const int row = int(JsonInteger(views[i], "row", 0, d.rows - 1, at));
-    const int col = int(JsonInteger(views[i], "col", 0, d.cols - 1, at));
-    const fs::path file = dir / name;
+    DepthSetEntry e;
+    e.file = JsonString(views[i], "file", at);
+    if (e.file.empty() || e.file.find('/') != std::string::npos || e.file.starts_with("."))
+      throw Error(fmt::format("{}: file \"{}\" must be a plain name in the folder", at, e.file));
+    e.row = int(JsonInteger(views[i], "row", 0, d.rows - 1, at));
+    e.col = int(JsonInteger(views[i], "col", 0, d.cols - 1, at));
+    entries.push_back(std::move(e));
+  }
+  return entries;
+}
+
+DepthSet ReadDepthSet(const fs::path& dir, const LightField& lf) {
+  const fs::path index_path = dir / "depth.json";
+  const std::string where = index_path.string();
+  const auto bytes = ReadFileBytes(index_path, kMaxJsonBytes, "depth set index");
+  const auto& d = lf.dims();
+  DepthSet set(d);
+  for (const DepthSetEntry& e : ParseDepthSetIndex(
+           std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), d, where)) {
+    const fs::path file = dir / e.file;
     DepthMap map = ReadDepthPng(file);
-    if (map.row != row || map.col != col)
+    if (map.row != e.row || map.col != e.col)
       throw Error(fmt::format("{}: holds view ({}, {}), the index says ({}, {})", file.string(),
-                              map.row, map.col, row, col));
+                              map.row, map.col, e.row, e.col));
     if (map.n_s() != d.n_s || map.n_t() != d.n_t)
       throw Error(fmt::format("{}: is {}x{}, the light field's views are {}x{}", file.string(),
                               map.n_s(), map.n_t(), d.n_s, d.n_t));
     if (fs::exists(ConfidencePathFor(file))) ReadConfidencePng(ConfidencePathFor(file), map);
     set.set(std::move(map));
   }
-  if (set.count() == 0) throw Error(fmt::format("{}: lists no views", where));
   return set;
 }
 

@@ -9,6 +9,8 @@
 #include <filesystem>
 #include <functional>
 #include <optional>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "lfcam/core/lightfield.h"
@@ -46,6 +48,16 @@ void EstimateDepthSet(const LightField& lf, DepthSet& set,
 
 void WriteDepthSet(const std::filesystem::path& dir, const DepthSet& set,
                    const std::string& source_name);
+// One view's entry in depth.json.
+struct DepthSetEntry {
+  int row = 0, col = 0;
+  std::string file;  // a plain name in the set's folder
+};
+// depth.json's text, checked against the light field's dims: its views' entries (at least one;
+// rows and columns on the grid, names that stay in the folder). Throws lfcam::Error naming
+// `where`.
+std::vector<DepthSetEntry> ParseDepthSetIndex(std::string_view text, const LightFieldDims& dims,
+                                              const std::string& where);
 // Reads a depth set for `lf`; throws lfcam::Error naming the file when it does not match.
 DepthSet ReadDepthSet(const std::filesystem::path& dir, const LightField& lf);
 
