@@ -30,7 +30,7 @@ struct CaptureSimulationOptions {
   std::uint64_t seed = 1;
   BoardSpec intrinsics_board{10, 7, 30.0};
   int intrinsics_shots = 14;
-  int scene_supersampling = 2;       // per axis, for the scene shot
+  int scene_supersampling = 2;       // per axis: the scene shot, and what the boards stand before
   bool noise = true;                 // false: an ideal sensor (tests)
   std::function<void()> image_done;  // called once per image written (any thread, serialised)
 };
