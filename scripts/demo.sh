@@ -66,10 +66,11 @@ echo "== building the light field: 10x10 views of $st_res st samples"
 $lfcam build "$session" --calibration "$out/calibration.json" --st-res "$st_res" --out "$lf"
 $lfcam info "$lf"
 
-# render NAME FLAGS...: one frame of a sequence.
+# render NAME FLAGS...: one frame of a sequence, through the limit of the paper's own estimator
+# (its smooth out-of-focus blur, without its lens-sample noise; docs/fidelity.md says why).
 render() {
   local name=$1; shift
-  $lfcam render "$lf" --out "$out/$name.png" --size "$size" --lens-rate 4 "$@"
+  $lfcam render "$lf" --out "$out/$name.png" --size "$size" --integrator cameras-quadrilinear "$@"
 }
 # sheet SEQ TITLE LABELS FILES...: the contact sheet of a sequence.
 sheet() {

@@ -82,6 +82,19 @@ TEST_F(Cli, RenderAndOracleAgreeAndCompareReportsIt) {
   const auto c =
       nlohmann::json::parse(Lfcam("compare --json " + Path("c.png") + " " + Path("o.png")).output);
   EXPECT_GT(c["psnr_db"].get<double>(), 20.0);
+  // Asked for the quadrilinear lookup in so many words, the cameras integrator takes that
+  // lookup's limit (views prefiltered), as --integrator cameras-quadrilinear does.
+  for (const std::string integrator :
+       {"--integrator cameras --interpolation quadrilinear", "--integrator cameras-quadrilinear"}) {
+    const CommandResult limit =
+        Lfcam("render " + Path("small.lf") + camera + integrator + " --out " + Path("q.png"));
+    ASSERT_EQ(limit.status, 0) << limit.output;
+    EXPECT_NE(limit.output.find("views prefiltered"), std::string::npos) << limit.output;
+  }
+  EXPECT_EQ(Lfcam("render " + Path("small.lf") + camera +
+                  "--integrator cameras-quadrilinear --interpolation depth --out " + Path("x.png"))
+                .status,
+            2);
 }
 
 TEST_F(Cli, BenchTimesThePapersTablesBesideItsFigures) {

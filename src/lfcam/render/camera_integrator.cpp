@@ -184,6 +184,16 @@ void CameraIntegratorFrame::Weights(const Footprint& f, float* weights) const {
     for (std::size_t c = 0; c < cameras; ++c) weights[c] /= total;
 }
 
+std::vector<bool> CameraIntegratorFrame::CamerasRead() const {
+  const std::size_t cameras = std::size_t(rows_) * std::size_t(cols_);
+  std::vector<bool> read(cameras, false);
+  for (const GridCameraWeight& c : uniform_) read[std::size_t(c.row * cols_ + c.col)] = true;
+  for (const Level& level : levels_)
+    for (std::size_t i = 0; i < level.weights.size(); ++i)
+      if (level.weights[i] > 0.0f) read[i % cameras] = true;
+  return read;
+}
+
 std::size_t CameraIntegratorFrame::table_nodes() const {
   std::size_t n = 0;
   for (const Level& level : levels_) n += std::size_t(level.nx) * std::size_t(level.ny);

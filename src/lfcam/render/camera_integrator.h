@@ -47,6 +47,9 @@ class CameraIntegratorFrame {
   // normal: each footprint is the lens itself), its cameras and weights, else empty.
   const std::vector<GridCameraWeight>& uniform_weights() const { return uniform_; }
   std::size_t table_nodes() const;  // footprint centres tabulated, over all radii
+  // Whether some pixel of the frame gives camera (row * cols + col) a weight (a superset: every
+  // camera with a weight at a tabulated footprint).
+  std::vector<bool> CamerasRead() const;
 
   // The table (for the GL renderer, which interpolates it per pixel as Weights does): radius
   // levels, each a lattice of footprint centres (the same lattice at every level) with a dense

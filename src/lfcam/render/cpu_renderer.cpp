@@ -15,6 +15,7 @@
 #include "lfcam/core/error.h"
 #include "lfcam/render/camera_integrator.h"
 #include "lfcam/render/depth_aware_sampler.h"
+#include "lfcam/render/quadrilinear_limit.h"
 #include "lfcam/render/ray_setup.h"
 #include "lfcam/render/separable_frame.h"
 #include "lfcam/render/separable_kernels.h"
@@ -354,6 +355,27 @@ RenderResult RenderFast(const LightField& lf, const VirtualCamera& camera,
 
 RenderResult RenderLightFieldCpu(const LightField& lf, const VirtualCamera& camera,
                                  const CpuRenderOptions& options) {
+  if (options.integrator == Integrator::kCamerasQuadrilinear) {
+    // The cameras integrator over views prefiltered by the hat scaled by k.
+    if (options.interpolation == Interpolation::kDepth)
+      throw Error(
+          "the depth lookup reads each lens sample's own scene point: it goes with the "
+          "lens-samples integrator, not the cameras integrators");
+    CpuRenderOptions focal = options;
+    focal.integrator = Integrator::kCameras;
+    focal.interpolation = Interpolation::kFocalPlane;
+    const StPrefilter prefilter = QuadrilinearLimitPrefilter(lf, camera);
+    if (camera.is_pinhole() || (prefilter.h_s < 1e-3 && prefilter.h_t < 1e-3))
+      return RenderLightFieldCpu(lf, camera, focal);
+    // Only the views some pixel reads are filtered.
+    const CameraIntegratorFrame cameras(lf, camera);
+    const LightField filtered =
+        PrefilterViews(lf, prefilter, ViewRegionsRead(lf, camera, cameras.CamerasRead()));
+    RenderResult result = RenderLightFieldCpu(filtered, camera, focal);
+    result.path = fmt::format("{}, views prefiltered ({:.2f} x {:.2f} samples)", result.path,
+                              prefilter.h_s, prefilter.h_t);
+    return result;
+  }
   if (options.reference || !FastKernelsSupport(lf) ||
       options.interpolation == Interpolation::kDepth)
     return RenderReference(lf, camera, options);

@@ -19,6 +19,9 @@ namespace lfcam {
 enum class Integrator {
   kLensSamples,  // the paper's: the average over n_ls lens samples (with either lookup)
   kCameras,      // the limit of lens samples with the focal-plane lookup (camera_integrator.h)
+  // The limit of lens samples with the quadrilinear lookup (the paper's own estimator): the
+  // cameras integrator over views prefiltered by the hat scaled by k (quadrilinear_limit.h).
+  kCamerasQuadrilinear,
 };
 std::string ToString(Integrator integrator);
 Integrator IntegratorFromString(const std::string& name);  // throws lfcam::Error

@@ -77,9 +77,7 @@ GlRenderOptions GlOptions(const FrameRenderOptions& options) {
 
 RenderResult FrameRenderer::Render(const LightField& lf, const VirtualCamera& camera,
                                    const FrameRenderOptions& options) const {
-  // The depth-aware lookup has no shader yet: the CPU renders it, whatever the backend.
-  if (gl_ && options.interpolation != Interpolation::kDepth)
-    return gl_->Render(lf, camera, GlOptions(options));
+  if (gl_ && !RendersOnCpuOnly(options)) return gl_->Render(lf, camera, GlOptions(options));
   CpuRenderOptions o;
   o.integrator = options.integrator;
   o.interpolation = options.interpolation;

@@ -29,6 +29,13 @@ struct FrameRenderOptions {
 // The GL renderer's share of the options.
 GlRenderOptions GlOptions(const FrameRenderOptions& options);
 
+// What only the CPU renders, whatever the backend: the depth lookup and the quadrilinear limit
+// (no shaders for them yet).
+inline bool RendersOnCpuOnly(const FrameRenderOptions& options) {
+  return options.interpolation == Interpolation::kDepth ||
+         options.integrator == Integrator::kCamerasQuadrilinear;
+}
+
 class FrameRenderer {
  public:
   // Opens the backend; kGl throws lfcam::Error when no GL 4.3 context can be made. With

@@ -254,6 +254,10 @@ double GlRenderer::RenderToTexture(const LightField& lf, const VirtualCamera& ca
         fmt::format("the GL renderer needs at least 2x2 samples a view (this light field "
                     "has {}x{})",
                     d.n_s, d.n_t));
+  if (options.integrator == Integrator::kCamerasQuadrilinear)
+    throw Error(
+        "the GL renderer has no quadrilinear limit of the cameras integrator (the CPU "
+        "renders it)");
   Upload(lf);
   EnsureOutput(camera.width(), camera.height());
 

@@ -10,13 +10,23 @@
 namespace lfcam {
 
 std::string ToString(Integrator integrator) {
-  return integrator == Integrator::kLensSamples ? "lens-samples" : "cameras";
+  switch (integrator) {
+    case Integrator::kLensSamples:
+      return "lens-samples";
+    case Integrator::kCameras:
+      return "cameras";
+    case Integrator::kCamerasQuadrilinear:
+      return "cameras-quadrilinear";
+  }
+  return "?";
 }
 
 Integrator IntegratorFromString(const std::string& name) {
   if (name == "lens-samples") return Integrator::kLensSamples;
   if (name == "cameras") return Integrator::kCameras;
-  throw Error(fmt::format("unknown integrator '{}' (expected lens-samples or cameras)", name));
+  if (name == "cameras-quadrilinear") return Integrator::kCamerasQuadrilinear;
+  throw Error(fmt::format(
+      "unknown integrator '{}' (expected lens-samples, cameras or cameras-quadrilinear)", name));
 }
 
 std::string ToString(Interpolation interpolation) {

@@ -68,9 +68,15 @@ bool DrawRenderingWindow(ViewSettings& view, double& render_scale, const FrameSt
   ImGui::SetNextWindowPos(ImVec2(10, ImGui::GetFontSize() * 17), ImGuiCond_FirstUseEver);
   if (ImGui::Begin("Rendering (F3)", open, ImGuiWindowFlags_AlwaysAutoResize)) {
     ImGui::PushItemWidth(ImGui::GetFontSize() * 16);
-    int integrator = view.integrator == Integrator::kCameras ? 1 : 0;
-    if (ImGui::Combo("integrator", &integrator, "lens samples (paper)\0cameras (exact limit)\0")) {
-      view.integrator = integrator == 1 ? Integrator::kCameras : Integrator::kLensSamples;
+    const Integrator integrators[] = {Integrator::kLensSamples, Integrator::kCameras,
+                                      Integrator::kCamerasQuadrilinear};
+    int integrator =
+        int(std::find(std::begin(integrators), std::end(integrators), view.integrator) -
+            std::begin(integrators));
+    if (ImGui::Combo("integrator", &integrator,
+                     "lens samples (paper)\0cameras (exact limit)\0cameras, quadrilinear limit "
+                     "(smooth, cpu)\0")) {
+      view.integrator = integrators[integrator];
       changed = true;
     }
     const Interpolation lookups[] = {Interpolation::kQuadrilinear, Interpolation::kFocalPlane,
@@ -108,7 +114,7 @@ bool DrawRenderingWindow(ViewSettings& view, double& render_scale, const FrameSt
     ImGui::Text(
         "%.1f ms a frame%s", stats.frame_ms,
         stats.gpu_ms >= 0 ? fmt::format(" ({:.2f} ms on the GPU)", stats.gpu_ms).c_str() : "");
-    if (stats.reads_per_pixel > 0 && view.integrator == Integrator::kCameras)
+    if (stats.reads_per_pixel > 0 && view.integrator != Integrator::kLensSamples)
       ImGui::Text("%.1f cameras read a pixel", stats.reads_per_pixel);
     else if (stats.reads_per_pixel > 0)
       ImGui::Text("%.1f rays, %.1f camera lookups a pixel", stats.rays_per_pixel,

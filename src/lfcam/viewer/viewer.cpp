@@ -404,7 +404,7 @@ class Viewer {
     stats_.rays_per_pixel = shown.image.empty() ? 0 : double(shown.rays) / pixels;
     stats_.reads_per_pixel = shown.image.empty()
                                  ? 0
-                                 : (view_.integrator == Integrator::kCameras ? 1.0 : 4.0) *
+                                 : (view_.integrator != Integrator::kLensSamples ? 1.0 : 4.0) *
                                        double(shown.rays_hit) / pixels;
     bool changed = false;
     if (panels_.camera) changed |= DrawCameraWindow(view_, lf_.slab().uv, &panels_.camera);

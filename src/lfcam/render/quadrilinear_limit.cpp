@@ -1,0 +1,176 @@
+#include "lfcam/render/quadrilinear_limit.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+
+#include "lfcam/core/color.h"
+#include "lfcam/core/limits.h"
+
+namespace lfcam {
+
+StPrefilter QuadrilinearLimitPrefilter(const LightField& lf, const VirtualCamera& camera) {
+  StPrefilter f;
+  if (camera.is_pinhole()) return f;
+  const Slab& slab = lf.slab();
+  const ViewWindow& st = slab.st;
+  const Vec3 normal = st.normal();
+  const Vec3 p_o =
+      camera.focus_point(camera.direction_through(0.5 * camera.width(), 0.5 * camera.height()));
+  const double h_o = normal.dot(p_o - st.origin);
+  const double h_uv = normal.dot(slab.uv.p_ca - st.origin);
+  if (!(std::abs(h_uv - h_o) > 1e-9)) return f;
+  f.k = -h_o / (h_uv - h_o);
+  const auto& d = lf.dims();
+  const double ds_mm = slab.st_domain.s_extent() / d.n_s * st.width_mm;
+  const double dt_mm = slab.st_domain.t_extent() / d.n_t * st.height_mm;
+  f.h_s = std::abs(f.k) * slab.uv.pitch_mm / ds_mm;
+  f.h_t = std::abs(f.k) * slab.uv.pitch_mm / dt_mm;
+  return f;
+}
+
+namespace {
+
+// tent_1 * tent_h at d: the integral over z of tent_1(d - z) tent_h(z), tent_h of unit area.
+// The integrand is quadratic between kinks, so Simpson's rule on each piece is exact.
+double TentOfTent(double d, double h) {
+  auto tent = [](double x, double half) { return std::max(0.0, 1.0 - std::abs(x) / half) / half; };
+  double kinks[] = {-h, 0.0, h, d - 1, d, d + 1};
+  std::sort(std::begin(kinks), std::end(kinks));
+  double sum = 0;
+  for (int i = 0; i + 1 < 6; ++i) {
+    const double a = std::max(kinks[i], -h), b = std::min(kinks[i + 1], h);
+    if (b <= a) continue;
+    auto f = [&](double z) { return tent(d - z, 1.0) * tent(z, h); };
+    sum += (b - a) / 6 * (f(a) + 4 * f(0.5 * (a + b)) + f(b));
+  }
+  return sum;
+}
+
+}  // namespace
+
+std::vector<float> PrefilterTaps(double h) {
+  if (!(h > 1e-6)) return {1.0f};
+  const int n = int(std::ceil(1 + h));
+  std::vector<double> g(std::size_t(2 * n + 1));
+  double total = 0;
+  for (int i = -n; i <= n; ++i) total += g[std::size_t(i + n)] = TentOfTent(i, h);
+  std::vector<float> taps;
+  for (double v : g) taps.push_back(float(v / total));
+  // Drop the zero taps at the ends (|d| >= 1 + h), keeping the kernel centred.
+  while (taps.size() > 1 && taps.front() == 0.0f && taps.back() == 0.0f) {
+    taps.erase(taps.begin());
+    taps.pop_back();
+  }
+  return taps;
+}
+
+std::vector<cv::Rect> ViewRegionsRead(const LightField& lf, const VirtualCamera& camera,
+                                      const std::vector<bool>& views) {
+  const LightFieldDims& d = lf.dims();
+  const Slab& slab = lf.slab();
+  const cv::Rect whole(0, 0, d.n_s, d.n_t);
+  std::vector<Vec3> focus;  // the frame's corners on the plane of focus
+  for (const double y : {0.0, double(camera.height())})
+    for (const double x : {0.0, double(camera.width())})
+      focus.push_back(camera.focus_point(camera.direction_through(x, y)));
+  std::vector<cv::Rect> regions(d.view_count());
+  for (int v = 0; v < int(d.view_count()); ++v) {
+    if (!views[std::size_t(v)]) continue;
+    const Vec3 eye = lf.camera_center(v / d.cols, v % d.cols);
+    double k0 = 1e300, k1 = -1e300, l0 = 1e300, l1 = -1e300;
+    bool all = true;
+    for (const Vec3& p : focus) {
+      const auto c = slab.intersect({eye, (p - eye).normalized()});
+      if (!c || !std::isfinite(c->s) || !std::isfinite(c->t)) {
+        all = false;
+        break;
+      }
+      const double k = (c->s - slab.st_domain.s0) / slab.st_domain.s_extent() * d.n_s - 0.5;
+      const double l = (c->t - slab.st_domain.t0) / slab.st_domain.t_extent() * d.n_t - 0.5;
+      k0 = std::min(k0, k), k1 = std::max(k1, k), l0 = std::min(l0, l), l1 = std::max(l1, l);
+    }
+    if (!all) {
+      regions[std::size_t(v)] = whole;
+      continue;
+    }
+    // Two samples of margin: a bilinear read at the edge, and rounding.
+    const double lo_k = std::max(-1.0, k0 - 2), hi_k = std::min(double(d.n_s), k1 + 3);
+    const double lo_l = std::max(-1.0, l0 - 2), hi_l = std::min(double(d.n_t), l1 + 3);
+    const cv::Rect r(int(std::floor(lo_k)), int(std::floor(lo_l)),
+                     int(std::ceil(hi_k) - std::floor(lo_k)),
+                     int(std::ceil(hi_l) - std::floor(lo_l)));
+    regions[std::size_t(v)] = r & whole;
+  }
+  return regions;
+}
+
+LightField PrefilterViews(const LightField& lf, const StPrefilter& prefilter,
+                          const std::vector<cv::Rect>& regions) {
+  const LightFieldDims& d = lf.dims();
+  RequireMemory(double(lf.total_bytes()) + 2.0 * 12.0 * double(d.samples_per_view()),
+                "the prefiltered copy of the light field");
+  LightField out(d, lf.sample_type(), lf.slab());
+  out.set_measured_poses(lf.measured_poses());
+  const std::vector<float> taps_s = PrefilterTaps(prefilter.h_s);
+  const std::vector<float> taps_t = PrefilterTaps(prefilter.h_t);
+  const cv::Mat kernel_s(1, int(taps_s.size()), CV_32F, const_cast<float*>(taps_s.data()));
+  const cv::Mat kernel_t(int(taps_t.size()), 1, CV_32F, const_cast<float*>(taps_t.data()));
+  const int reach_s = int(taps_s.size()) / 2, reach_t = int(taps_t.size()) / 2;
+  const cv::Rect whole(0, 0, d.n_s, d.n_t);
+  const bool bytes = lf.sample_type() == SampleType::kSrgb8;
+  tbb::parallel_for(0, int(d.view_count()), [&](int v) {
+    const cv::Rect region = regions[std::size_t(v)] & whole;
+    if (region.empty()) return;
+    const int row = v / d.cols, col = v % d.cols;
+    // The region with the kernel's reach around it, as far as the view goes; beyond the view
+    // the filter replicates its edge.
+    const cv::Rect source = cv::Rect(region.x - reach_s, region.y - reach_t,
+                                     region.width + 2 * reach_s, region.height + 2 * reach_t) &
+                            whole;
+    cv::Mat linear(source.height, source.width, CV_32FC3);
+    for (int l = 0; l < source.height; ++l) {
+      auto* p = linear.ptr<cv::Vec3f>(l);
+      if (bytes) {
+        const auto& decode = SrgbDecodeTable();
+        const std::uint8_t* in = lf.view_data(row, col) +
+                                 3 * (std::size_t(source.y + l) * d.n_s + std::size_t(source.x));
+        for (int k = 0; k < source.width; ++k)
+          p[k] = {decode[in[3 * k]], decode[in[3 * k + 1]], decode[in[3 * k + 2]]};
+      } else {
+        for (int k = 0; k < source.width; ++k) {
+          const Eigen::Vector3f c = lf.linear_rgb(row, col, source.x + k, source.y + l);
+          p[k] = {c.x(), c.y(), c.z()};
+        }
+      }
+    }
+    // Replicate the view's own edges only: where the source stops short of them, the samples
+    // beyond the region are real and inside `source`.
+    cv::Mat padded;
+    cv::copyMakeBorder(linear, padded, reach_t - (region.y - source.y),
+                       reach_t - (source.br().y - region.br().y), reach_s - (region.x - source.x),
+                       reach_s - (source.br().x - region.br().x), cv::BORDER_REPLICATE);
+    cv::Mat filtered;
+    cv::sepFilter2D(padded, filtered, CV_32F, kernel_s, kernel_t, cv::Point(-1, -1), 0,
+                    cv::BORDER_REPLICATE);
+    const cv::Mat inner = filtered(cv::Rect(reach_s, reach_t, region.width, region.height));
+    const auto& encode = LinearToSrgb8EncodeTable();
+    for (int l = 0; l < region.height; ++l) {
+      const auto* p = inner.ptr<cv::Vec3f>(l);
+      if (bytes) {
+        std::uint8_t* o = out.mutable_view_data(row, col) +
+                          3 * (std::size_t(region.y + l) * d.n_s + std::size_t(region.x));
+        for (int k = 0; k < region.width; ++k)
+          for (int ch = 0; ch < 3; ++ch) o[3 * k + ch] = LinearToSrgb8With(encode, p[k][ch]);
+      } else {
+        for (int k = 0; k < region.width; ++k)
+          out.set_linear_rgb(row, col, region.x + k, region.y + l, {p[k][0], p[k][1], p[k][2]});
+      }
+    }
+  });
+  return out;
+}
+
+}  // namespace lfcam

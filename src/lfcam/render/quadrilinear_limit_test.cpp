@@ -1,0 +1,160 @@
+#include "lfcam/render/quadrilinear_limit.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+
+#include "lfcam/render/cpu_renderer.h"
+#include "lfcam/sim/scene.h"
+#include "lfcam/sim/simulate_lightfield.h"
+#include "lfcam/sim/test_paper_lightfield.h"
+
+namespace lfcam {
+namespace {
+
+TEST(QuadrilinearLimit, TapsAreTheHatThroughTheTentAtTheSamples) {
+  EXPECT_EQ(PrefilterTaps(0.0), std::vector<float>{1.0f});
+  for (const double h : {0.3, 1.0, 2.5, 7.25}) {
+    SCOPED_TRACE(h);
+    const std::vector<float> taps = PrefilterTaps(h);
+    ASSERT_EQ(taps.size() % 2, 1u);
+    const int n = int(taps.size()) / 2;
+    // tent_1 * tent_h by brute force: a fine Riemann sum of the product.
+    std::vector<double> brute;
+    double total = 0;
+    for (int d = -n; d <= n; ++d) {
+      double sum = 0;
+      const int steps = 200000;
+      for (int i = 0; i < steps; ++i) {
+        const double z = -h + (i + 0.5) * 2 * h / steps;
+        sum += std::max(0.0, 1 - std::abs(d - z)) * std::max(0.0, 1 - std::abs(z) / h) / h;
+      }
+      brute.push_back(sum * 2 * h / steps);
+      total += brute.back();
+    }
+    double taps_total = 0;
+    for (int i = 0; i < int(taps.size()); ++i) {
+      EXPECT_NEAR(taps[std::size_t(i)], brute[std::size_t(i)] / total, 2e-6) << i;
+      EXPECT_FLOAT_EQ(taps[std::size_t(i)], taps[taps.size() - 1 - std::size_t(i)]);
+      taps_total += taps[std::size_t(i)];
+    }
+    EXPECT_NEAR(taps_total, 1.0, 1e-6);
+    EXPECT_GT(taps.front(), 0.0f);  // no zero taps kept at the ends
+  }
+}
+
+// The paper scene's light field, small: 10 x 10 views of 156 x 144 over the paper's st domain.
+const LightField& PaperLightField() {
+  static const LightField lf = [] {
+    SimulateLightFieldOptions o;
+    o.n_s = 156;
+    o.n_t = 144;
+    o.st_domain = StDomain{-1.2, -1.2, 1.2, 1.2};
+    o.supersampling = 1;
+    return SimulateLightField(MakePaperScene(), o);
+  }();
+  return lf;
+}
+
+RenderResult Render(const LightField& lf, const VirtualCameraParams& p, Integrator integrator,
+                    Interpolation interpolation, double lens_rate = 4) {
+  VirtualCameraParams q = p;
+  q.lens_rate = lens_rate;
+  CpuRenderOptions o;
+  o.integrator = integrator;
+  o.interpolation = interpolation;
+  return RenderLightFieldCpu(lf, VirtualCamera(q), o);
+}
+
+// PSNR of two linear renders against a peak of 1, over the pixels both hit: at the st domain's
+// edges the integrators count a pixel as hit differently (the lens samples ray by ray, the
+// cameras integrators by the pixel's central line).
+double LinearPsnr(const RenderResult& a, const RenderResult& b) {
+  const cv::Mat both = a.hit_mask & b.hit_mask;
+  double sum = 0;
+  int n = 0;
+  for (int y = 0; y < both.rows; ++y)
+    for (int x = 0; x < both.cols; ++x) {
+      if (!both.at<std::uint8_t>(y, x)) continue;
+      const cv::Vec3f d = a.image.at<cv::Vec3f>(y, x) - b.image.at<cv::Vec3f>(y, x);
+      sum += d.dot(d);
+      n += 3;
+    }
+  EXPECT_GT(n, int(both.total()));  // most pixels hit in both
+  return 10.0 * std::log10(1.0 / std::max(sum / std::max(n, 1), 1e-30));
+}
+
+struct LimitCase {
+  const char* name;
+  Vec3 eye, look_at;
+  double focal_length, focus_distance, aperture;
+  bool breathing;
+  double floor_db;  // what the limit must reach against gamma 256
+};
+
+// The paper's estimator (lens samples, quadrilinear lookup) converges to the quadrilinear limit
+// as the lens sampling rate grows, for focus on both sides of the st-plane, an eye in front of
+// the array, no breathing, and a turned camera (whose plane of focus is not parallel to the
+// st-plane: one filter for the frame, taken at its centre); where the focal-plane limit shows
+// the copies one camera apart, the quadrilinear limit is the estimator's smooth blur.
+TEST(QuadrilinearLimit, IsTheLimitOfLensSamplesWithTheQuadrilinearLookup) {
+  const LightField lf = testing::SharedPaperLightField();
+  for (const LimitCase& c : {
+           LimitCase{"near focus", {300, 275, 3600}, {300, 275, 0}, 500, 3400, 192, true, 40},
+           LimitCase{"far focus", {300, 275, 3600}, {300, 275, 0}, 500, 5200, 192, true, 40},
+           LimitCase{
+               "in front, no breathing", {250, 300, 3000}, {250, 300, 0}, 300, 4700, 96, false, 38},
+           LimitCase{
+               "turned 2.8 degrees", {300, 275, 3600}, {450, 200, 0}, 500, 4700, 192, true, 35},
+       }) {
+    SCOPED_TRACE(c.name);
+    VirtualCameraParams p;
+    p.width = p.height = 48;
+    p.eye = c.eye;
+    p.look_at = c.look_at;
+    p.focal_length_mm = c.focal_length;
+    p.focus_distance_mm = c.focus_distance;
+    p.aperture_mm = c.aperture;
+    p.breathing = c.breathing;
+    const RenderResult limit =
+        Render(lf, p, Integrator::kCamerasQuadrilinear, Interpolation::kQuadrilinear);
+    const RenderResult at_64 =
+        Render(lf, p, Integrator::kLensSamples, Interpolation::kQuadrilinear, 64);
+    const RenderResult at_256 =
+        Render(lf, p, Integrator::kLensSamples, Interpolation::kQuadrilinear, 256);
+    const double psnr_64 = LinearPsnr(at_64, limit), psnr_256 = LinearPsnr(at_256, limit);
+    const double focal_plane =
+        LinearPsnr(at_256, Render(lf, p, Integrator::kCameras, Interpolation::kFocalPlane));
+    std::cout << "[" << c.name << "] lens samples against the quadrilinear limit: gamma 64 "
+              << psnr_64 << " dB, gamma 256 " << psnr_256 << " dB; the focal-plane limit "
+              << focal_plane << " dB\n";
+    EXPECT_GT(psnr_256, psnr_64 - 0.05);
+    EXPECT_GT(psnr_256, c.floor_db);
+    EXPECT_GT(psnr_256, focal_plane + 3.0);
+  }
+}
+
+TEST(QuadrilinearLimit, APinholeOrFocusOnTheStPlaneIsTheFocalPlaneLookup) {
+  VirtualCameraParams p;
+  p.width = p.height = 32;
+  p.eye = Vec3(300, 275, 3600);  // the array's centre, looking along its normal
+  p.look_at = Vec3(300, 275, 0);
+  p.focal_length_mm = 500;
+  p.aperture_mm = 0;
+  const LightField& lf = PaperLightField();
+  EXPECT_EQ(
+      cv::norm(Render(lf, p, Integrator::kCamerasQuadrilinear, Interpolation::kQuadrilinear).image,
+               Render(lf, p, Integrator::kCameras, Interpolation::kFocalPlane).image, cv::NORM_INF),
+      0.0);
+  // The st-plane is the world board's plane, z = 0; the array 3.6 m from it.
+  p.aperture_mm = 192;
+  p.focus_distance_mm = 3600;
+  const StPrefilter f = QuadrilinearLimitPrefilter(PaperLightField(), VirtualCamera(p));
+  EXPECT_NEAR(f.k, 0.0, 1e-9);
+  p.focus_distance_mm = 7200;  // twice as far: k = 1/2
+  EXPECT_NEAR(QuadrilinearLimitPrefilter(PaperLightField(), VirtualCamera(p)).k, 0.5, 1e-9);
+}
+
+}  // namespace
+}  // namespace lfcam
