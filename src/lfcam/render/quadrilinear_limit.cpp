@@ -33,38 +33,45 @@ StPrefilter QuadrilinearLimitPrefilter(const LightField& lf, const VirtualCamera
 
 namespace {
 
-// tent_1 * tent_h at d: the integral over z of tent_1(d - z) tent_h(z), tent_h of unit area.
-// The integrand is quadratic between kinks, so Simpson's rule on each piece is exact.
-double TentOfTent(double d, double h) {
-  auto tent = [](double x, double half) { return std::max(0.0, 1.0 - std::abs(x) / half) / half; };
-  double kinks[] = {-h, 0.0, h, d - 1, d, d + 1};
-  std::sort(std::begin(kinks), std::end(kinks));
-  double sum = 0;
-  for (int i = 0; i + 1 < 6; ++i) {
-    const double a = std::max(kinks[i], -h), b = std::min(kinks[i + 1], h);
-    if (b <= a) continue;
-    auto f = [&](double z) { return tent(d - z, 1.0) * tent(z, h); };
-    sum += (b - a) / 6 * (f(a) + 4 * f(0.5 * (a + b)) + f(b));
+// The tent of half-width w sampled at the integers, normalised, and its variance.
+std::vector<double> SampledTent(double w, double* variance) {
+  const int n = int(std::ceil(w)) - 1;
+  std::vector<double> taps;
+  double total = 0, second = 0;
+  for (int d = -n; d <= n; ++d) {
+    const double v = std::max(0.0, 1.0 - std::abs(d) / w);
+    taps.push_back(v);
+    total += v;
+    second += v * d * d;
   }
-  return sum;
+  for (double& v : taps) v /= total;
+  *variance = second / total;
+  return taps;
 }
 
 }  // namespace
 
 std::vector<float> PrefilterTaps(double h) {
   if (!(h > 1e-6)) return {1.0f};
-  const int n = int(std::ceil(1 + h));
-  std::vector<double> g(std::size_t(2 * n + 1));
-  double total = 0;
-  for (int i = -n; i <= n; ++i) total += g[std::size_t(i + n)] = TentOfTent(i, h);
-  std::vector<float> taps;
-  for (double v : g) taps.push_back(float(v / total));
-  // Drop the zero taps at the ends (|d| >= 1 + h), keeping the kernel centred.
-  while (taps.size() > 1 && taps.front() == 0.0f && taps.back() == 0.0f) {
-    taps.erase(taps.begin());
-    taps.pop_back();
+  // The renderer reads the filtered view bilinearly: a tent of half-width 1 after the taps. For
+  // the two to make tent_1 * tent_h, the taps take the tent_h's part: its variance, h^2 / 6
+  // (the variances of convolved kernels add), in the tent's own shape where it is wide enough.
+  const double target = h * h / 6;
+  std::vector<double> taps;
+  if (target <= 1.0 / 3) {
+    const double a = target / 2;  // [a, 1 - 2a, a]: variance 2a
+    taps = {a, 1 - 2 * a, a};
+  } else {
+    // The sampled tent's variance grows with its width from 1/3 at 4/3 samples: bisect for it.
+    double lo = 4.0 / 3, hi = 2 * h + 2, variance = 0;
+    for (int i = 0; i < 100; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      SampledTent(mid, &variance);
+      (variance < target ? lo : hi) = mid;
+    }
+    taps = SampledTent(0.5 * (lo + hi), &variance);
   }
-  return taps;
+  return std::vector<float>(taps.begin(), taps.end());
 }
 
 std::vector<cv::Rect> ViewRegionsRead(const LightField& lf, const VirtualCamera& camera,

@@ -5,7 +5,8 @@
 // p_o and a uv point C_c + delta meets the st-plane at S_c + k delta, k = -h_o / (h_uv - h_o)
 // (heights above the st-plane of p_o and of the array). So over its bilinear hat, camera c is
 // read at S_c through the hat scaled by k: its view prefiltered by a tent of half-width |k| pitch
-// on the st-plane, weighted as the cameras integrator weights it. The limit is therefore the
+// on the st-plane (the taps carry the tent's spread; the read's bilinear tent adds the rest),
+// weighted as the cameras integrator weights it. The limit is therefore the
 // cameras integrator (the focal-plane reads, render/camera_integrator.h) over views filtered by
 // that tent: the paper's smooth out-of-focus blur without its lens-sample noise.
 //
@@ -30,8 +31,10 @@ struct StPrefilter {
 StPrefilter QuadrilinearLimitPrefilter(const LightField& lf, const VirtualCamera& camera);
 
 // The taps that filter a view's samples so that its bilinear reads are reads through the tent of
-// half-width h (samples): G = tent_1 * tent_h sampled at the integers -n..n, normalised to 1.
-// h = 0 gives {1}.
+// half-width h (samples): the read's own tent_1 follows them, so they carry tent_h's part of
+// tent_1 * tent_h, matched in its second moment (variance h^2 / 6): three taps [a, 1 - 2a, a]
+// while that is at most 1/3, else the tent sampled at the integers with the width that gives
+// it. Symmetric, normalised to 1; h = 0 gives {1}.
 std::vector<float> PrefilterTaps(double h);
 
 // The samples of each view (row-major) that the cameras integrator reads for the frame, with
