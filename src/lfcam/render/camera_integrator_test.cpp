@@ -6,24 +6,12 @@
 #include <iostream>
 
 #include "lfcam/render/cpu_renderer.h"
+#include "lfcam/render/render_test_cases.h"
 #include "lfcam/sim/scene.h"
 #include "lfcam/sim/simulate_lightfield.h"
 
 namespace lfcam {
 namespace {
-
-// The paper scene's light field, small: 10 x 10 views of 156 x 144 over the paper's st domain.
-const LightField& PaperLightField() {
-  static const LightField lf = [] {
-    SimulateLightFieldOptions o;
-    o.n_s = 156;
-    o.n_t = 144;
-    o.st_domain = StDomain{-1.2, -1.2, 1.2, 1.2};
-    o.supersampling = 1;
-    return SimulateLightField(MakePaperScene(), o);
-  }();
-  return lf;
-}
 
 // The render in linear light (float: the comparisons below go beyond 8 bits).
 cv::Mat Render(const VirtualCameraParams& p, Integrator integrator, double lens_rate = 4) {
@@ -32,7 +20,7 @@ cv::Mat Render(const VirtualCameraParams& p, Integrator integrator, double lens_
   CpuRenderOptions o;
   o.integrator = integrator;
   o.interpolation = Interpolation::kFocalPlane;
-  return RenderLightFieldCpu(PaperLightField(), VirtualCamera(q), o).image;
+  return RenderLightFieldCpu(render_test::GridPaperLightField(), VirtualCamera(q), o).image;
 }
 
 // PSNR of two linear images against a peak of 1.
@@ -103,7 +91,7 @@ TEST(CameraIntegrator, FootprintsAreTheLensSeenThroughThePointInFocus) {
   p.look_at = Vec3(300, 275, 0);
   p.aperture_mm = 112;  // radius 2 pitches
   const VirtualCamera camera_on(p);
-  const CameraIntegratorFrame on(PaperLightField(), camera_on);
+  const CameraIntegratorFrame on(render_test::GridPaperLightField(), camera_on);
   EXPECT_TRUE(on.exact());
   for (const auto& [i, j] : {std::pair{0, 0}, std::pair{7, 9}, std::pair{15, 15}}) {
     const Footprint f = on.FootprintOf(i, j);
@@ -125,7 +113,7 @@ TEST(CameraIntegrator, FootprintsAreTheLensSeenThroughThePointInFocus) {
   p.eye = Vec3(300, 275, 4600);
   p.focus_distance_mm = 4000;
   const VirtualCamera camera_behind(p);
-  const CameraIntegratorFrame behind(PaperLightField(), camera_behind);
+  const CameraIntegratorFrame behind(render_test::GridPaperLightField(), camera_behind);
   const Footprint f = behind.FootprintOf(8, 8);
   EXPECT_NEAR(f.radius, 2.0 * 0.75, 1e-9);
   // The weights sum to 1.

@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "lfcam/render/cpu_renderer.h"
+#include "lfcam/render/render_test_cases.h"
 #include "lfcam/sim/scene.h"
 #include "lfcam/sim/simulate_lightfield.h"
 #include "lfcam/sim/test_paper_lightfield.h"
@@ -35,19 +36,6 @@ TEST(QuadrilinearLimit, TapsCarryTheTentsSpreadForTheBilinearReadToFinish) {
     // Reaching no farther than the tent does.
     EXPECT_LE(n, int(std::ceil(h)) + 1);
   }
-}
-
-// The paper scene's light field, small: 10 x 10 views of 156 x 144 over the paper's st domain.
-const LightField& PaperLightField() {
-  static const LightField lf = [] {
-    SimulateLightFieldOptions o;
-    o.n_s = 156;
-    o.n_t = 144;
-    o.st_domain = StDomain{-1.2, -1.2, 1.2, 1.2};
-    o.supersampling = 1;
-    return SimulateLightField(MakePaperScene(), o);
-  }();
-  return lf;
 }
 
 RenderResult Render(const LightField& lf, const VirtualCameraParams& p, Integrator integrator,
@@ -135,7 +123,7 @@ TEST(QuadrilinearLimit, APinholeOrFocusOnTheStPlaneIsTheFocalPlaneLookup) {
   p.look_at = Vec3(300, 275, 0);
   p.focal_length_mm = 500;
   p.aperture_mm = 0;
-  const LightField& lf = PaperLightField();
+  const LightField& lf = render_test::GridPaperLightField();
   EXPECT_EQ(
       cv::norm(Render(lf, p, Integrator::kCamerasQuadrilinear, Interpolation::kQuadrilinear).image,
                Render(lf, p, Integrator::kCameras, Interpolation::kFocalPlane).image, cv::NORM_INF),
@@ -143,10 +131,12 @@ TEST(QuadrilinearLimit, APinholeOrFocusOnTheStPlaneIsTheFocalPlaneLookup) {
   // The st-plane is the world board's plane, z = 0; the array 3.6 m from it.
   p.aperture_mm = 192;
   p.focus_distance_mm = 3600;
-  const StPrefilter f = QuadrilinearLimitPrefilter(PaperLightField(), VirtualCamera(p));
+  const StPrefilter f =
+      QuadrilinearLimitPrefilter(render_test::GridPaperLightField(), VirtualCamera(p));
   EXPECT_NEAR(f.k, 0.0, 1e-9);
   p.focus_distance_mm = 7200;  // twice as far: k = 1/2
-  EXPECT_NEAR(QuadrilinearLimitPrefilter(PaperLightField(), VirtualCamera(p)).k, 0.5, 1e-9);
+  EXPECT_NEAR(QuadrilinearLimitPrefilter(render_test::GridPaperLightField(), VirtualCamera(p)).k,
+              0.5, 1e-9);
 }
 
 }  // namespace

@@ -13,6 +13,20 @@
 
 namespace lfcam::render_test {
 
+// The paper scene on the paper's 10 x 10 grid, small: views of 156 x 144 samples over the
+// paper's st domain, 8-bit sRGB, one ray a sample.
+inline const LightField& GridPaperLightField() {
+  static const LightField lf = [] {
+    SimulateLightFieldOptions o;
+    o.n_s = 156;
+    o.n_t = 144;
+    o.st_domain = StDomain{-1.2, -1.2, 1.2, 1.2};
+    o.supersampling = 1;
+    return SimulateLightField(MakePaperScene(), o);
+  }();
+  return lf;
+}
+
 // The paper scene, small: 6 x 7 cameras (rows x cols) of 96 x 88 samples, 8-bit sRGB, from
 // cameras a little off the ideal grid (as a calibrated array's are).
 inline const LightField& SmallPaperLightField() {

@@ -34,8 +34,8 @@ TEST(CameraModuleExposure, ShotAndReadNoiseHaveTheSpreadOfTheElectronsCounted) {
   const cv::Mat image = ExposeRadiance(module, radiance, options);
   // Poisson electrons plus read noise, and the 8-bit step's uniform error on top.
   const double electrons = level * options.full_well;
-  const double noise = std::sqrt(electrons + options.read_noise * options.read_noise) /
-                       options.full_well;
+  const double noise =
+      std::sqrt(electrons + options.read_noise * options.read_noise) / options.full_well;
   const double code_step = SrgbToLinear(float(LinearToSrgb8(float(level)) + 1) / 255.0f) -
                            SrgbToLinear(float(LinearToSrgb8(float(level))) / 255.0f);
   const double expected_sd = std::sqrt(noise * noise + code_step * code_step / 12);
