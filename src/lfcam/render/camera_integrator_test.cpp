@@ -29,35 +29,23 @@ double LinearPsnr(const cv::Mat& a, const cv::Mat& b) {
   return 10.0 * std::log10(1.0 / std::max(mse, 1e-30));
 }
 
-struct IntegratorCase {
-  const char* name;
-  Vec3 eye, look_at;
-  double focal_length, focus_distance, aperture;
-  bool breathing;
-};
-
 // The lens-sample estimator with the focal-plane lookup converges to the cameras integrator as
 // the lens sampling rate grows: eyes on, behind and in front of the array, a camera turned
 // away from the array's normal (its footprint taken as the disk of the same area), breathing
 // on and off.
 TEST(CameraIntegrator, IsTheLimitOfLensSamplesWithTheFocalPlaneLookup) {
-  for (const IntegratorCase& c : {
-           IntegratorCase{"on the array", {300, 275, 3600}, {300, 275, 0}, 500, 3900, 192, true},
-           IntegratorCase{"behind", {300, 275, 4600}, {300, 275, 0}, 400, 4700, 192, true},
-           IntegratorCase{
+  for (const render_test::ConvergenceCamera& c : {
+           render_test::ConvergenceCamera{
+               "on the array", {300, 275, 3600}, {300, 275, 0}, 500, 3900, 192, true},
+           render_test::ConvergenceCamera{
+               "behind", {300, 275, 4600}, {300, 275, 0}, 400, 4700, 192, true},
+           render_test::ConvergenceCamera{
                "in front, no breathing", {250, 300, 3000}, {250, 300, 0}, 300, 3400, 96, false},
-           IntegratorCase{
+           render_test::ConvergenceCamera{
                "turned 2.8 degrees", {300, 275, 3600}, {450, 200, 0}, 500, 4000, 192, true},
        }) {
     SCOPED_TRACE(c.name);
-    VirtualCameraParams p;
-    p.width = p.height = 24;
-    p.eye = c.eye;
-    p.look_at = c.look_at;
-    p.focal_length_mm = c.focal_length;
-    p.focus_distance_mm = c.focus_distance;
-    p.aperture_mm = c.aperture;
-    p.breathing = c.breathing;
+    const VirtualCameraParams p = c.Params(24);
     const cv::Mat limit = Render(p, Integrator::kCameras);
     const double at_64 = LinearPsnr(Render(p, Integrator::kLensSamples, 64), limit);
     const double at_256 = LinearPsnr(Render(p, Integrator::kLensSamples, 256), limit);

@@ -67,10 +67,7 @@ double LinearPsnr(const RenderResult& a, const RenderResult& b) {
 }
 
 struct LimitCase {
-  const char* name;
-  Vec3 eye, look_at;
-  double focal_length, focus_distance, aperture;
-  bool breathing;
+  render_test::ConvergenceCamera camera;
   double floor_db;  // what the limit must reach against gamma 256
 };
 
@@ -82,22 +79,16 @@ struct LimitCase {
 TEST(QuadrilinearLimit, IsTheLimitOfLensSamplesWithTheQuadrilinearLookup) {
   const LightField lf = testing::SharedPaperLightField();
   for (const LimitCase& c : {
-           LimitCase{"near focus", {300, 275, 3600}, {300, 275, 0}, 500, 3400, 192, true, 40},
-           LimitCase{"far focus", {300, 275, 3600}, {300, 275, 0}, 500, 5200, 192, true, 40},
+           LimitCase{{"near focus", {300, 275, 3600}, {300, 275, 0}, 500, 3400, 192, true}, 40},
+           LimitCase{{"far focus", {300, 275, 3600}, {300, 275, 0}, 500, 5200, 192, true}, 40},
            LimitCase{
-               "in front, no breathing", {250, 300, 3000}, {250, 300, 0}, 300, 4700, 96, false, 38},
-           LimitCase{
-               "turned 2.8 degrees", {300, 275, 3600}, {450, 200, 0}, 500, 4700, 192, true, 35},
+               {"in front, no breathing", {250, 300, 3000}, {250, 300, 0}, 300, 4700, 96, false},
+               38},
+           LimitCase{{"turned 2.8 degrees", {300, 275, 3600}, {450, 200, 0}, 500, 4700, 192, true},
+                     35},
        }) {
-    SCOPED_TRACE(c.name);
-    VirtualCameraParams p;
-    p.width = p.height = 48;
-    p.eye = c.eye;
-    p.look_at = c.look_at;
-    p.focal_length_mm = c.focal_length;
-    p.focus_distance_mm = c.focus_distance;
-    p.aperture_mm = c.aperture;
-    p.breathing = c.breathing;
+    SCOPED_TRACE(c.camera.name);
+    const VirtualCameraParams p = c.camera.Params(48);
     const RenderResult limit =
         Render(lf, p, Integrator::kCamerasQuadrilinear, Interpolation::kQuadrilinear);
     const RenderResult at_64 =
@@ -107,7 +98,7 @@ TEST(QuadrilinearLimit, IsTheLimitOfLensSamplesWithTheQuadrilinearLookup) {
     const double psnr_64 = LinearPsnr(at_64, limit), psnr_256 = LinearPsnr(at_256, limit);
     const double focal_plane =
         LinearPsnr(at_256, Render(lf, p, Integrator::kCameras, Interpolation::kFocalPlane));
-    std::cout << "[" << c.name << "] lens samples against the quadrilinear limit: gamma 64 "
+    std::cout << "[" << c.camera.name << "] lens samples against the quadrilinear limit: gamma 64 "
               << psnr_64 << " dB, gamma 256 " << psnr_256 << " dB; the focal-plane limit "
               << focal_plane << " dB\n";
     EXPECT_GT(psnr_256, psnr_64 - 0.05);

@@ -13,6 +13,26 @@
 
 namespace lfcam::render_test {
 
+// A camera of the convergence tests (lens samples toward an integrator's limit): where it stands
+// and looks, and its lens.
+struct ConvergenceCamera {
+  const char* name;
+  Vec3 eye, look_at;
+  double focal_length, focus_distance, aperture;
+  bool breathing;
+  VirtualCameraParams Params(int size) const {
+    VirtualCameraParams p;
+    p.width = p.height = size;
+    p.eye = eye;
+    p.look_at = look_at;
+    p.focal_length_mm = focal_length;
+    p.focus_distance_mm = focus_distance;
+    p.aperture_mm = aperture;
+    p.breathing = breathing;
+    return p;
+  }
+};
+
 // The paper scene on the paper's 10 x 10 grid, small: views of 156 x 144 samples over the
 // paper's st domain, 8-bit sRGB, one ray a sample.
 inline const LightField& GridPaperLightField() {
