@@ -61,11 +61,12 @@ struct DecodedRegion {
 };
 
 DecodedRegion DecodeRegion(std::span<const std::uint8_t> bytes, const std::string& name,
-                           int reduction, cv::Size scaled, cv::Rect wanted) {
+                           int reduction, cv::Size scaled, cv::Rect wanted,
+                           ChromaUpsampling chroma) {
   DecodedRegion out;
   if (wanted.area() == 0) return out;
   if (LooksLikeJpeg(bytes)) {
-    JpegRegion region = DecodeJpegRegion(bytes, name, reduction, wanted);
+    JpegRegion region = DecodeJpegRegion(bytes, name, reduction, wanted, chroma);
     if (region.scaled != scaled)
       throw Error(fmt::format("{}: decoded at 1/{} size to {}x{}, expected {}x{}", name, reduction,
                               region.scaled.width, region.scaled.height, scaled.width,
@@ -85,8 +86,9 @@ DecodedRegion DecodeRegion(std::span<const std::uint8_t> bytes, const std::strin
 }
 
 // Resamples one camera's image into its view. Returns the decode reduction used.
-int BuildView(const ViewJob& job, const Slab& slab, int n_s, int n_t, bool correct,
-              Resampling resampling, std::uint8_t* view, ViewStats* stats, double* decode_seconds) {
+int BuildView(const ViewJob& job, const Slab& slab, const BuildOptions& options, std::uint8_t* view,
+              ViewStats* stats, double* decode_seconds) {
+  const int n_s = options.n_s, n_t = options.n_t;
   const CameraIntrinsics& k = job.camera->intrinsics;
   const Rigid3 camera_from_world = job.camera->world_from_camera.inverse();
   const Mat3& r = camera_from_world.rotation;
@@ -154,14 +156,15 @@ int BuildView(const ViewJob& job, const Slab& slab, int n_s, int n_t, bool corre
                 cv::Point(int(std::ceil(x_hi)) + margin + 1, int(std::ceil(y_hi)) + margin + 1)) &
                 cv::Rect(cv::Point(0, 0), scaled);
   const auto start = std::chrono::steady_clock::now();
-  const DecodedRegion region = DecodeRegion(bytes, job.image.string(), reduction, scaled, wanted);
+  const DecodedRegion region =
+      DecodeRegion(bytes, job.image.string(), reduction, scaled, wanted, options.chroma);
   *decode_seconds +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   cv::Mat sampled(n_t, n_s, CV_32FC3, cv::Scalar(0, 0, 0));
   const PhotometricCorrection identity;
   const PhotometricCorrection& photometry =
-      correct && job.camera->photometry ? *job.camera->photometry : identity;
+      options.photometric_correction && job.camera->photometry ? *job.camera->photometry : identity;
   const cv::Rect& roi = region.roi;
   if (roi.area() > 0) {
     // The region in linear light, photometrically corrected.
@@ -189,9 +192,9 @@ int BuildView(const ViewJob& job, const Slab& slab, int n_s, int n_t, bool corre
     }
     map_x -= float(roi.x);
     map_y -= float(roi.y);
-    const int interpolation = resampling == Resampling::kLinear  ? cv::INTER_LINEAR
-                              : resampling == Resampling::kCubic ? cv::INTER_CUBIC
-                                                                 : cv::INTER_LANCZOS4;
+    const int interpolation = options.resampling == Resampling::kLinear  ? cv::INTER_LINEAR
+                              : options.resampling == Resampling::kCubic ? cv::INTER_CUBIC
+                                                                         : cv::INTER_LANCZOS4;
     cv::remap(linear, sampled, map_x, map_y, interpolation, cv::BORDER_CONSTANT,
               cv::Scalar(0, 0, 0));
     map_x += float(roi.x);
@@ -350,8 +353,8 @@ LightField BuildLightField(const std::filesystem::path& dir, const CaptureManife
     s.after.assign(cells, Vec3::Zero());
     s.before.assign(cells, Vec3::Zero());
     double decode = 0;
-    const int reduction = BuildView(job, slab, o.n_s, o.n_t, o.photometric_correction, o.resampling,
-                                    lf.mutable_view_data(job.row, job.col), &s, &decode);
+    const int reduction =
+        BuildView(job, slab, o, lf.mutable_view_data(job.row, job.col), &s, &decode);
     std::lock_guard lock(mutex);
     decode_seconds += decode;
     reduction_max = std::max(reduction_max.load(), reduction);
@@ -418,6 +421,7 @@ LightField BuildLightField(const std::filesystem::path& dir, const CaptureManife
   lf.metadata() = {{"source", "built"},
                    {"shot", o.shot},
                    {"resampling", ToString(o.resampling)},
+                   {"chroma_upsampling", ToString(o.chroma)},
                    {"session", manifest.source},
                    {"calibration", cal.summary},
                    {"color_correction",

@@ -3,7 +3,8 @@
 // one resampling map from the st samples of the view window to its scene image (the plane's
 // homography, then the lens distortion), the photometric correction, and a bilinear lookup in
 // linear light, antialiased where the map shrinks (the image is decoded at 1/2, 1/4 or 1/8 size
-// by libjpeg-turbo's scaled decoding, then blurred for what remains). Cameras in parallel.
+// by libjpeg-turbo's scaled decoding, then blurred for what remains). JPEG chroma subsampled by
+// the camera comes back at full resolution guided by the luma. Cameras in parallel.
 #include <filesystem>
 #include <functional>
 #include <optional>
@@ -12,6 +13,7 @@
 
 #include "lfcam/calib/calibration_file.h"
 #include "lfcam/capture/session.h"
+#include "lfcam/core/jpeg_region.h"
 #include "lfcam/core/lightfield.h"
 
 namespace lfcam {
@@ -24,6 +26,9 @@ std::string ToString(Resampling resampling);
 struct BuildOptions {
   int n_s = 1248, n_t = 1152;
   Resampling resampling = Resampling::kLinear;
+  // JPEG chroma kept at half resolution (4:2:0, as the Pi camera writes it) comes back guided by
+  // the luma (core/chroma_upsampling.h) or interpolated as any decoder does.
+  ChromaUpsampling chroma = ChromaUpsampling::kGuided;
   std::optional<StDomain> st_domain;  // default: the calibration's (the world board, [0, 1]^2)
   bool allow_missing = false;  // fill cameras without an image or calibration from neighbours
   bool photometric_correction = true;  // when the calibration has it

@@ -23,7 +23,7 @@ void AddBuildCommand(CLI::App& app) {
       app.add_subcommand("build", "Build the light field of a calibrated capture session");
   struct Flags {
     std::string session, calibration, out, st_res = "1248x1152", st_domain, compression = "none",
-                                           shot = "scene", resampling = "linear";
+                                           shot = "scene", resampling = "linear", chroma = "guided";
     bool allow_missing = false, no_color = false, json = false, quiet = false;
   };
   auto flags = std::make_shared<Flags>();
@@ -44,6 +44,12 @@ void AddBuildCommand(CLI::App& app) {
           "Kernel between camera pixels: linear (closest to the truth sample by sample), cubic "
           "(sharper renders) or lanczos4")
       ->capture_default_str();
+  command
+      ->add_option("--chroma", flags->chroma,
+                   "JPEG colour kept at half resolution (4:2:0, as the Pi camera writes it): "
+                   "guided (restored along the full-resolution brightness) or interpolated (as "
+                   "any decoder does)")
+      ->capture_default_str();
   command->add_flag("--allow-missing", flags->allow_missing,
                     "Fill cameras without an image or calibration from their nearest neighbours "
                     "(recorded in the file's metadata)");
@@ -61,6 +67,7 @@ void AddBuildCommand(CLI::App& app) {
     o.shot = flags->shot;
     o.resampling =
         FlagValue("--resampling", [&] { return ResamplingFromString(flags->resampling); });
+    o.chroma = FlagValue("--chroma", [&] { return ChromaUpsamplingFromString(flags->chroma); });
     o.photometric_correction = !flags->no_color;
     RequireWritableOutput(flags->out, "--out");
     const CaptureManifest manifest = ReadManifest(flags->session);

@@ -135,6 +135,7 @@ TEST_F(CalibrateCli, BuildsTheLightFieldAndRecordsHowItWasMade) {
   EXPECT_EQ(j["metadata"]["source"], "built");
   EXPECT_EQ(j["metadata"]["color_correction"]["applied"], true);
   EXPECT_EQ(j["metadata"]["filled_views"].size(), 0u);
+  EXPECT_EQ(j["metadata"]["chroma_upsampling"], "guided");
   run = Lfcam("info --json " + Path("built.lf"));
   ASSERT_EQ(run.status, 0) << run.output;
   const auto info = nlohmann::json::parse(run.output);
@@ -160,7 +161,8 @@ TEST_F(CalibrateCli, BuildRefusesBadFlagsAndMismatches) {
   for (const std::string& args :
        {base, base + " --calibration " + Path("c.json") + " --st-res 0x5",
         base + " --calibration " + Path("c.json") + " --st-domain 1,1,0,0",
-        base + " --calibration " + Path("c.json") + " --compress lz4"}) {
+        base + " --calibration " + Path("c.json") + " --compress lz4",
+        base + " --calibration " + Path("c.json") + " --chroma fancy"}) {
     const CommandResult run = Lfcam(args);
     EXPECT_EQ(run.status, 2) << args << "\n" << run.output;
   }

@@ -22,7 +22,8 @@ void AddImportCommand(CLI::App& app) {
   auto* command = app.add_subcommand(
       "import", "Import a folder of views on a camera grid (Stanford, Blender grid, described)");
   struct Flags {
-    std::string dir, out, st_res, st_domain, compression = "none", resampling = "linear";
+    std::string dir, out, st_res, st_domain, compression = "none", resampling = "linear",
+                                             chroma = "guided";
     double st_distance = 0, focal_px = 0, focal_mm = 0, sensor_width_mm = 0;
     bool allow_missing = false, json = false, quiet = false;
   };
@@ -43,6 +44,9 @@ void AddImportCommand(CLI::App& app) {
   command->add_option("--sensor-width-mm", f->sensor_width_mm, "The sensor's width, mm");
   command->add_option("--compress", f->compression, "none or zstd")->capture_default_str();
   command->add_option("--resampling", f->resampling, "linear, cubic or lanczos4 (as for build)")
+      ->capture_default_str();
+  command
+      ->add_option("--chroma", f->chroma, "guided or interpolated, for JPEG views (as for build)")
       ->capture_default_str();
   command->add_flag("--allow-missing", f->allow_missing,
                     "Fill views missing from the grid from their nearest neighbours (recorded)");
@@ -67,6 +71,7 @@ void AddImportCommand(CLI::App& app) {
     std::optional<std::pair<int, int>> st_res;
     if (!f->st_res.empty()) st_res = ParseSize("--st-res", f->st_res, kMaxStSamplesPerSide);
     b.resampling = FlagValue("--resampling", [&] { return ResamplingFromString(f->resampling); });
+    b.chroma = FlagValue("--chroma", [&] { return ChromaUpsamplingFromString(f->chroma); });
     b.allow_missing = f->allow_missing;
     LightFieldWriteOptions w;
     w.compression = ParseCompression("--compress", f->compression);

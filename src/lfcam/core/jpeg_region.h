@@ -10,6 +10,13 @@
 
 namespace lfcam {
 
+// How chroma kept at a lower resolution than luma (4:2:0, 4:2:2) comes back at full size:
+// guided by the luma (core/chroma_upsampling.h; at 1/1 size only, since a scaled decode has the
+// chroma's resolution already), or interpolated by libjpeg as every decoder does.
+enum class ChromaUpsampling { kGuided, kInterpolated };
+ChromaUpsampling ChromaUpsamplingFromString(const std::string& name);  // throws lfcam::Error
+std::string ToString(ChromaUpsampling chroma);
+
 struct JpegRegion {
   cv::Mat rgb;       // CV_8UC3, R, G, B, the decoded region (at least the requested one)
   cv::Point origin;  // its top-left corner in the scaled image
@@ -21,7 +28,8 @@ struct JpegRegion {
 // boundary, and a block more on each side so that chroma upsampling at its edges matches a
 // whole decode). Throws lfcam::Error naming `name` for anything that is not a readable JPEG.
 JpegRegion DecodeJpegRegion(std::span<const std::uint8_t> bytes, const std::string& name,
-                            int reduction, cv::Rect region);
+                            int reduction, cv::Rect region,
+                            ChromaUpsampling chroma = ChromaUpsampling::kGuided);
 
 // Whether `bytes` start like a JPEG (SOI marker).
 bool LooksLikeJpeg(std::span<const std::uint8_t> bytes);
