@@ -14,6 +14,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <span>
+#include <vector>
 
 #include "lfcam/core/color.h"
 #include "lfcam/core/error.h"
@@ -167,21 +168,29 @@ int BuildView(const ViewJob& job, const Slab& slab, const BuildOptions& options,
       options.photometric_correction && job.camera->photometry ? *job.camera->photometry : identity;
   const cv::Rect& roi = region.roi;
   if (roi.area() > 0) {
-    // The region in linear light, photometrically corrected.
+    // The region in linear light, photometrically corrected: 1 / (gain * falloff), the falloff
+    // 1 + vignetting * rho^2 (PhotometricCorrection::falloff) with its row term hoisted.
     const auto& lut = SrgbDecodeTable();
     cv::Mat linear(roi.size(), CV_32FC3);
     const Vec3 inverse_gain = photometry.gain.cwiseInverse();
+    const float gain_r = float(inverse_gain.x()), gain_g = float(inverse_gain.y()),
+                gain_b = float(inverse_gain.z());
+    const double half_diagonal2 = 0.25 * (double(k.width) * k.width + double(k.height) * k.height);
+    const float per_rho2 = float(photometry.vignetting / half_diagonal2);
+    std::vector<float> dx2(std::size_t(roi.width));
+    for (int x = 0; x < roi.width; ++x) {
+      const double dx = (roi.x + x + 0.5) * reduction - 0.5 - k.cx;
+      dx2[std::size_t(x)] = float(dx * dx);
+    }
     for (int y = 0; y < roi.height; ++y) {
       const auto* in = region.rgb.ptr<cv::Vec3b>(y);
       auto* out = linear.ptr<cv::Vec3f>(y);
-      const double full_y = (roi.y + y + 0.5) * reduction - 0.5;
+      const double dy = (roi.y + y + 0.5) * reduction - 0.5 - k.cy;
+      const float dy2 = float(dy * dy);
       for (int x = 0; x < roi.width; ++x) {
-        const double full_x = (roi.x + x + 0.5) * reduction - 0.5;
-        const double f =
-            photometry.vignetting == 0 ? 1.0 : 1.0 / photometry.falloff(k, full_x, full_y);
-        out[x] = cv::Vec3f(float(lut[in[x][0]] * inverse_gain.x() * f),
-                           float(lut[in[x][1]] * inverse_gain.y() * f),
-                           float(lut[in[x][2]] * inverse_gain.z() * f));
+        const float f = 1.0f / (1.0f + per_rho2 * (dx2[std::size_t(x)] + dy2));
+        out[x] = cv::Vec3f(lut[in[x][0]] * gain_r * f, lut[in[x][1]] * gain_g * f,
+                           lut[in[x][2]] * gain_b * f);
       }
     }
     // What the scaled decode left of the shrink: a Gaussian prefilter.
@@ -201,11 +210,12 @@ int BuildView(const ViewJob& job, const Slab& slab, const BuildOptions& options,
     map_y += float(roi.y);
   }
   // Encode the view (row l = 0 at the bottom of the st domain, as the map's rows are).
+  const auto& encode = LinearToSrgb8EncodeTable();
   for (int l = 0; l < n_t; ++l) {
     const auto* in = sampled.ptr<cv::Vec3f>(l);
     std::uint8_t* out = view + std::size_t(l) * std::size_t(n_s) * 3;
     for (int kk = 0; kk < n_s; ++kk)
-      for (int ch = 0; ch < 3; ++ch) out[kk * 3 + ch] = LinearToSrgb8Table(in[kk][ch]);
+      for (int ch = 0; ch < 3; ++ch) out[kk * 3 + ch] = LinearToSrgb8With(encode, in[kk][ch]);
   }
   // Colour statistics on the coarse grid: inside the image, with and without the correction.
   for (int l = 0, i = 0; l < n_t; l += kStatsStride)
