@@ -99,8 +99,8 @@ TEST(JpegRegion, GuidedChromaIsCloserToTheOriginalThanInterpolated) {
 }
 
 // `rgb` as a quality-95 JPEG whose luma is sampled h x v times as often as its chroma (OpenCV
-// writes only 4:2:0; cameras also write 4:2:2 and 4:4:4).
-std::vector<std::uint8_t> EncodeSampled(const cv::Mat& rgb, int h, int v) {
+// writes only 4:2:0; cameras also write 4:2:2 and 4:4:4), baseline or progressive.
+std::vector<std::uint8_t> EncodeSampled(const cv::Mat& rgb, int h, int v, bool progressive) {
   jpeg_compress_struct cinfo;
   LibjpegErrors error;
   cinfo.err = error.install();
@@ -121,6 +121,7 @@ std::vector<std::uint8_t> EncodeSampled(const cv::Mat& rgb, int h, int v) {
   jpeg_set_quality(&cinfo, 95, TRUE);
   cinfo.comp_info[0].h_samp_factor = h;
   cinfo.comp_info[0].v_samp_factor = v;
+  if (progressive) jpeg_simple_progression(&cinfo);
   jpeg_start_compress(&cinfo, TRUE);
   while (cinfo.next_scanline < cinfo.image_height) {
     JSAMPROW row = const_cast<JSAMPROW>(rgb.ptr<std::uint8_t>(int(cinfo.next_scanline)));
@@ -133,30 +134,33 @@ std::vector<std::uint8_t> EncodeSampled(const cv::Mat& rgb, int h, int v) {
   return bytes;
 }
 
-TEST(JpegRegion, EveryChromaSamplingDecodes) {
+TEST(JpegRegion, EveryChromaSamplingDecodesBaselineOrProgressive) {
   cv::Mat rgb;
   TestJpeg(&rgb);
   const cv::Rect all(0, 0, 640, 480);
-  for (const cv::Size factor : {cv::Size(1, 1), cv::Size(2, 1), cv::Size(1, 2), cv::Size(2, 2)}) {
-    SCOPED_TRACE(::testing::Message() << "luma sampled " << factor << " times the chroma");
-    const auto bytes = EncodeSampled(rgb, factor.width, factor.height);
-    const cv::Mat guided = DecodeJpegRegion(bytes, "s.jpg", 1, all, ChromaUpsampling::kGuided).rgb;
-    const cv::Mat interpolated =
-        DecodeJpegRegion(bytes, "s.jpg", 1, all, ChromaUpsampling::kInterpolated).rgb;
-    ASSERT_EQ(guided.size(), rgb.size());
-    if (factor == cv::Size(1, 1)) {
-      // Nothing to restore: libjpeg's own conversion, both ways.
-      EXPECT_EQ(cv::norm(guided, interpolated, cv::NORM_INF), 0.0);
-      continue;
+  for (const bool progressive : {false, true})
+    for (const cv::Size factor : {cv::Size(1, 1), cv::Size(2, 1), cv::Size(1, 2), cv::Size(2, 2)}) {
+      SCOPED_TRACE(::testing::Message() << "luma sampled " << factor << " times the chroma"
+                                        << (progressive ? ", progressive" : ""));
+      const auto bytes = EncodeSampled(rgb, factor.width, factor.height, progressive);
+      const cv::Mat guided =
+          DecodeJpegRegion(bytes, "s.jpg", 1, all, ChromaUpsampling::kGuided).rgb;
+      const cv::Mat interpolated =
+          DecodeJpegRegion(bytes, "s.jpg", 1, all, ChromaUpsampling::kInterpolated).rgb;
+      ASSERT_EQ(guided.size(), rgb.size());
+      if (factor == cv::Size(1, 1)) {
+        // Nothing to restore: libjpeg's own conversion, both ways.
+        EXPECT_EQ(cv::norm(guided, interpolated, cv::NORM_INF), 0.0);
+        continue;
+      }
+      // The blue checker's colour edges: guided beats interpolated whichever way the chroma was
+      // halved (measured 7.3 to 9.3 dB).
+      EXPECT_GT(cv::PSNR(guided, rgb), cv::PSNR(interpolated, rgb) + 4.0);
+      // A region decodes as the whole image does, starting on an odd row and column.
+      const cv::Rect wanted(201, 153, 211, 137);
+      const JpegRegion r = DecodeJpegRegion(bytes, "s.jpg", 1, wanted, ChromaUpsampling::kGuided);
+      ExpectSamePixels(guided(wanted), r.rgb(cv::Rect(wanted.tl() - r.origin, wanted.size())));
     }
-    // The blue checker's colour edges: guided beats interpolated whichever way the chroma was
-    // halved (measured 7.3 to 9.3 dB).
-    EXPECT_GT(cv::PSNR(guided, rgb), cv::PSNR(interpolated, rgb) + 4.0);
-    // A region decodes as the whole image does, starting on an odd row and column.
-    const cv::Rect wanted(201, 153, 211, 137);
-    const JpegRegion r = DecodeJpegRegion(bytes, "s.jpg", 1, wanted, ChromaUpsampling::kGuided);
-    ExpectSamePixels(guided(wanted), r.rgb(cv::Rect(wanted.tl() - r.origin, wanted.size())));
-  }
 }
 
 TEST(JpegRegion, NamesTheChromaUpsamplings) {
