@@ -116,8 +116,8 @@ std::string Decode(const std::uint8_t* data, std::size_t size, int reduction, cv
 
 // Y, Cb, Cr with chroma repeated over each `factor` block (from Decode) to R, G, B.
 cv::Mat GuidedRgb(const cv::Mat& ycc, cv::Size factor) {
-  cv::Mat planes[3];
-  cv::split(ycc, planes);
+  cv::Mat luma;
+  cv::extractChannel(ycc, luma, 0);
   const cv::Size low((ycc.cols + factor.width - 1) / factor.width,
                      (ycc.rows + factor.height - 1) / factor.height);
   cv::Mat cb(low, CV_8UC1), cr(low, CV_8UC1);
@@ -128,7 +128,7 @@ cv::Mat GuidedRgb(const cv::Mat& ycc, cv::Size factor) {
       cr.at<std::uint8_t>(row, x) = in[x * factor.width][2];
     }
   }
-  return GuidedChromaToRgb(planes[0], cb, cr, factor);
+  return GuidedChromaToRgb(luma, cb, cr, factor);
 }
 
 }  // namespace
