@@ -10,10 +10,14 @@
 
 namespace lfcam {
 
-double PhotometricCorrection::falloff(const CameraIntrinsics& k, double x, double y) const {
+double PhotometricCorrection::falloff_per_pixel2(const CameraIntrinsics& k) const {
   const double half_diagonal2 = 0.25 * (double(k.width) * k.width + double(k.height) * k.height);
+  return vignetting / half_diagonal2;
+}
+
+double PhotometricCorrection::falloff(const CameraIntrinsics& k, double x, double y) const {
   const double dx = x - k.cx, dy = y - k.cy;
-  return 1.0 + vignetting * (dx * dx + dy * dy) / half_diagonal2;
+  return 1.0 + falloff_per_pixel2(k) * (dx * dx + dy * dy);
 }
 
 nlohmann::json PhotometryToJson(const PhotometricCorrection& p) {

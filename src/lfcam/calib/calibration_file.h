@@ -20,6 +20,9 @@ struct PhotometricCorrection {
 
   // rho: the distance from the principal point over the image's half-diagonal.
   double falloff(const CameraIntrinsics& k, double x, double y) const;
+  // The falloff's growth per squared pixel of distance from the principal point: falloff =
+  // 1 + per_pixel2 * (dx^2 + dy^2), for loops that hoist the row's term.
+  double falloff_per_pixel2(const CameraIntrinsics& k) const;
 };
 nlohmann::json PhotometryToJson(const PhotometricCorrection& p);
 PhotometricCorrection PhotometryFromJson(const nlohmann::json& j, const std::string& where);

@@ -168,15 +168,14 @@ int BuildView(const ViewJob& job, const Slab& slab, const BuildOptions& options,
       options.photometric_correction && job.camera->photometry ? *job.camera->photometry : identity;
   const cv::Rect& roi = region.roi;
   if (roi.area() > 0) {
-    // The region in linear light, photometrically corrected: 1 / (gain * falloff), the falloff
-    // 1 + vignetting * rho^2 (PhotometricCorrection::falloff) with its row term hoisted.
+    // The region in linear light, photometrically corrected: 1 / (gain * falloff), the falloff's
+    // row term hoisted.
     const auto& lut = SrgbDecodeTable();
     cv::Mat linear(roi.size(), CV_32FC3);
     const Vec3 inverse_gain = photometry.gain.cwiseInverse();
     const float gain_r = float(inverse_gain.x()), gain_g = float(inverse_gain.y()),
                 gain_b = float(inverse_gain.z());
-    const double half_diagonal2 = 0.25 * (double(k.width) * k.width + double(k.height) * k.height);
-    const float per_rho2 = float(photometry.vignetting / half_diagonal2);
+    const float per_pixel2 = float(photometry.falloff_per_pixel2(k));
     std::vector<float> dx2(std::size_t(roi.width));
     for (int x = 0; x < roi.width; ++x) {
       const double dx = (roi.x + x + 0.5) * reduction - 0.5 - k.cx;
@@ -188,7 +187,7 @@ int BuildView(const ViewJob& job, const Slab& slab, const BuildOptions& options,
       const double dy = (roi.y + y + 0.5) * reduction - 0.5 - k.cy;
       const float dy2 = float(dy * dy);
       for (int x = 0; x < roi.width; ++x) {
-        const float f = 1.0f / (1.0f + per_rho2 * (dx2[std::size_t(x)] + dy2));
+        const float f = 1.0f / (1.0f + per_pixel2 * (dx2[std::size_t(x)] + dy2));
         out[x] = cv::Vec3f(lut[in[x][0]] * gain_r * f, lut[in[x][1]] * gain_g * f,
                            lut[in[x][2]] * gain_b * f);
       }
