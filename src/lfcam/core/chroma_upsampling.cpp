@@ -106,9 +106,9 @@ cv::Mat GuidedMaps(const cv::Mat& luma_low1, const cv::Mat& chroma) {
   // (A scalar added to a two-channel matrix goes to its first channel only: add it to both.)
   const cv::Mat window_slope = covariance / (variance + cv::Scalar::all(kChromaGuideEpsilon));
   cv::Mat maps;
-  cv::merge(std::vector<cv::Mat>{WindowMean(window_slope),
-                                 WindowMean(mean_c - window_slope.mul(mean_y))},
-            maps);
+  cv::merge(
+      std::vector<cv::Mat>{WindowMean(window_slope), WindowMean(mean_c - window_slope.mul(mean_y))},
+      maps);
   return maps;
 }
 
@@ -152,8 +152,7 @@ void BackProject(const cv::Mat& y, const cv::Mat& chroma, cv::Size factor, const
 
 }  // namespace
 
-cv::Mat GuidedChromaToRgb(const cv::Mat& y, const cv::Mat& cb, const cv::Mat& cr,
-                          cv::Size factor) {
+cv::Mat GuidedChromaToRgb(const cv::Mat& y, const cv::Mat& cb, const cv::Mat& cr, cv::Size factor) {
   if (y.type() != CV_8UC1 || cb.type() != CV_8UC1 || cr.type() != CV_8UC1)
     throw Error("GuidedChromaToRgb: planes must be 8-bit, one channel");
   if (factor.width < 1 || factor.width > 2 || factor.height < 1 || factor.height > 2)
@@ -163,8 +162,8 @@ cv::Mat GuidedChromaToRgb(const cv::Mat& y, const cv::Mat& cb, const cv::Mat& cr
                      (y.rows + factor.height - 1) / factor.height);
   if (cb.size() != low || cr.size() != low)
     throw Error(fmt::format(
-        "GuidedChromaToRgb: chroma of {}x{} and {}x{} for luma of {}x{} subsampled {}x{}",
-        cb.cols, cb.rows, cr.cols, cr.rows, y.cols, y.rows, factor.width, factor.height));
+        "GuidedChromaToRgb: chroma of {}x{} and {}x{} for luma of {}x{} subsampled {}x{}", cb.cols,
+        cb.rows, cr.cols, cr.rows, y.cols, y.rows, factor.width, factor.height));
   cv::Mat rgb(y.size(), CV_8UC3);
   if (y.empty()) return rgb;
 
