@@ -377,9 +377,13 @@ LightField BuildLightField(const std::filesystem::path& dir, const CaptureManife
   // Measured poses; missing views filled from their nearest built neighbours, in linear light.
   std::vector<ViewPose> poses(image_of.size());
   for (std::size_t i = 0; i < image_of.size(); ++i)
-    if (built[i])
+    if (built[i]) {
+      // The camera as `render --as-camera` reproduces it: its pinhole, distortion undone.
+      CameraIntrinsics pinhole = cal.cameras[i].intrinsics;
+      pinhole.distortion = {};
       poses[i] = {cal.cameras[i].world_from_camera.translation,
-                  cal.cameras[i].world_from_camera.rotation};
+                  cal.cameras[i].world_from_camera.rotation, pinhole};
+    }
   nlohmann::json filled = nlohmann::json::array();
   const auto& lut = SrgbDecodeTable();
   for (int r = 0; r < rows; ++r)
@@ -406,8 +410,8 @@ LightField BuildLightField(const std::filesystem::path& dir, const CaptureManife
         for (const auto& [rr, cc] : from) sum += lut[lf.view_data(rr, cc)[b]];
         out[b] = LinearToSrgb8Table(sum / float(from.size()));
       }
-      poses[i] = {slab.uv.camera_center(r, c),
-                  poses[std::size_t(from[0].first * cols + from[0].second)].orientation};
+      const ViewPose& nearest = poses[std::size_t(from[0].first * cols + from[0].second)];
+      poses[i] = {slab.uv.camera_center(r, c), nearest.orientation, nearest.intrinsics};
       std::vector<std::string> names;
       for (const auto& [rr, cc] : from) names.push_back(fmt::format("({}, {})", rr, cc));
       report.filled.push_back(fmt::format("{} from {}", CameraLabel(r, c), fmt::join(names, ", ")));

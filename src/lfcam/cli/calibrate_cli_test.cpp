@@ -139,7 +139,7 @@ TEST_F(CalibrateCli, BuildsTheLightFieldAndRecordsHowItWasMade) {
   run = Lfcam("info --json " + Path("built.lf"));
   ASSERT_EQ(run.status, 0) << run.output;
   const auto info = nlohmann::json::parse(run.output);
-  EXPECT_EQ(info["format_version"], 2);
+  EXPECT_EQ(info["format_version"], 3);  // each view records its camera
   EXPECT_EQ(info["measured_poses"], true);
   // The same array simulated directly from the true centres, and the two compared.
   run = Lfcam("simulate lightfield --grid 2x2 --st-res 64x58 --quiet --centers-from " +

@@ -8,10 +8,18 @@
 #include "lfcam/core/error.h"
 #include "lfcam/core/limits.h"
 #include "lfcam/render/lens_sampling.h"
+#include "lfcam/render/rig_camera.h"
 
 namespace lfcam::cli {
 
-void CameraFlags::AddTo(CLI::App& c) {
+void CameraFlags::AddTo(CLI::App& c, bool rig_cameras) {
+  if (rig_cameras)
+    options_["--as-camera"] = c.add_option(
+        "--as-camera", as_camera,
+        "R,C: render what the rig's camera at grid row R, column C (row 0 at the bottom, as "
+        "`lfcam info` lists them) recorded: its position, orientation, image size, focal length "
+        "and principal point; fractional R, C for a camera between them. --aperture, "
+        "--focus-distance (default: the st-plane) and --lens-rate still apply");
   options_["--camera"] = c.add_option(
       "--camera", view_file,
       "A saved view (FILE.json, as the viewer writes beside a screenshot): its camera, "
@@ -77,7 +85,17 @@ void CameraFlags::Validate() const {
   if (!(focal_length_mm > 0) || !std::isfinite(focal_length_mm))
     throw UsageError(
         fmt::format("--focal-length: {} must be a positive number of mm", focal_length_mm));
-  if (!(focus_distance_mm > focal_length_mm) || !std::isfinite(focus_distance_mm))
+  if (!as_camera.empty()) {
+    for (const char* flag :
+         {"--camera", "--size", "--eye", "--look-at", "--up", "--focal-length", "--no-breathing"})
+      if (given(flag))
+        throw UsageError(
+            fmt::format("{} does not go with --as-camera (the rig's camera sets it)", flag));
+    ParseNumbers("--as-camera", as_camera, 2);
+    if (given("--focus-distance") &&
+        (!(focus_distance_mm > 0) || !std::isfinite(focus_distance_mm)))
+      throw UsageError(fmt::format("--focus-distance: {} mm must be positive", focus_distance_mm));
+  } else if (!(focus_distance_mm > focal_length_mm) || !std::isfinite(focus_distance_mm))
     throw UsageError(fmt::format("--focus-distance: {} mm must exceed the focal length ({} mm)",
                                  focus_distance_mm, focal_length_mm));
   if (!(aperture_mm >= 0) || !std::isfinite(aperture_mm))
@@ -120,6 +138,22 @@ VirtualCameraParams CameraFlags::Resolve(const ArrayPlane& array) const {
   p.lens_rate = lens_rate;
   p.breathing = !no_breathing;
   return p;
+}
+
+VirtualCamera CameraFlags::MakeCamera(const LightField& lf) const {
+  if (as_camera.empty()) return MakeCamera(lf.slab().uv);
+  Validate();
+  const std::vector<double> at = ParseNumbers("--as-camera", as_camera, 2);
+  VirtualCameraParams p =
+      FlagValue("--as-camera", [&] { return RigCameraParams(lf, at[0], at[1]); });
+  if (given("--focus-distance")) p.focus_distance_mm = focus_distance_mm;
+  p.aperture_mm = aperture_mm;
+  p.lens_rate = lens_rate;
+  try {
+    return VirtualCamera(p);
+  } catch (const Error& e) {
+    throw UsageError(fmt::format("--as-camera {}: {}", as_camera, e.what()));
+  }
 }
 
 VirtualCamera CameraFlags::MakeCamera(const ArrayPlane& array) const {

@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "lfcam/core/lightfield.h"
 #include "lfcam/core/slab.h"
 #include "lfcam/render/view_file.h"
 #include "lfcam/render/virtual_camera.h"
@@ -21,8 +22,10 @@ struct CameraFlags {
   double lens_rate = 4.0;
   bool no_breathing = false;
   std::string view_file;  // --camera FILE.json: a saved view (the viewer's), flags override it
+  std::string as_camera;  // --as-camera R,C: the rig's camera at grid position (R, C)
 
-  void AddTo(CLI::App& command);
+  // `rig_cameras`: also --as-camera (commands that read a light field file).
+  void AddTo(CLI::App& command, bool rig_cameras = false);
   // The saved view (--camera), read once; none without the flag. Throws UsageError naming it.
   const std::optional<ViewSettings>& view() const;
   // Whether a flag was given on the command line (not just defaulted).
@@ -32,6 +35,9 @@ struct CameraFlags {
   void Validate() const;
   // The camera; unset eye/look-at/up default from the array plane. Throws lfcam::UsageError.
   VirtualCamera MakeCamera(const ArrayPlane& array) const;
+  // The same for a light field: with --as-camera, the rig's camera (render/rig_camera.h) with
+  // the aperture, focus and lens rate flags over it.
+  VirtualCamera MakeCamera(const LightField& lf) const;
 
  private:
   VirtualCameraParams Resolve(const ArrayPlane& array) const;

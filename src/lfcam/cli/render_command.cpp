@@ -57,7 +57,7 @@ void AddRenderCommand(CLI::App& app) {
   auto flags = std::make_shared<Flags>();
   render->add_option("lightfield", flags->input, "Light field file (.lf)")->required();
   render->add_option("--out", flags->out, "Image to write (.png or .jpg)")->required();
-  flags->camera.AddTo(*render);
+  flags->camera.AddTo(*render, /*rig_cameras=*/true);
   render
       ->add_option("--threads", flags->threads,
                    "Worker threads (0 = all cores; 1 = the paper's single-threaded CPU column)")
@@ -133,7 +133,7 @@ void AddRenderCommand(CLI::App& app) {
     const Backend backend = flags->backend.Validate(options);
     const std::unique_ptr<FrameRenderer> renderer = BackendFlags::Open(backend);
     const LightField lf = ReadLightField(flags->input);
-    const VirtualCamera camera = flags->camera.MakeCamera(lf.slab().uv);
+    const VirtualCamera camera = flags->camera.MakeCamera(lf);
     DepthSet depth;
     if (options.interpolation == Interpolation::kDepth) {
       if (options.integrator != Integrator::kLensSamples)

@@ -111,6 +111,9 @@ void LightField::set_measured_poses(std::vector<ViewPose> poses) {
   if (!poses.empty() && poses.size() != dims_.view_count())
     throw Error(
         fmt::format("{} measured view poses for {} views", poses.size(), dims_.view_count()));
+  for (const ViewPose& pose : poses)
+    if (pose.intrinsics.has_value() != poses.front().intrinsics.has_value())
+      throw Error("view intrinsics must be given for every view or none");
   measured_poses_ = std::move(poses);
 }
 

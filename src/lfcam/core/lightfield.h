@@ -10,9 +10,11 @@
 #include <cstdint>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "lfcam/core/camera_model.h"
 #include "lfcam/core/slab.h"
 
 namespace lfcam {
@@ -26,10 +28,14 @@ SampleType SampleTypeFromString(const std::string& name);  // throws lfcam::Erro
 std::size_t BytesPerChannel(SampleType type);
 
 // Where a view's camera actually was: its centre of projection (world, mm) and the rotation
-// world_from_camera (camera frame: OpenCV's, x right, y down, z forward).
+// world_from_camera (camera frame: OpenCV's, x right, y down, z forward); and, when known, the
+// pinhole that recorded it (image size, focal length and principal point, lens distortion
+// undone: a rectified rig's shifted principal point, a Pi module's calibrated one), which
+// `render --as-camera` reproduces (format version 3).
 struct ViewPose {
   Vec3 center = Vec3::Zero();
   Mat3 orientation = Mat3::Identity();
+  std::optional<CameraIntrinsics> intrinsics;
 };
 
 struct LightFieldDims {
@@ -87,7 +93,12 @@ class LightField {
   // Each view's measured camera pose (a calibrated capture), row-major; empty when the views sit
   // on the slab's ideal grid (a simulated light field, a format version 1 file).
   const std::vector<ViewPose>& measured_poses() const { return measured_poses_; }
-  void set_measured_poses(std::vector<ViewPose> poses);  // view_count() entries, or none
+  // view_count() entries, or none; the intrinsics on every pose or on none.
+  void set_measured_poses(std::vector<ViewPose> poses);
+  // Whether every view records the camera that took it (ViewPose::intrinsics).
+  bool has_view_cameras() const {
+    return !measured_poses_.empty() && measured_poses_.front().intrinsics.has_value();
+  }
   // Camera (row, col)'s centre: measured when known, else its ideal grid position.
   Vec3 camera_center(int row, int col) const;
 

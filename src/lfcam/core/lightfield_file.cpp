@@ -199,11 +199,23 @@ ParsedFile ParseHeader(const InputFile& fd) {
       if (has_pose) {
         if (h.version < 2)
           throw Error(fmt::format("{}: a version 1 file has no measured camera poses", where));
-        ViewPose pose{
-            JsonVec3(v, "center", where),
-            RotationFromJson(JsonField(v, "orientation", where), where + ": orientation")};
+        ViewPose pose{JsonVec3(v, "center", where),
+                      RotationFromJson(JsonField(v, "orientation", where), where + ": orientation"),
+                      std::nullopt};
         if (pose.center.cwiseAbs().maxCoeff() > 1e9)
           throw Error(fmt::format("{}: camera centre is out of range", where));
+        // Version 3: the camera that recorded the view, on every view or on none.
+        const bool has_intrinsics = v.contains("intrinsics");
+        if (i > 0 && has_intrinsics != h.measured_poses.front().intrinsics.has_value())
+          throw Error(
+              fmt::format("{}: view intrinsics must be given for every view or none", where));
+        if (has_intrinsics) {
+          if (h.version < 3)
+            throw Error(
+                fmt::format("{}: a version {} file has no view intrinsics", where, h.version));
+          pose.intrinsics =
+              IntrinsicsFromJson(JsonField(v, "intrinsics", where), where + ": intrinsics");
+        }
         h.measured_poses.push_back(pose);
       }
     }
@@ -270,6 +282,7 @@ void WriteLightField(const LightField& lf, const std::filesystem::path& path,
     }
   }
 
+  const std::uint32_t version = lf.has_view_cameras() ? 3 : 2;
   nlohmann::json views = nlohmann::json::array();
   for (std::size_t i = 0; i < n_views; ++i) {
     nlohmann::json view = {{"row", i / dims.cols},
@@ -281,12 +294,13 @@ void WriteLightField(const LightField& lf, const std::filesystem::path& path,
       const ViewPose& pose = lf.measured_poses()[i];
       view["center"] = {pose.center.x(), pose.center.y(), pose.center.z()};
       view["orientation"] = RotationToJson(pose.orientation);
+      if (pose.intrinsics) view["intrinsics"] = IntrinsicsToJson(*pose.intrinsics);
     }
     views.push_back(view);
   }
   const nlohmann::json header = {
       {"format", "lfcam-lightfield"},
-      {"version", kLightFieldFormatVersion},
+      {"version", version},
       {"dims",
        {{"rows", dims.rows},
         {"cols", dims.cols},
@@ -308,7 +322,7 @@ void WriteLightField(const LightField& lf, const std::filesystem::path& path,
 
   std::array<std::uint8_t, kPreambleBytes> pre{};
   std::copy(kMagic.begin(), kMagic.end(), pre.begin());
-  PutLe<std::uint32_t>(&pre[8], kLightFieldFormatVersion);
+  PutLe<std::uint32_t>(&pre[8], version);
   PutLe<std::uint32_t>(&pre[12], 0);
   PutLe<std::uint64_t>(&pre[16], text.size());
   PutLe<std::uint64_t>(&pre[24], Checksum(text.data(), text.size()));

@@ -10,8 +10,10 @@
 
 namespace lfcam {
 
-// Version 2 adds each view's measured camera pose (optional); version 1 files are still read.
-inline constexpr std::uint32_t kLightFieldFormatVersion = 2;
+// Version 2 adds each view's measured camera pose (optional), version 3 the intrinsics of the
+// camera that recorded each view (optional); older files are still read, and a file is written
+// with the oldest version that holds what it carries (an older lfcam reads it then).
+inline constexpr std::uint32_t kLightFieldFormatVersion = 3;
 inline constexpr std::uint32_t kOldestLightFieldFormatVersion = 1;
 inline constexpr std::size_t kLightFieldAlignment = 4096;
 

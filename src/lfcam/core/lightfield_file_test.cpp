@@ -377,7 +377,7 @@ TEST_F(LightFieldFileTest, MeasuredPosesRoundTripAndVersionOneStillReads) {
   std::vector<ViewPose> poses;
   for (int i = 0; i < 12; ++i)
     poses.push_back({Vec3(10.0 * i, 5.0, 3600.0 + i),
-                     Eigen::AngleAxisd(0.01 * i, Vec3::UnitZ()).toRotationMatrix()});
+                     Eigen::AngleAxisd(0.01 * i, Vec3::UnitZ()).toRotationMatrix(), std::nullopt});
   lf.set_measured_poses(poses);
   const fs::path p = dir_ / "poses.lf";
   WriteLightField(lf, p);
@@ -402,6 +402,33 @@ TEST_F(LightFieldFileTest, MeasuredPosesRoundTripAndVersionOneStillReads) {
   bytes[8] = 1;
   Save(p, bytes);
   EXPECT_NE(ReadError(p).find("version 1 file has no measured"), std::string::npos) << ReadError(p);
+}
+
+// Format version 3: the camera that recorded each view (its pinhole intrinsics) round-trips and
+// makes the file version 3; a version 2 file that claims them, or intrinsics on some views only,
+// are refused.
+TEST_F(LightFieldFileTest, ViewIntrinsicsRoundTripAsVersionThree) {
+  LightField lf = MakeLightField(SampleType::kSrgb8);
+  std::vector<ViewPose> poses;
+  for (int i = 0; i < 12; ++i)
+    poses.push_back({Vec3(10.0 * i, 5.0, 3600.0), Mat3::Identity(),
+                     CameraIntrinsics{64, 48, 80.0, 80.0, 31.5 + 0.25 * i, 23.5 - 0.5 * i, {}}});
+  lf.set_measured_poses(poses);
+  const fs::path p = dir_ / "cameras.lf";
+  WriteLightField(lf, p);
+  EXPECT_EQ(ReadLightFieldHeader(p).version, 3u);
+  const LightField back = ReadLightField(p);
+  ASSERT_TRUE(back.has_view_cameras());
+  EXPECT_EQ(back.measured_poses()[5].intrinsics->cx, 31.5 + 0.25 * 5);
+  EXPECT_EQ(back.measured_poses()[11].intrinsics->cy, 23.5 - 0.5 * 11);
+  EXPECT_EQ(back.measured_poses()[3].intrinsics->width, 64);
+  std::string bytes = Bytes(p);
+  bytes[8] = 2;
+  Save(p, bytes);
+  EXPECT_NE(ReadError(p).find("version 2 file has no view intrinsics"), std::string::npos)
+      << ReadError(p);
+  poses[4].intrinsics.reset();
+  EXPECT_THROW(lf.set_measured_poses(poses), Error);
 }
 
 }  // namespace

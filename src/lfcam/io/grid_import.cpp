@@ -45,7 +45,7 @@ std::optional<int> Index(const std::string& text) {
 
 }  // namespace
 
-std::optional<std::pair<GridNaming, NamedView>> ParseViewName(const std::string& file) {
+std::optional<NamedView> ParseViewName(const std::string& file, GridNaming naming) {
   std::string stem = fs::path(file).stem().string();
   std::vector<std::string> parts;
   for (std::size_t start = 0;;) {
@@ -60,24 +60,52 @@ std::optional<std::pair<GridNaming, NamedView>> ParseViewName(const std::string&
   };
   NamedView v;
   v.file = file;
-  if (parts.size() >= 7) {
-    const auto t = tail(6, 0);
-    const auto rr = Index(t[0]), cc = Index(t[1]);
-    const auto y = Number(t[2]), x = Number(t[3]), f = Number(t[4]), w = Number(t[5]);
-    if (rr && cc && y && x && f && w && *f > 0 && *w > 0) {
-      v.rr = *rr, v.cc = *cc, v.first = *y, v.second = *x, v.focal_mm = *f, v.sensor_width_mm = *w;
-      return std::pair{GridNaming::kBlender, v};
+  switch (naming) {
+    case GridNaming::kBlender:
+      if (parts.size() >= 7) {
+        const auto t = tail(6, 0);
+        const auto rr = Index(t[0]), cc = Index(t[1]);
+        const auto y = Number(t[2]), x = Number(t[3]), f = Number(t[4]), w = Number(t[5]);
+        if (rr && cc && y && x && f && w && *f > 0 && *w > 0) {
+          v.rr = *rr, v.cc = *cc, v.first = *y, v.second = *x, v.focal_mm = *f;
+          v.sensor_width_mm = *w;
+          return v;
+        }
+      }
+      return std::nullopt;
+    case GridNaming::kStanford: {
+      const std::size_t skip = !parts.empty() && parts.back().empty() ? 1 : 0;  // a trailing '_'
+      if (parts.size() >= 5 + skip) {
+        const auto t = tail(4, skip);
+        const auto rr = Index(t[0]), cc = Index(t[1]);
+        const auto y = Number(t[2]), x = Number(t[3]);
+        if (rr && cc && y && x) {
+          v.rr = *rr, v.cc = *cc, v.first = *y, v.second = *x;
+          return v;
+        }
+      }
+      return std::nullopt;
     }
-  }
-  const std::size_t skip = !parts.empty() && parts.back().empty() ? 1 : 0;  // a trailing '_'
-  if (parts.size() >= 5 + skip) {
-    const auto t = tail(4, skip);
-    const auto rr = Index(t[0]), cc = Index(t[1]);
-    const auto y = Number(t[2]), x = Number(t[3]);
-    if (rr && cc && y && x) {
-      v.rr = *rr, v.cc = *cc, v.first = *y, v.second = *x;
-      return std::pair{GridNaming::kStanford, v};
-    }
+    case GridNaming::kUnitGrid:
+      if (parts.size() >= 3 && !parts.front().empty()) {
+        const auto t = tail(2, 0);
+        const auto rr = Index(t[0]), cc = Index(t[1]);
+        if (rr && cc) {
+          v.rr = *rr, v.cc = *cc;
+          return v;
+        }
+      }
+      return std::nullopt;
+    case GridNaming::kHci:
+      if (stem.size() > 9 && stem.starts_with("input_Cam")) {
+        if (const auto index = Index(stem.substr(9))) {
+          v.rr = *index;
+          return v;
+        }
+      }
+      return std::nullopt;
+    case GridNaming::kDescription:
+      return std::nullopt;
   }
   return std::nullopt;
 }
@@ -109,9 +137,13 @@ ImportedGrid ReadDescription(const fs::path& dir) {
 }  // namespace
 
 ImportedGrid GridFromDescription(const nlohmann::json& j, const std::string& where) {
-  JsonFormatVersion(j, "lfcam-views", 1, "views description", where);
+  const auto version = JsonFormatVersion(j, "lfcam-views", 2, "views description", where);
   ImportedGrid g;
   g.naming = GridNaming::kDescription;
+  // Version 2: a rectified rig (its zero-disparity plane, or each view's principal point).
+  for (const char* key : {"rig", "zero_disparity_distance_mm"})
+    if (j.contains(key) && version < 2)
+      throw Error(fmt::format("{}: {} needs \"version\": 2", where, key));
   g.rows = int(JsonInteger(j, "rows", 1, kMaxViewsPerSide, where));
   g.cols = int(JsonInteger(j, "cols", 1, kMaxViewsPerSide, where));
   g.pitch_mm = JsonNumber(j, "pitch_mm", where);
@@ -126,6 +158,19 @@ ImportedGrid GridFromDescription(const nlohmann::json& j, const std::string& whe
   g.focal_mm = positive("focal_mm");
   g.sensor_width_mm = positive("sensor_width_mm");
   g.st_distance_mm = positive("st_distance_mm");
+  g.zero_disparity_mm = positive("zero_disparity_distance_mm");
+  g.rig = g.zero_disparity_mm ? RigModel::kRectified : RigModel::kParallel;
+  if (j.contains("rig")) {
+    const std::string rig = JsonString(j, "rig", where);
+    try {
+      g.rig = RigModelFromString(rig);
+    } catch (const Error& e) {
+      throw Error(fmt::format("{}: rig: {}", where, e.what()));
+    }
+    if (g.rig == RigModel::kParallel && g.zero_disparity_mm)
+      throw Error(fmt::format(
+          "{}: a parallel rig has no zero-disparity plane (zero_disparity_distance_mm)", where));
+  }
   g.views.resize(std::size_t(g.rows * g.cols));
   for (int r = 0; r < g.rows; ++r)
     for (int c = 0; c < g.cols; ++c) {
@@ -157,8 +202,27 @@ ImportedGrid GridFromDescription(const nlohmann::json& j, const std::string& whe
       v.file = JsonString(views[i], "file", vw);
       if (views[i].contains("x_mm")) v.x_mm = JsonNumber(views[i], "x_mm", vw);
       if (views[i].contains("y_mm")) v.y_mm = JsonNumber(views[i], "y_mm", vw);
+      if (views[i].contains("principal_point")) {
+        if (version < 2) throw Error(fmt::format("{}: principal_point needs \"version\": 2", vw));
+        const auto& pp = views[i]["principal_point"];
+        const std::string at = vw + ": principal_point";
+        if (!pp.is_array() || pp.size() != 2)
+          throw Error(fmt::format("{}: must be [cx, cy] (pixels, OpenCV's)", at));
+        v.principal_point = Vec2(JsonNumber(pp[0], "", at), JsonNumber(pp[1], "", at));
+        if (v.principal_point->cwiseAbs().maxCoeff() > 1e6)
+          throw Error(fmt::format("{}: far outside any image", at));
+      }
     }
   }
+  const auto with_pp = std::count_if(g.views.begin(), g.views.end(), [](const GridView& v) {
+    return v.principal_point.has_value();
+  });
+  if (with_pp != 0 && with_pp != std::ptrdiff_t(g.views.size()))
+    throw Error(
+        fmt::format("{}: principal_point is given for {} of the {} views: give it for "
+                    "every view or none",
+                    where, with_pp, g.views.size()));
+  if (with_pp != 0 && !j.contains("rig")) g.rig = RigModel::kRectified;
   for (const GridView& v : g.views) {
     const fs::path f(v.file);
     if (!v.file.empty() && (f.is_absolute() || v.file.find("..") != std::string::npos))
@@ -170,37 +234,14 @@ ImportedGrid GridFromDescription(const nlohmann::json& j, const std::string& whe
 
 namespace {
 
-ImportedGrid GridFromNames(const fs::path& dir) {
-  std::vector<std::string> files;
-  std::error_code ec;
-  for (const auto& entry : fs::directory_iterator(dir, ec))
-    if (entry.is_regular_file() && IsImageName(entry.path()))
-      files.push_back(entry.path().filename().string());
-  if (ec) throw Error(fmt::format("{}: cannot read the folder: {}", dir.string(), ec.message()));
-  std::sort(files.begin(), files.end());
-  if (files.empty())
-    throw Error(
-        fmt::format("{}: no views (.png, .jpg) and no {}", dir.string(), kViewsDescriptionName));
-  std::optional<GridNaming> naming;
-  std::vector<NamedView> named;
-  for (const std::string& f : files) {
-    const auto parsed = ParseViewName(f);
-    if (!parsed)
-      throw Error(
-          fmt::format("{}: the name does not parse as NAME_RR_CC_Y_X_ (Stanford) or "
-                      "NAME_RR_CC_Y_X_F_W (Blender camera grid); describe the folder "
-                      "in {} instead (docs/format.md)",
-                      (dir / f).string(), kViewsDescriptionName));
-    if (naming && *naming != parsed->first)
-      throw Error(fmt::format("{}: named the {} way, but {} the {} way", (dir / f).string(),
-                              ToString(parsed->first), named.front().file, ToString(*naming)));
-    naming = parsed->first;
-    named.push_back(parsed->second);
-  }
+// The grid that files named the position way (Blender, Stanford) form: its structure from the
+// indices, its directions from the numbers. Nullopt with `why` set when they do not form one.
+std::optional<ImportedGrid> GridFromPositions(const fs::path& dir, GridNaming naming,
+                                              const std::vector<NamedView>& named,
+                                              std::string* why) {
   ImportedGrid g;
-  g.naming = *naming;
-  // The grid's structure from the indices, its directions from the numbers: the archive's
-  // columns in the order of their x, its rows in the order of their y = -first.
+  g.naming = naming;
+  // The archive's columns in the order of their x, its rows in the order of their y = -first.
   std::map<int, std::pair<double, int>> col_x, row_y;  // index -> (sum, count)
   for (const NamedView& v : named) {
     col_x[v.cc].first += v.second, ++col_x[v.cc].second;
@@ -218,9 +259,6 @@ ImportedGrid GridFromNames(const fs::path& dir) {
   const auto [row_rank, rows_sorted] = order(row_y);
   g.cols = int(col_rank.size());
   g.rows = int(row_rank.size());
-  if (g.rows > kMaxViewsPerSide || g.cols > kMaxViewsPerSide)
-    throw Error(fmt::format("{}: a grid of {}x{} views is larger than lfcam reads ({} a side)",
-                            dir.string(), g.rows, g.cols, kMaxViewsPerSide));
   double spacing = 0;
   int gaps = 0;
   for (std::size_t i = 1; i < cols_sorted.size(); ++i, ++gaps)
@@ -228,17 +266,20 @@ ImportedGrid GridFromNames(const fs::path& dir) {
   for (std::size_t i = 1; i < rows_sorted.size(); ++i, ++gaps)
     spacing += rows_sorted[i].first - rows_sorted[i - 1].first;
   g.pitch_mm = gaps > 0 ? spacing / gaps : 1.0;
+  if (g.rows > kMaxViewsPerSide || g.cols > kMaxViewsPerSide) {
+    *why = fmt::format("a grid of {}x{} views is larger than lfcam reads ({} a side)", g.rows,
+                       g.cols, kMaxViewsPerSide);
+    return std::nullopt;
+  }
   g.views.resize(std::size_t(g.rows * g.cols));
   for (int r = 0; r < g.rows; ++r)
-    for (int c = 0; c < g.cols; ++c) {
-      GridView& v = g.views[std::size_t(r * g.cols + c)];
-      v.row = r, v.col = c;
-    }
+    for (int c = 0; c < g.cols; ++c) g.views[std::size_t(r * g.cols + c)] = {r, c, "", 0, 0, {}};
   for (const NamedView& n : named) {
     GridView& v = g.views[std::size_t(row_rank.at(n.rr) * g.cols + col_rank.at(n.cc))];
-    if (!v.file.empty())
-      throw Error(fmt::format("{}: the same camera ({}_{}) as {}", (dir / n.file).string(), n.rr,
-                              n.cc, v.file));
+    if (!v.file.empty()) {
+      *why = fmt::format("{} names the same camera ({}_{}) as {}", n.file, n.rr, n.cc, v.file);
+      return std::nullopt;
+    }
     v.file = n.file;
     v.x_mm = n.second;
     v.y_mm = -n.first;
@@ -257,6 +298,145 @@ ImportedGrid GridFromNames(const fs::path& dir) {
   return g;
 }
 
+// The grid that files named by indices alone form (unit grid: RR, CC with row 1 at the top;
+// HCI: NNN = row * cols + col from the top left): a regular grid of pitch 1 (unit) or the
+// parameters' baseline. Nullopt with `why` set when they do not form one.
+std::optional<ImportedGrid> GridFromIndices(GridNaming naming, const std::vector<NamedView>& named,
+                                            const std::optional<HciParameters>& hci,
+                                            std::string* why) {
+  ImportedGrid g;
+  g.naming = naming;
+  g.positions_known = false;
+  std::vector<std::pair<int, int>> top_left;  // (row from the top, col from the left)
+  if (naming == GridNaming::kHci) {
+    int cols = 0, rows = 0;
+    if (hci) {
+      cols = hci->cams_x, rows = hci->cams_y;
+    } else {
+      cols = rows = int(std::lround(std::sqrt(double(named.size()))));
+      if (std::size_t(cols * rows) != named.size()) {
+        *why = fmt::format("{} views are not a square grid, and there is no {} to say its shape",
+                           named.size(), kHciParametersName);
+        return std::nullopt;
+      }
+    }
+    for (const NamedView& n : named) {
+      if (n.rr >= rows * cols) {
+        *why = fmt::format("{}: camera {} is outside the {}x{} grid", n.file, n.rr, rows, cols);
+        return std::nullopt;
+      }
+      top_left.push_back({n.rr / cols, n.rr % cols});
+    }
+    g.rows = rows, g.cols = cols;
+  } else {
+    std::set<int> rrs, ccs;
+    for (const NamedView& n : named) rrs.insert(n.rr), ccs.insert(n.cc);
+    auto rank = [](const std::set<int>& set, int value) {
+      return int(std::distance(set.begin(), set.find(value)));
+    };
+    for (const NamedView& n : named) top_left.push_back({rank(rrs, n.rr), rank(ccs, n.cc)});
+    g.rows = int(rrs.size()), g.cols = int(ccs.size());
+  }
+  g.pitch_mm = hci ? hci->baseline_mm : 1.0;
+  g.positions_known = hci.has_value();
+  g.views.resize(std::size_t(g.rows * g.cols));
+  for (int r = 0; r < g.rows; ++r)
+    for (int c = 0; c < g.cols; ++c)
+      g.views[std::size_t(r * g.cols + c)] = {
+          r, c, "", (c - 0.5 * (g.cols - 1)) * g.pitch_mm, (r - 0.5 * (g.rows - 1)) * g.pitch_mm,
+          {}};
+  for (std::size_t i = 0; i < named.size(); ++i) {
+    const int row = g.rows - 1 - top_left[i].first, col = top_left[i].second;
+    GridView& v = g.views[std::size_t(row * g.cols + col)];
+    if (!v.file.empty()) {
+      *why = fmt::format("{} names the same camera as {}", named[i].file, v.file);
+      return std::nullopt;
+    }
+    v.file = named[i].file;
+  }
+  if (hci) {
+    g.focal_px = hci->focal_px();
+    g.zero_disparity_mm = hci->focus_distance_mm;
+  }
+  return g;
+}
+
+std::optional<HciParameters> ReadHciParameters(const fs::path& dir) {
+  std::error_code ec;
+  const fs::path path = dir / kHciParametersName;
+  if (!fs::is_regular_file(path, ec)) return std::nullopt;
+  const auto bytes = ReadFileBytes(path, 1 << 20, "HCI parameters");
+  return ParseHciParameters({reinterpret_cast<const char*>(bytes.data()), bytes.size()},
+                            path.string());
+}
+
+ImportedGrid GridFromNames(const fs::path& dir, std::optional<GridNaming> forced) {
+  std::vector<std::string> files;
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(dir, ec))
+    if (entry.is_regular_file() && IsImageName(entry.path()))
+      files.push_back(entry.path().filename().string());
+  if (ec) throw Error(fmt::format("{}: cannot read the folder: {}", dir.string(), ec.message()));
+  std::sort(files.begin(), files.end());
+  if (files.empty())
+    throw Error(
+        fmt::format("{}: no views (.png, .jpg) and no {}", dir.string(), kViewsDescriptionName));
+  const std::optional<HciParameters> hci = ReadHciParameters(dir);
+
+  // Every naming under which the names form a grid; the reason for each that does not.
+  std::vector<ImportedGrid> fits;
+  std::vector<std::string> reasons;
+  const std::vector<GridNaming> namings =
+      forced ? std::vector<GridNaming>{*forced}
+             : std::vector<GridNaming>{GridNaming::kBlender, GridNaming::kStanford,
+                                       GridNaming::kHci, GridNaming::kUnitGrid};
+  for (const GridNaming naming : namings) {
+    std::vector<NamedView> named;
+    std::vector<std::string> ignored;
+    std::string why;
+    for (const std::string& f : files) {
+      if (auto parsed = ParseViewName(f, naming)) {
+        named.push_back(std::move(*parsed));
+      } else if (naming == GridNaming::kHci && !f.starts_with("input_Cam")) {
+        ignored.push_back(f);  // the benchmark's other images (masks, centre views)
+      } else if (why.empty()) {
+        why = fmt::format("{} does not parse", f);
+      }
+    }
+    if (named.empty() && why.empty()) why = "no view is named that way";
+    std::optional<ImportedGrid> grid;
+    if (why.empty())
+      grid = naming == GridNaming::kHci || naming == GridNaming::kUnitGrid
+                 ? GridFromIndices(naming, named, naming == GridNaming::kHci ? hci : std::nullopt,
+                                   &why)
+                 : GridFromPositions(dir, naming, named, &why);
+    if (grid) {
+      grid->ignored = std::move(ignored);
+      grid->rig = DefaultRig(naming);
+      if (naming == GridNaming::kHci) grid->hci = hci;
+      fits.push_back(std::move(*grid));
+    } else {
+      reasons.push_back(fmt::format("{}: {}", ToString(naming), why));
+    }
+  }
+  if (fits.size() > 1) {
+    std::vector<std::string> ways;
+    for (const ImportedGrid& g : fits)
+      ways.push_back(fmt::format("{} ({}x{} views)", ToString(g.naming), g.rows, g.cols));
+    throw Error(
+        fmt::format("{}: the names parse several ways: {}; say which with --naming, or "
+                    "describe the folder in {} (docs/format.md)",
+                    dir.string(), fmt::join(ways, ", "), kViewsDescriptionName));
+  }
+  if (fits.empty())
+    throw Error(fmt::format(
+        "{}: the names do not form a grid named the Stanford way (NAME_RR_CC_Y_X_), the Blender "
+        "camera-grid way (NAME_RR_CC_Y_X_F_W), the HCI benchmark's (input_CamNNN) or by indices "
+        "(NAME_RR_CC): {}; describe the folder in {} instead (docs/format.md)",
+        dir.string(), fmt::join(reasons, "; "), kViewsDescriptionName));
+  return std::move(fits.front());
+}
+
 }  // namespace
 
 std::string ToString(GridNaming naming) {
@@ -267,15 +447,44 @@ std::string ToString(GridNaming naming) {
       return "blender-grid";
     case GridNaming::kDescription:
       return "description";
+    case GridNaming::kHci:
+      return "hci";
+    case GridNaming::kUnitGrid:
+      return "unit-grid";
   }
   return "?";
 }
 
-ImportedGrid ScanGridFolder(const fs::path& dir, bool allow_missing) {
+GridNaming GridNamingFromString(const std::string& name) {
+  for (const GridNaming n :
+       {GridNaming::kStanford, GridNaming::kBlender, GridNaming::kHci, GridNaming::kUnitGrid})
+    if (ToString(n) == name) return n;
+  throw Error(fmt::format("unknown naming '{}' (stanford, blender-grid, hci or unit-grid)", name));
+}
+
+std::string ToString(RigModel rig) { return rig == RigModel::kParallel ? "parallel" : "rectified"; }
+
+RigModel RigModelFromString(const std::string& name) {
+  if (name == "parallel") return RigModel::kParallel;
+  if (name == "rectified") return RigModel::kRectified;
+  throw Error(fmt::format("unknown rig '{}' (parallel or rectified)", name));
+}
+
+RigModel DefaultRig(GridNaming naming) {
+  return naming == GridNaming::kBlender || naming == GridNaming::kDescription
+             ? RigModel::kParallel
+             : RigModel::kRectified;
+}
+
+ImportedGrid ScanGridFolder(const fs::path& dir, bool allow_missing,
+                            std::optional<GridNaming> naming) {
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) throw Error(fmt::format("{}: not a folder", dir.string()));
-  ImportedGrid g = fs::is_regular_file(dir / kViewsDescriptionName, ec) ? ReadDescription(dir)
-                                                                        : GridFromNames(dir);
+  const bool described = fs::is_regular_file(dir / kViewsDescriptionName, ec);
+  if (described && naming)
+    throw Error(fmt::format("{}: described in {}: --naming does not apply", dir.string(),
+                            kViewsDescriptionName));
+  ImportedGrid g = described ? ReadDescription(dir) : GridFromNames(dir, naming);
   // Missing views: a file named but absent, or a grid position no file names.
   const GridView* first = nullptr;
   for (GridView& v : g.views) {

@@ -1,10 +1,16 @@
 #pragma once
 // Importing a light field someone else captured or rendered (docs/format.md, "Importing"): a
-// folder of views on a regular grid of parallel cameras, named the Stanford light field
-// archive's way (NAME_RR_CC_Y_X_.png) or the Blender camera-grid way (NAME_RR_CC_Y_X_F_W.jpg),
-// or any folder of views with a description (lfcam-views.json). Each becomes what `lfcam build`
-// reads, a capture manifest and a calibration of ideal cameras, so that imported views and a Pi
-// array's photographs go through the one resampler (calib/lightfield_build.h).
+// folder of views on a regular grid of cameras, named the Stanford light field archive's way
+// (NAME_RR_CC_Y_X_.png), the Blender camera-grid way (NAME_RR_CC_Y_X_F_W.jpg), the HCI
+// benchmark's way (input_CamNNN.png, with parameters.cfg), as a plain grid of indices
+// (NAME_RR_CC.png: plenoptic sub-aperture views), or any folder of views with a description
+// (lfcam-views.json).
+//
+// Two rigs (DESIGN.md, "Rigs of the research community"): parallel cameras with centred sensors
+// (Blender grids) become what `lfcam build` reads, a capture manifest and a calibration of ideal
+// cameras, so that their views and a Pi array's photographs go through the one resampler
+// (calib/lightfield_build.h); rectified rigs, whose shifted sensors give one plane zero
+// disparity (Stanford, HCI, plenoptic), are stored sample for sample (io/rectified_import.h).
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -13,18 +19,32 @@
 
 #include "lfcam/calib/calibration_file.h"
 #include "lfcam/capture/session.h"
+#include "lfcam/io/hci_parameters.h"
 
 namespace lfcam {
 
 inline constexpr const char* kViewsDescriptionName = "lfcam-views.json";
 
-enum class GridNaming { kStanford, kBlender, kDescription };
+inline constexpr const char* kHciParametersName = "parameters.cfg";
+
+enum class GridNaming { kStanford, kBlender, kDescription, kHci, kUnitGrid };
 std::string ToString(GridNaming naming);
+GridNaming GridNamingFromString(const std::string& name);  // throws lfcam::Error
+
+// Parallel cameras with centred sensors (zero disparity at infinity), or a rectified rig: parallel
+// cameras whose sensors are shifted so that the plane at one distance has zero disparity.
+enum class RigModel { kParallel, kRectified };
+std::string ToString(RigModel rig);
+RigModel RigModelFromString(const std::string& name);  // throws lfcam::Error
+// The rig a naming implies: Blender grids are parallel; the Stanford archive's, the HCI
+// benchmark's and plenoptic views are rectified.
+RigModel DefaultRig(GridNaming naming);
 
 struct GridView {
   int row = 0, col = 0;       // lfcam's grid: row 0 at the bottom, col 0 at the left
   std::string file;           // relative to the folder; empty when the view is missing
   double x_mm = 0, y_mm = 0;  // the centre on the camera plane: x right, y up (seen from behind)
+  std::optional<Vec2> principal_point;  // OpenCV's (cx, cy), px: from the description
 };
 
 struct ImportedGrid {
@@ -35,34 +55,49 @@ struct ImportedGrid {
   std::optional<double> focal_px;                   // from the description
   std::optional<double> focal_mm, sensor_width_mm;  // from Blender names or the description
   std::optional<double> st_distance_mm;             // from the description
-  std::vector<GridView> views;                      // row-major, rows * cols
+  RigModel rig = RigModel::kParallel;               // as the naming or description implies
+  // The zero-disparity plane's distance (a rectified rig): the description's or parameters.cfg's.
+  std::optional<double> zero_disparity_mm;
+  bool positions_known = true;       // false: the names give indices only (unit pitch)
+  std::optional<HciParameters> hci;  // parameters.cfg, when the folder has one
+  std::vector<GridView> views;       // row-major, rows * cols
   std::vector<std::string> missing;  // "camera (r, c)" for each view not in the folder
+  std::vector<std::string> ignored;  // images in the folder that are not views (HCI)
 
   const GridView& view(int row, int col) const { return views[std::size_t(row * cols + col)]; }
 };
 
-// One file's name, parsed: NAME_RR_CC_Y_X_F_W (Blender) or NAME_RR_CC_Y_X[_] (Stanford), NAME
-// anything; the archive's grid indices and the position numbers as named.
+// One file's name, parsed the way `naming` names views: NAME_RR_CC_Y_X_F_W (Blender),
+// NAME_RR_CC_Y_X[_] (Stanford), input_CamNNN (HCI: rr = NNN), NAME_RR_CC (unit grid), NAME
+// anything; the grid indices and the position numbers as named. Nullopt when it does not parse
+// that way (kDescription never parses).
 struct NamedView {
   std::string file;
   int rr = 0, cc = 0;
   double first = 0, second = 0;  // as named: -y and x (docs/format.md)
   std::optional<double> focal_mm, sensor_width_mm;
 };
-std::optional<std::pair<GridNaming, NamedView>> ParseViewName(const std::string& file);
+std::optional<NamedView> ParseViewName(const std::string& file, GridNaming naming);
 
 // The grid an lfcam-views.json describes (files not checked); throws lfcam::Error naming `where`.
 ImportedGrid GridFromDescription(const nlohmann::json& j, const std::string& where);
 
-// Reads the folder: detects the naming (a description file wins), parses every name, checks
-// that the views form a complete grid (unless `allow_missing`) of one image size. Throws
+// Reads the folder: detects the naming (a description file wins; else the one naming under
+// which every view's name parses into distinct grid positions: a folder that parses several
+// ways, or none, is refused with the reason), parses every name, checks that the views form a
+// complete grid (unless `allow_missing`) of one image size. `naming` forces one. Throws
 // lfcam::Error naming the file at fault.
-ImportedGrid ScanGridFolder(const std::filesystem::path& dir, bool allow_missing);
+ImportedGrid ScanGridFolder(const std::filesystem::path& dir, bool allow_missing,
+                            std::optional<GridNaming> naming = std::nullopt);
 
 struct ImportOptions {
-  std::optional<double> st_distance_mm;  // default: the description's, else estimated
-  std::optional<double> focal_px;        // default: the description's or the names'
+  // Parallel: the st-plane's distance (default: the description's, else estimated); rectified:
+  // the zero-disparity plane's (default: the description's or parameters.cfg's, else assumed).
+  std::optional<double> st_distance_mm;
+  std::optional<double> focal_px;  // default: the description's, parameters.cfg's or the names'
   std::optional<double> focal_mm, sensor_width_mm;
+  std::optional<double> pitch_mm;  // the cameras' spacing when the names give indices only
+  std::optional<RigModel> rig;     // default: as the naming or description implies
 };
 
 struct ImportedSession {

@@ -1,5 +1,6 @@
-// libFuzzer target: what `lfcam import` reads before any image: the views' file names
-// (Stanford and Blender camera-grid conventions) and lfcam-views.json.
+// libFuzzer target: what `lfcam import` reads before any image: the views' file names (every
+// naming: Stanford, Blender camera grid, HCI, unit grid) and lfcam-views.json (versions 1 and 2:
+// a rectified rig's zero-disparity plane or principal points, then its geometry resolved).
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -7,12 +8,22 @@
 #include "lfcam/core/error.h"
 #include "lfcam/core/json_input.h"
 #include "lfcam/io/grid_import.h"
+#include "lfcam/io/rectified_import.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view text(reinterpret_cast<const char*>(data), size);
-  (void)lfcam::ParseViewName(std::string(text.substr(0, 256)));
+  for (const auto naming : {lfcam::GridNaming::kStanford, lfcam::GridNaming::kBlender,
+                            lfcam::GridNaming::kHci, lfcam::GridNaming::kUnitGrid})
+    (void)lfcam::ParseViewName(std::string(text.substr(0, 256)), naming);
   try {
-    (void)lfcam::GridFromDescription(lfcam::ParseJsonBounded(text, "fuzz"), "fuzz");
+    lfcam::ImportedGrid grid =
+        lfcam::GridFromDescription(lfcam::ParseJsonBounded(text, "fuzz"), "fuzz");
+    if (grid.rig == lfcam::RigModel::kRectified && grid.rows * grid.cols <= 4096) {
+      grid.width = 64, grid.height = 48;
+      for (auto& v : grid.views) v.file = v.file.empty() ? "x.png" : v.file;
+      const auto geometry = lfcam::ResolveRectifiedGeometry(grid, {});
+      (void)geometry.PrincipalPoint(1, 2);
+    }
   } catch (const lfcam::Error&) {
   }
   return 0;

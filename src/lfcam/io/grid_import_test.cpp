@@ -128,6 +128,7 @@ TEST(GridImport, StanfordNamesNeedTheFocalLengthAndBadFoldersAreNamed) {
   const fs::path dir = WriteBlenderGrid("lfcam_import_stanford_", 2, 30.0, false);
   const ImportedGrid grid = ScanGridFolder(dir, false);
   EXPECT_EQ(grid.naming, GridNaming::kStanford);
+  EXPECT_EQ(grid.rig, RigModel::kRectified);  // the archive's views are; these are not: parallel
   try {
     MakeImportedSession(dir, grid, {});
     ADD_FAILURE() << "imported without a focal length";
@@ -158,10 +159,10 @@ TEST(GridImport, StanfordNamesNeedTheFocalLengthAndBadFoldersAreNamed) {
   fs::remove(dir / one);
   fs::rename(dir / "held", dir / one);
   cv::imwrite((dir / "notes.png").string(), cv::Mat(10, 10, CV_8UC3, cv::Scalar(0)));
-  refused("notes.png: the name does not parse");
+  refused("stanford: notes.png does not parse");
   fs::remove(dir / "notes.png");
   fs::copy_file(dir / one, dir / "Cam_05_05_0_0_30_36.png");
-  refused("Cam_05_05_0_0_30_36.png the blender-grid way");
+  refused("names the same camera (0_0) as Cam_05_05_0_0_30_36.png");
   fs::remove(dir / "Cam_05_05_0_0_30_36.png");
   // Not an image at all.
   std::ofstream(dir / one) << "not a png";

@@ -32,6 +32,8 @@ nlohmann::json ViewToJson(const ViewSettings& view) {
                  {"aperture_mm", c.aperture_mm},
                  {"lens_rate", c.lens_rate},
                  {"breathing", c.breathing}};
+  if (c.principal_offset_px != Vec2::Zero())
+    j["camera"]["principal_offset_px"] = {c.principal_offset_px.x(), c.principal_offset_px.y()};
   j["render"] = {{"integrator", ToString(view.integrator)},
                  {"interpolation", ToString(view.interpolation)}};
   if (!view.light_field.empty()) j["light_field"] = view.light_field;
@@ -56,6 +58,12 @@ ViewSettings ViewFromJson(const nlohmann::json& j, const std::string& where) {
   const nlohmann::json& breathing = JsonField(c, "breathing", at_camera);
   if (!breathing.is_boolean()) throw Error(at_camera + ".breathing: must be true or false");
   p.breathing = breathing.get<bool>();
+  if (c.contains("principal_offset_px")) {
+    const nlohmann::json& o = c["principal_offset_px"];
+    const std::string at_offset = at_camera + ".principal_offset_px";
+    if (!o.is_array() || o.size() != 2) throw Error(at_offset + ": must be [x, y] (pixels)");
+    p.principal_offset_px = {JsonNumber(o[0], "", at_offset), JsonNumber(o[1], "", at_offset)};
+  }
   if (j.contains("render")) {
     const std::string at_render = where + ": render";
     const nlohmann::json& r = JsonField(j, "render", where);

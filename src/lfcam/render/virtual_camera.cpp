@@ -22,9 +22,16 @@ VirtualCamera::VirtualCamera(const VirtualCameraParams& p) : params_(p) {
     throw Error(fmt::format("image size {}x{} must be between 1 and 16384", p.width, p.height));
   if (!(p.focal_length_mm > 0) || !std::isfinite(p.focal_length_mm))
     throw Error(fmt::format("focal length {} mm must be positive", p.focal_length_mm));
-  if (!(p.focus_distance_mm > p.focal_length_mm) || !std::isfinite(p.focus_distance_mm))
+  if (p.breathing &&
+      (!(p.focus_distance_mm > p.focal_length_mm) || !std::isfinite(p.focus_distance_mm)))
     throw Error(fmt::format("focus distance {} mm must exceed the focal length {} mm",
                             p.focus_distance_mm, p.focal_length_mm));
+  if (!(p.focus_distance_mm > 0) || !std::isfinite(p.focus_distance_mm))
+    throw Error(fmt::format("focus distance {} mm must be positive", p.focus_distance_mm));
+  if (!p.principal_offset_px.allFinite() ||
+      p.principal_offset_px.cwiseAbs().maxCoeff() > 4.0 * std::max(p.width, p.height))
+    throw Error(fmt::format("principal offset ({}, {}) px is not finite or lies far off the film",
+                            p.principal_offset_px.x(), p.principal_offset_px.y()));
   if (!(p.aperture_mm >= 0) || !std::isfinite(p.aperture_mm))
     throw Error(fmt::format("aperture {} mm must be zero (pinhole) or positive", p.aperture_mm));
   if (!(p.lens_rate > 0) || !std::isfinite(p.lens_rate))

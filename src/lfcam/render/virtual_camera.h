@@ -6,7 +6,8 @@
 // the height is 56 * H / W). Focus distance d_o: in breathing mode the film sits at d_i with
 // 1/d_i + 1/d_o = 1/f, so the field of view is 2 atan(56 (d_o - f) / (2 d_o f)); in
 // non-breathing mode the film stays at f and the lens takes the effective focal length
-// f_e = f d_o / (f + d_o), so the field of view stays 2 atan(56 / 2f).
+// f_e = f d_o / (f + d_o), so the field of view stays 2 atan(56 / 2f) (and d_o need only be
+// positive: the film does not move).
 #include <vector>
 
 #include "lfcam/core/geometry.h"
@@ -24,6 +25,9 @@ struct VirtualCameraParams {
   double aperture_mm = 0.0;           // d_l; 0 = pinhole
   double lens_rate = 4.0;             // gamma_ls
   bool breathing = true;
+  // Where the optical axis meets the film, from the film's centre, in pixels (x right, y up): a
+  // shifted sensor (an off-axis projection, as a rectified rig's cameras have). Zero: centred.
+  Vec2 principal_offset_px = Vec2::Zero();
 };
 
 inline constexpr double kFilmSizeMm = 56.0;
@@ -53,9 +57,13 @@ class VirtualCamera {
   // film position (x, y) in pixel units, bottom-left origin: pixel (i, j)'s centre is
   // (i + 0.5, j + 0.5). This is the paper's
   //   -n_c + tan(theta/2) ((2i+1)/N - 1) u_c + tan(theta/2) ((2j+1)/N - 1) v_c.
+  // With a principal offset (ox, oy) the film is shifted: x - ox and y - oy take x's and y's place.
   Vec3 direction_through(double x, double y) const {
-    return -n_c_ + (tan_half_x_ * (2.0 * x / params_.width - 1.0)) * u_c_ +
-           (tan_half_y_ * (2.0 * y / params_.height - 1.0)) * v_c_;
+    return -n_c_ +
+           (tan_half_x_ * (2.0 * (x - params_.principal_offset_px.x()) / params_.width - 1.0)) *
+               u_c_ +
+           (tan_half_y_ * (2.0 * (y - params_.principal_offset_px.y()) / params_.height - 1.0)) *
+               v_c_;
   }
   Vec3 pixel_direction(int i, int j) const { return direction_through(i + 0.5, j + 0.5); }
   // p_o: where the central ray along `direction` meets the plane of focus.

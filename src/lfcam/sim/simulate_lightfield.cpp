@@ -45,7 +45,7 @@ LightField SimulateLightField(const Scene& scene, const SimulateLightFieldOption
                               o.cols));
     std::vector<ViewPose> poses;
     const Mat3 ideal = WorldFromCameraRotation(slab.uv.u_ca, slab.uv.v_ca, slab.uv.n_ca);
-    for (const Vec3& c : o.camera_centers) poses.push_back({c, ideal});
+    for (const Vec3& c : o.camera_centers) poses.push_back({c, ideal, std::nullopt});
     lf.set_measured_poses(std::move(poses));
   }
   const auto now = std::chrono::floor<std::chrono::seconds>(std::chrono::system_clock::now());

@@ -1,0 +1,324 @@
+// Rectified (shifted-sensor) rigs against a synthetic rig whose truth is known: the paper scene
+// photographed by the simulator through cameras whose principal points are shifted so that the
+// plane 3.6 m away has zero disparity, named by indices alone (plenoptic style, no metric
+// geometry) and described metrically. Then the real data sets in ../shared/data when present:
+// the HCI benchmark scene against its true disparity, the Lytro views, as-camera renders.
+#include "lfcam/io/rectified_import.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "lfcam/cli/cli_test_support.h"
+#include "lfcam/core/error.h"
+#include "lfcam/core/image_io.h"
+#include "lfcam/core/lightfield_file.h"
+#include "lfcam/render/rig_camera.h"
+#include "lfcam/sim/board_radiance.h"
+#include "lfcam/sim/camera_module.h"
+#include "lfcam/sim/scene.h"
+
+namespace lfcam::rectified_import_test {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr int kN = 5;  // cameras a side
+constexpr int kWidth = 160, kHeight = 120;
+constexpr double kFocalPx = 300;
+constexpr double kPitchMm = 100;
+constexpr double kZeroDisparityMm = 3600;  // the paper scene's world board
+
+struct TrueRig {
+  Scene scene = MakePaperScene();
+  std::vector<SimulatedModule> modules;  // row-major, lfcam's rows (row 0 at the bottom)
+};
+
+// The rig's camera at lfcam grid (row, col): parallel, looking along -n_ca from the array's
+// centre plus the grid offset, the sensor shifted so that the board plane has zero disparity.
+SimulatedModule TrueCamera(const Scene& scene, int row, int col) {
+  const ArrayPlane& a = scene.rig.array;
+  SimulatedModule m;
+  m.row = row, m.col = col;
+  const double bx = (col - 0.5 * (kN - 1)) * kPitchMm, by = (row - 0.5 * (kN - 1)) * kPitchMm;
+  m.world_from_camera = {WorldFromCameraRotation(a.u_ca, a.v_ca, a.n_ca),
+                         a.center() + bx * a.u_ca + by * a.v_ca};
+  m.intrinsics = {kWidth,
+                  kHeight,
+                  kFocalPx,
+                  kFocalPx,
+                  0.5 * (kWidth - 1) + kFocalPx * bx / kZeroDisparityMm,
+                  0.5 * (kHeight - 1) - kFocalPx * by / kZeroDisparityMm,
+                  {}};
+  return m;
+}
+
+// Photographs every camera into a fresh folder as NAME_RR_CC.png (row 01 at the top).
+fs::path WriteRectifiedRig(const std::string& name, TrueRig* rig) {
+  const fs::path dir = fs::temp_directory_path() / (name + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  ExposureOptions exposure;
+  exposure.noise = false;
+  for (int r = 0; r < kN; ++r)
+    for (int c = 0; c < kN; ++c) {
+      const SimulatedModule m = TrueCamera(rig->scene, r, c);
+      rig->modules.push_back(m);
+      const cv::Mat rgb =
+          ExposeModule(m, ModuleRayDirections(m), SceneRadiance(rig->scene, 2), exposure);
+      cv::Mat bgr;
+      cv::cvtColor(rgb, bgr, cv::COLOR_RGB2BGR);
+      cv::imwrite((dir / fmt::format("scene_{:02d}_{:02d}.png", kN - r, c + 1)).string(), bgr);
+    }
+  return dir;
+}
+
+// Where the imported geometry puts a point of view `ref`'s pixel (x, y) that has disparity d:
+// the point on the pixel's ray at the depth the geometry gives d, projected into view (row,
+// col) with that view's recorded camera.
+Vec2 WarpByDisparity(const LightField& lf, const RectifiedGeometry& geo, int ref_row, int ref_col,
+                     Vec2 pixel, double d, int row, int col) {
+  const ViewPose& ref = lf.measured_poses()[std::size_t(ref_row * lf.dims().cols + ref_col)];
+  const ViewPose& to = lf.measured_poses()[std::size_t(row * lf.dims().cols + col)];
+  const Vec3 ray = ref.orientation * *ref.intrinsics->Unproject(pixel);
+  // Depth Z (along -n_ca) of disparity d: d = f B (1/Z - 1/Z0).
+  const double z = 1.0 / (d / (geo.focal_px * geo.pitch_mm) + 1.0 / geo.zero_disparity_mm);
+  const Vec3 point = ref.center + ray * (z / -ray.z());
+  return *to.intrinsics->Project(to.orientation.transpose() * (point - to.center));
+}
+
+TEST(RectifiedImport, IndexNamedViewsImportSampleForSampleWithTheTrueDisparityLaw) {
+  TrueRig rig;
+  const fs::path dir = WriteRectifiedRig("lfcam_rectified_unit_", &rig);
+  const ImportedGrid grid = ScanGridFolder(dir, false);
+  EXPECT_EQ(grid.naming, GridNaming::kUnitGrid);
+  EXPECT_EQ(grid.rig, RigModel::kRectified);
+  ASSERT_EQ(grid.rows, kN);
+  EXPECT_EQ(grid.view(0, 0).file, fmt::format("scene_{:02d}_01.png", kN));  // bottom left
+  const RectifiedGeometry geo = ResolveRectifiedGeometry(grid, {});
+  EXPECT_EQ(geo.assumed.size(), 3u);  // pitch, focal length, zero-disparity plane
+  const LightField lf = ImportRectifiedViews(dir, grid, geo);
+  // Every view is its photograph, sample for sample (st rows bottom-up).
+  for (int r = 0; r < kN; ++r)
+    for (int c = 0; c < kN; ++c) {
+      const cv::Mat photo = ReadImageSrgb8(dir / grid.view(r, c).file);
+      for (int y = 0; y < kHeight; y += 7)
+        ASSERT_EQ(std::memcmp(photo.ptr(y), lf.view_data(r, c) + (kHeight - 1 - y) * kWidth * 3,
+                              kWidth * 3),
+                  0)
+            << r << "," << c << " row " << y;
+    }
+  // The geometry, whatever units were assumed, moves a scene point between views as the true
+  // rig does: its true disparity, warped by the imported geometry, lands where the true camera
+  // sees that point.
+  const SimulatedModule& ref = rig.modules[std::size_t(2 * kN + 2)];
+  double worst = 0;
+  for (int y = 5; y < kHeight; y += 23)
+    for (int x = 5; x < kWidth; x += 29) {
+      const Vec3 ray = ref.world_from_camera.rotation * *ref.intrinsics.Unproject(Vec2(x, y));
+      const double t = rig.scene.FirstHitDistance({ref.world_from_camera.translation, ray});
+      ASSERT_TRUE(std::isfinite(t));
+      const Vec3 point = ref.world_from_camera.translation + t * ray;
+      const double depth = rig.scene.rig.array.n_ca.dot(ref.world_from_camera.translation - point);
+      const double d = kFocalPx * kPitchMm * (1 / depth - 1 / kZeroDisparityMm);
+      for (const auto& [r, c] : {std::pair{0, 0}, {4, 1}, {2, 3}, {4, 4}}) {
+        const SimulatedModule& m = rig.modules[std::size_t(r * kN + c)];
+        const Vec2 truth = *m.intrinsics.Project(m.world_from_camera.inverse() * point);
+        const Vec2 warped = WarpByDisparity(lf, geo, 2, 2, Vec2(x, y), d, r, c);
+        worst = std::max(worst, (truth - warped).norm());
+      }
+    }
+  EXPECT_LT(worst, 1e-6);
+
+  // As one of its cameras, the light field reproduces that camera's photograph exactly; between
+  // cameras, the rig's camera there (its centre and shifted principal point).
+  const VirtualCamera at = VirtualCamera(RigCameraParams(lf, 1, 3));
+  const ViewPose& p13 = lf.measured_poses()[1 * kN + 3];
+  const Vec3 expected = p13.orientation * *p13.intrinsics->Unproject(Vec2(17, 99));
+  const Vec3 got = at.direction_through(17 + 0.5, kHeight - 99 - 0.5);
+  EXPECT_LT((got.normalized() - expected.normalized()).norm(), 1e-9);
+  EXPECT_LT((at.e_c() - p13.center).norm(), 1e-9);
+  const VirtualCameraParams between = RigCameraParams(lf, 1.5, 3.25);
+  EXPECT_NEAR(between.eye.x() - p13.center.x(), 0.25 * geo.pitch_mm, 1e-9);
+  EXPECT_NEAR(between.eye.y() - p13.center.y(), 0.5 * geo.pitch_mm, 1e-9);
+  EXPECT_THROW(RigCameraParams(lf, -0.5, 0), Error);
+  EXPECT_THROW(RigCameraParams(lf, 0, kN - 0.9), Error);
+  fs::remove_all(dir);
+}
+
+TEST(RectifiedImport, ADescriptionGivesTheMetricGeometryOrThePrincipalPoints) {
+  TrueRig rig;
+  const fs::path dir = WriteRectifiedRig("lfcam_rectified_described_", &rig);
+  nlohmann::json views = nlohmann::json::array();
+  for (const SimulatedModule& m : rig.modules)
+    views.push_back({{"row", m.row},
+                     {"col", m.col},
+                     {"file", fmt::format("scene_{:02d}_{:02d}.png", kN - m.row, m.col + 1)},
+                     {"principal_point", {m.intrinsics.cx, m.intrinsics.cy}}});
+  nlohmann::json description = {
+      {"format", "lfcam-views"}, {"version", 2},         {"rows", kN},    {"cols", kN},
+      {"pitch_mm", kPitchMm},    {"focal_px", kFocalPx}, {"views", views}};
+  std::ofstream(dir / kViewsDescriptionName) << description.dump();
+  // Each view's principal point: the zero-disparity plane follows from how they move.
+  ImportedGrid grid = ScanGridFolder(dir, false);
+  EXPECT_EQ(grid.rig, RigModel::kRectified);
+  RectifiedGeometry geo = ResolveRectifiedGeometry(grid, {});
+  EXPECT_TRUE(geo.assumed.empty());
+  EXPECT_NEAR(geo.zero_disparity_mm, kZeroDisparityMm, 1e-6);
+  LightField lf = ImportRectifiedViews(dir, grid, geo);
+  // The cameras are where they were, and the st-plane is the board's plane.
+  const Vec3 centre = lf.camera_center(3, 1);
+  EXPECT_NEAR(centre.x(), (1 - 2) * kPitchMm, 1e-9);
+  EXPECT_NEAR(centre.y(), (3 - 2) * kPitchMm, 1e-9);
+  EXPECT_NEAR(lf.slab().separation_mm(), kZeroDisparityMm, 1e-9);
+  EXPECT_NEAR(lf.measured_poses()[3 * kN + 1].intrinsics->cx, rig.modules[3 * kN + 1].intrinsics.cx,
+              1e-9);
+
+  // Principal points that do not fit one plane are refused, naming the view.
+  views[7]["principal_point"][0] = rig.modules[7].intrinsics.cx + 0.5;
+  description["views"] = views;
+  std::ofstream(dir / kViewsDescriptionName) << description.dump();
+  try {
+    ResolveRectifiedGeometry(ScanGridFolder(dir, false), {});
+    ADD_FAILURE() << "accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("camera (1, 2)"), std::string::npos) << e.what();
+  }
+  // The zero-disparity plane stated instead, in a version 1 description: refused as too old.
+  description.erase("views");
+  description["pattern"] = "scene_{row}_{col}.png";
+  description["zero_disparity_distance_mm"] = kZeroDisparityMm;
+  description["version"] = 1;
+  std::ofstream(dir / kViewsDescriptionName) << description.dump();
+  EXPECT_THROW(ScanGridFolder(dir, true), Error);
+  fs::remove_all(dir);
+}
+
+TEST(RectifiedImport, FoldersThatParseSeveralWaysOrNoneAreRefusedWithTheReason) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("lfcam_rectified_names_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const cv::Mat grey(8, 8, CV_8UC3, cv::Scalar(90, 90, 90));
+  // Stanford names whose positions are whole numbers also parse as indices.
+  for (int r = 0; r < 2; ++r)
+    for (int c = 0; c < 2; ++c)
+      cv::imwrite((dir / fmt::format("v_{:02d}_{:02d}_{}_{}.png", r, c, 10 + r, 20 + c)).string(),
+                  grey);
+  auto refused = [&](const std::string& what, std::optional<GridNaming> naming = {}) {
+    try {
+      ScanGridFolder(dir, false, naming);
+      ADD_FAILURE() << "accepted: " << what;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+    }
+  };
+  refused("parse several ways: stanford (2x2 views), unit-grid (2x2 views); say which with");
+  EXPECT_EQ(ScanGridFolder(dir, false, GridNaming::kStanford).naming, GridNaming::kStanford);
+  refused("hci: no view is named that way", GridNaming::kHci);
+  cv::imwrite((dir / "notes.png").string(), grey);
+  refused("unit-grid: notes.png does not parse");
+  fs::remove_all(dir);
+}
+
+// A PFM (the benchmark's disparity maps): rows bottom-up, little-endian for a negative scale.
+cv::Mat ReadPfm(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string magic;
+  int w = 0, h = 0;
+  double scale = 0;
+  in >> magic >> w >> h >> scale;
+  in.get();
+  cv::Mat m(h, w, CV_32F);
+  for (int y = h - 1; y >= 0; --y) in.read(reinterpret_cast<char*>(m.ptr<float>(y)), w * 4);
+  return magic == "Pf" && scale < 0 && in ? m : cv::Mat();
+}
+
+TEST(RectifiedImport, TheHciSceneLinesUpWithItsTrueDisparity) {
+  const fs::path hci = fs::path(LFCAM_SOURCE_DIR) / "../shared/data/hci-antinous";
+  if (!fs::is_directory(hci)) GTEST_SKIP() << hci << " is not here (../shared/data)";
+  const ImportedGrid grid = ScanGridFolder(hci, false);
+  EXPECT_EQ(grid.naming, GridNaming::kHci);
+  ASSERT_EQ(grid.rows, 9);
+  EXPECT_EQ(grid.view(8, 0).file, "input_Cam000.png");  // the top left
+  EXPECT_EQ(grid.view(4, 4).file, "input_Cam040.png");
+  const RectifiedGeometry geo = ResolveRectifiedGeometry(grid, {});
+  const LightField lf = ImportRectifiedViews(hci, grid, geo);
+  const cv::Mat truth = ReadPfm(hci / "gt_disp_lowres.pfm");
+  ASSERT_EQ(truth.cols, 512);
+  // Each centre-view pixel, warped by its true disparity through the imported geometry into
+  // the corner views, lands on the same texture: the colour there matches far better than
+  // where disparity 0 (or the opposite sign) would put it.
+  std::vector<cv::Mat> views;
+  for (const auto& [r, c] : {std::pair{0, 0}, {0, 8}, {8, 0}, {8, 8}, {4, 4}})
+    views.push_back(ReadImageLinear(hci / grid.view(r, c).file));
+  auto error_with = [&](double sign) {
+    double sum = 0;
+    int n = 0;
+    for (int y = 20; y < 492; y += 3)
+      for (int x = 20; x < 492; x += 3) {
+        const double d = sign * truth.at<float>(y, x);
+        const cv::Vec3f centre = views[4].at<cv::Vec3f>(y, x);
+        int i = 0;
+        for (const auto& [r, c] : {std::pair{0, 0}, {0, 8}, {8, 0}, {8, 8}}) {
+          const Vec2 q = WarpByDisparity(lf, geo, 4, 4, Vec2(x, y), d, r, c);
+          cv::Mat patch;
+          cv::getRectSubPix(views[std::size_t(i++)], {1, 1},
+                            cv::Point2f(float(q.x()), float(q.y())), patch);
+          sum += cv::norm(patch.at<cv::Vec3f>(0, 0) - centre, cv::NORM_L1);
+          ++n;
+        }
+      }
+    return sum / n;
+  };
+  const double right = error_with(1), flat = error_with(0), mirrored = error_with(-1);
+  EXPECT_LT(right, 0.03) << "flat " << flat << ", mirrored " << mirrored;
+  EXPECT_LT(2.5 * right, flat);
+  EXPECT_LT(2.5 * right, mirrored);
+}
+
+TEST(RectifiedImport, RealRectifiedViewsComeBackAsTheirPhotographs) {
+  const fs::path data = fs::path(LFCAM_SOURCE_DIR) / "../shared/data";
+  if (!fs::is_directory(data / "lytro-2067")) GTEST_SKIP() << data << " is not here";
+  const fs::path dir =
+      fs::temp_directory_path() / ("lfcam_rectified_real_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  for (const auto& [set, photo, at] : {std::tuple{"lytro-2067", "2067_09_01.png", "0,0"},
+                                       {"hci-antinous", "input_Cam016.png", "7,7"},
+                                       {"lytro-2067", "2067_03_07.png", "6,6"}}) {
+    const std::string lf = (dir / (std::string(set) + ".lf")).string();
+    if (!fs::exists(lf)) {
+      const auto run = testing::Lfcam("import " + (data / set).string() + " --out " + lf);
+      ASSERT_EQ(run.status, 0) << run.output;
+      EXPECT_NE(run.output.find("assumed: "), std::string::npos) << run.output;
+    }
+    const std::string out = (dir / "as.png").string();
+    const auto run =
+        testing::Lfcam(fmt::format("render {} --as-camera {} --out {} --quiet", lf, at, out));
+    ASSERT_EQ(run.status, 0) << run.output;
+    const cv::Mat a = cv::imread(out), b = cv::imread((data / set / photo).string());
+    EXPECT_EQ(cv::norm(a, b, cv::NORM_INF), 0) << set << " " << photo;
+  }
+  // Exported as PNG views, the imported views are the input files, pixel for pixel.
+  const auto run = testing::Lfcam("export " + (dir / "lytro-2067.lf").string() +
+                                  " --format png-views --out " + (dir / "views").string());
+  ASSERT_EQ(run.status, 0) << run.output;
+  for (int r = 0; r < 9; r += 2)
+    for (int c = 0; c < 9; c += 3) {
+      const cv::Mat a =
+          cv::imread((dir / fmt::format("views/views/view_{:02d}_{:02d}.png", r, c)).string());
+      const cv::Mat b = cv::imread(
+          (data / "lytro-2067" / fmt::format("2067_{:02d}_{:02d}.png", 9 - r, c + 1)).string());
+      ASSERT_FALSE(a.empty());
+      EXPECT_EQ(cv::norm(a, b, cv::NORM_INF), 0) << r << "," << c;
+    }
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace lfcam::rectified_import_test
