@@ -120,13 +120,14 @@ void AddImportCommand(CLI::App& app) {
                       "parameters.cfg's, else assumed and said)");
   command->add_option("--pitch-mm", f->pitch_mm,
                       "The cameras' spacing, for views named by indices alone (default 1, said)");
-  auto* st_res =
-      command->add_option("--st-res", f->st_res,
-                          "Parallel rig: st samples per view, N_SxN_T (default: the views' size)");
+  auto* st_res = command->add_option(
+      "--st-res", f->st_res,
+      "Parallel rig: st samples per view, N_SxN_T (default: the views' sample spacing "
+      "over the st domain)");
   auto* st_domain = command->add_option(
       "--st-domain", f->st_domain,
-      "Parallel rig: sampled st domain S0,T0,S1,T1 (view-window units; default 0,0,1,1: what "
-      "the central camera sees on the st-plane)");
+      "Parallel rig: sampled st domain S0,T0,S1,T1 (view-window units, [0, 1]^2 being what the "
+      "central camera sees on the st-plane; default: what every camera sees there)");
   command->add_option("--focal-px", f->focal_px, "The views' focal length in pixels");
   command->add_option("--focal-mm", f->focal_mm,
                       "The lens's focal length, mm (with --sensor-width-mm)");
@@ -190,7 +191,11 @@ void AddImportCommand(CLI::App& app) {
     if (o.pitch_mm && grid.positions_known)
       throw UsageError("--pitch-mm: the names give the cameras' positions");
     const ImportedSession session = MakeImportedSession(f->dir, grid, o);
-    std::tie(b.n_s, b.n_t) = st_size.value_or(std::pair{grid.width, grid.height});
+    // By default the views' own sample spacing over the domain every camera sees.
+    const StDomain& domain = b.st_domain.value_or(session.calibration.slab.st_domain);
+    std::tie(b.n_s, b.n_t) =
+        st_size.value_or(std::pair{int(std::lround(grid.width * domain.s_extent())),
+                                   int(std::lround(grid.height * domain.t_extent()))});
     ProgressBar progress("importing views", std::int64_t(grid.rows) * grid.cols,
                          ProgressWanted(f->quiet || f->json));
     if (const auto advance = progress.callback()) b.view_done = [advance] { advance(1); };

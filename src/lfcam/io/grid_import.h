@@ -110,8 +110,10 @@ struct ImportedSession {
 
 // The manifest and calibration `build` needs. The world frame: x right, y up, z toward the
 // cameras, which sit on the plane z = st distance and look along -z; the st-plane is z = 0 and
-// its window is what the central camera of the grid sees there. Throws lfcam::Error when the
-// intrinsics are not known (give --focal-px or --focal-mm and --sensor-width-mm).
+// its window is what the central camera of the grid sees there; the calibration's st domain
+// covers what every camera sees there (the window widened by the grid's extent). Throws
+// lfcam::Error when the intrinsics are not known (give --focal-px or --focal-mm and
+// --sensor-width-mm).
 ImportedSession MakeImportedSession(const std::filesystem::path& dir, const ImportedGrid& grid,
                                     const ImportOptions& options);
 
