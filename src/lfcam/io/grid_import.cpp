@@ -337,6 +337,11 @@ std::optional<ImportedGrid> GridFromIndices(GridNaming naming, const std::vector
     for (const NamedView& n : named) top_left.push_back({rank(rrs, n.rr), rank(ccs, n.cc)});
     g.rows = int(rrs.size()), g.cols = int(ccs.size());
   }
+  if (g.rows > kMaxViewsPerSide || g.cols > kMaxViewsPerSide) {
+    *why = fmt::format("a grid of {}x{} views is larger than lfcam reads ({} a side)", g.rows,
+                       g.cols, kMaxViewsPerSide);
+    return std::nullopt;
+  }
   g.pitch_mm = hci ? hci->baseline_mm : 1.0;
   g.positions_known = hci.has_value();
   g.views.resize(std::size_t(g.rows * g.cols));
