@@ -23,6 +23,7 @@
 #include "lfcam/core/input_file.h"
 #include "lfcam/core/jpeg_region.h"
 #include "lfcam/core/limits.h"
+#include "lfcam/core/view_filling.h"
 
 namespace lfcam {
 namespace {
@@ -385,36 +386,15 @@ LightField BuildLightField(const std::filesystem::path& dir, const CaptureManife
                   cal.cameras[i].world_from_camera.rotation, pinhole};
     }
   nlohmann::json filled = nlohmann::json::array();
-  const auto& lut = SrgbDecodeTable();
   for (int r = 0; r < rows; ++r)
     for (int c = 0; c < cols; ++c) {
       const std::size_t i = std::size_t(r * cols + c);
       if (built[i]) continue;
-      // The nearest built views (all those at the smallest grid distance).
-      std::vector<std::pair<int, int>> from;
-      int best = INT32_MAX;
-      for (int rr = 0; rr < rows; ++rr)
-        for (int cc = 0; cc < cols; ++cc) {
-          if (!built[std::size_t(rr * cols + cc)]) continue;
-          const int d2 = (rr - r) * (rr - r) + (cc - c) * (cc - c);
-          if (d2 < best) from.clear();
-          if (d2 <= best) {
-            best = d2;
-            from.push_back({rr, cc});
-          }
-        }
-      std::uint8_t* out = lf.mutable_view_data(r, c);
-      const std::size_t n = lf.view_bytes();
-      for (std::size_t b = 0; b < n; ++b) {
-        float sum = 0;
-        for (const auto& [rr, cc] : from) sum += lut[lf.view_data(rr, cc)[b]];
-        out[b] = LinearToSrgb8Table(sum / float(from.size()));
-      }
+      const auto from = NearestPresentViews(rows, cols, built, r, c);
+      FillViewWithMean(lf, r, c, from);
       const ViewPose& nearest = poses[std::size_t(from[0].first * cols + from[0].second)];
       poses[i] = {slab.uv.camera_center(r, c), nearest.orientation, nearest.intrinsics};
-      std::vector<std::string> names;
-      for (const auto& [rr, cc] : from) names.push_back(fmt::format("({}, {})", rr, cc));
-      report.filled.push_back(fmt::format("{} from {}", CameraLabel(r, c), fmt::join(names, ", ")));
+      report.filled.push_back(FilledViewLabel(r, c, from));
       filled.push_back({{"row", r}, {"col", c}, {"from", from}});
     }
   lf.set_measured_poses(std::move(poses));

@@ -7,13 +7,12 @@
 
 #include <Eigen/Dense>
 #include <chrono>
-#include <climits>
 #include <cstring>
 #include <mutex>
 
-#include "lfcam/core/color.h"
 #include "lfcam/core/error.h"
 #include "lfcam/core/image_io.h"
+#include "lfcam/core/view_filling.h"
 
 namespace lfcam {
 
@@ -194,27 +193,13 @@ LightField ImportRectifiedViews(const fs::path& dir, const ImportedGrid& g,
 
   // Missing views: the mean of the nearest present ones, in linear light.
   RectifiedImportReport r;
-  const auto& lut = SrgbDecodeTable();
+  std::vector<bool> present;
+  for (const GridView& v : g.views) present.push_back(!v.file.empty());
   for (const GridView& v : g.views) {
     if (!v.file.empty()) continue;
-    std::vector<const GridView*> from;
-    int best = INT_MAX;
-    for (const GridView& n : g.views) {
-      if (n.file.empty()) continue;
-      const int d2 = (n.row - v.row) * (n.row - v.row) + (n.col - v.col) * (n.col - v.col);
-      if (d2 < best) from.clear();
-      if (d2 <= best) best = d2, from.push_back(&n);
-    }
-    std::uint8_t* out = lf.mutable_view_data(v.row, v.col);
-    for (std::size_t b = 0; b < lf.view_bytes(); ++b) {
-      float sum = 0;
-      for (const GridView* n : from) sum += lut[lf.view_data(n->row, n->col)[b]];
-      out[b] = LinearToSrgb8Table(sum / float(from.size()));
-    }
-    std::vector<std::string> names;
-    for (const GridView* n : from) names.push_back(fmt::format("({}, {})", n->row, n->col));
-    r.filled.push_back(
-        fmt::format("{} from {}", CameraLabel(v.row, v.col), fmt::join(names, ", ")));
+    const auto from = NearestPresentViews(g.rows, g.cols, present, v.row, v.col);
+    FillViewWithMean(lf, v.row, v.col, from);
+    r.filled.push_back(FilledViewLabel(v.row, v.col, from));
     if (view_done) view_done();
   }
   lf.set_measured_poses(std::move(poses));

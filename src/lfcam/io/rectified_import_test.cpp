@@ -148,6 +148,21 @@ TEST(RectifiedImport, IndexNamedViewsImportSampleForSampleWithTheTrueDisparityLa
   EXPECT_NEAR(between.eye.y() - p13.center.y(), 0.5 * geo.pitch_mm, 1e-9);
   EXPECT_THROW(RigCameraParams(lf, -0.5, 0), Error);
   EXPECT_THROW(RigCameraParams(lf, 0, kN - 0.9), Error);
+
+  // A missing view, allowed, is the mean of its nearest neighbours, recorded; its camera is the
+  // rig's camera at its grid position.
+  fs::remove(dir / grid.view(2, 2).file);
+  const ImportedGrid holed = ScanGridFolder(dir, true);
+  EXPECT_EQ(holed.missing, std::vector<std::string>{"camera (2, 2)"});
+  RectifiedImportReport report;
+  const LightField filled = ImportRectifiedViews(dir, holed, geo, {}, &report);
+  EXPECT_EQ(report.filled,
+            std::vector<std::string>{"camera (2, 2) from (1, 2), (2, 1), (2, 3), (3, 2)"});
+  EXPECT_LT(
+      (filled.measured_poses()[2 * kN + 2].center - lf.measured_poses()[2 * kN + 2].center).norm(),
+      1e-9);
+  EXPECT_NEAR(filled.measured_poses()[2 * kN + 2].intrinsics->cx,
+              lf.measured_poses()[2 * kN + 2].intrinsics->cx, 1e-9);
   fs::remove_all(dir);
 }
 

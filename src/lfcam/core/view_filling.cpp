@@ -1,0 +1,51 @@
+#include "lfcam/core/view_filling.h"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <climits>
+
+#include "lfcam/core/color.h"
+#include "lfcam/core/error.h"
+
+namespace lfcam {
+
+std::vector<std::pair<int, int>> NearestPresentViews(int rows, int cols,
+                                                     const std::vector<bool>& present, int row,
+                                                     int col) {
+  std::vector<std::pair<int, int>> from;
+  int best = INT_MAX;
+  for (int r = 0; r < rows; ++r)
+    for (int c = 0; c < cols; ++c) {
+      if (!present[std::size_t(r) * cols + c]) continue;
+      const int d2 = (r - row) * (r - row) + (c - col) * (c - col);
+      if (d2 < best) from.clear();
+      if (d2 <= best) {
+        best = d2;
+        from.push_back({r, c});
+      }
+    }
+  return from;
+}
+
+void FillViewWithMean(LightField& lf, int row, int col,
+                      const std::vector<std::pair<int, int>>& from) {
+  if (lf.sample_type() != SampleType::kSrgb8 || from.empty())
+    throw Error("a view is filled from at least one view of an srgb8 light field");
+  const auto& lut = SrgbDecodeTable();
+  std::uint8_t* out = lf.mutable_view_data(row, col);
+  const std::size_t n = lf.view_bytes();
+  for (std::size_t b = 0; b < n; ++b) {
+    float sum = 0;
+    for (const auto& [r, c] : from) sum += lut[lf.view_data(r, c)[b]];
+    out[b] = LinearToSrgb8Table(sum / float(from.size()));
+  }
+}
+
+std::string FilledViewLabel(int row, int col, const std::vector<std::pair<int, int>>& from) {
+  std::vector<std::string> names;
+  for (const auto& [r, c] : from) names.push_back(fmt::format("({}, {})", r, c));
+  return fmt::format("camera ({}, {}) from {}", row, col, fmt::join(names, ", "));
+}
+
+}  // namespace lfcam
