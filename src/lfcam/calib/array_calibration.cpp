@@ -223,6 +223,34 @@ ArrayCalibration CalibrateArray(const std::filesystem::path& dir, const CaptureM
     if (c.single_center) single_centers.push_back({c.row, c.col, *c.single_center});
   }
 
+  // A world board hung the other way up numbers its corners from its other end: the world
+  // frame (the board's) is then turned half a turn against the array. Seen from the array, the
+  // board's bottom-left corner is the world's origin, so turn the frame back about the board's
+  // centre; a grid turned a quarter turn or mirrored against the board is refused.
+  const GridOrientation orientation = GridAgainstBoard(joint_centers);
+  if (orientation.turn == GridTurn::kHalfTurn) {
+    out.world_board_turned = true;
+    const Rigid3 turn{Eigen::AngleAxisd(M_PI, Vec3::UnitZ()).toRotationMatrix(),
+                      Vec3(out.world_board.width_mm(), out.world_board.height_mm(), 0)};
+    for (CameraCalibration& c : out.cameras) {
+      if (c.calibrated) c.world_from_camera = turn * c.world_from_camera;
+      if (c.single_center) c.single_center = turn * *c.single_center;
+    }
+    for (Rigid3& board : out.world_from_board) board = turn * board;
+    for (GridCamera& g : joint_centers) g.center = turn * g.center;
+    for (GridCamera& g : single_centers) g.center = turn * g.center;
+  } else if (orientation.turn != GridTurn::kAligned) {
+    throw Error(fmt::format(
+        "the world shot: the camera grid, as the array file numbers it, runs {} against the "
+        "world board {} (its columns at {:.0f} degrees to the board's x axis). Either the array "
+        "file's rows and columns are not lfcam's (row 0 at the bottom, column 0 at the left, "
+        "seen from behind the array), or the board hangs "
+        "on its side: hang it with its {} inner corners along the array's rows and shoot the "
+        "world shot again",
+        orientation.turn == GridTurn::kMirrored ? "mirrored" : "a quarter turn",
+        out.world_board.spec(), orientation.angle_deg, out.world_board.cols));
+  }
+
   // 4. The paper's array fit, on the joint centres (and, for comparison, on the single ones).
   const Vec3 board_center(0.5 * out.world_board.width_mm(), 0.5 * out.world_board.height_mm(), 0);
   out.fit = FitArray(joint_centers, out.rows, out.cols, out.pitch_mm, board_center);
@@ -312,6 +340,7 @@ nlohmann::json CalibrationToJson(const ArrayCalibration& a) {
        {{"intrinsics", BoardToJson(a.intrinsics_board)}, {"world", BoardToJson(a.world_board)}}},
       {"slab", slab},
       {"array_fit", fit_json(a.fit)},
+      {"world_board_turned", a.world_board_turned},
       {"bundle_adjustment",
        {{"residual_blocks", ba.residual_blocks},
         {"parameters", ba.parameters},

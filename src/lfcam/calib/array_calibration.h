@@ -59,6 +59,9 @@ struct ArrayCalibration {
   ArrayFit fit;                        // on the joint centres
   std::optional<ArrayFit> single_fit;  // the paper's method, on the per-camera centres
   Slab slab;                           // PRP window + view window (the world board)
+  // The world board was hung the other way up (its bottom-left square, seen from the array,
+  // white): its corners were numbered from the other end, and the world frame turned back.
+  bool world_board_turned = false;
   double detection_seconds = 0, seconds = 0;
 
   const CameraCalibration& camera(int row, int col) const {

@@ -70,6 +70,32 @@ class ArrayCalibrationTest : public ::testing::Test {
 fs::path* ArrayCalibrationTest::dir_ = nullptr;
 fs::path* ArrayCalibrationTest::scratch_ = nullptr;
 
+// A world board hung the other way up (its bottom-left square, seen from the array, white: a
+// chessboard of one odd and one even count turned by 180 degrees) is recognised from the array's
+// geometry and the world frame turned back: the cameras land where they truly are.
+TEST(ArrayCalibrationTurnedBoard, IsRecognisedAndTheWorldFrameTurnedBack) {
+  CaptureSimulationOptions o;
+  o.rows = 2, o.cols = 3;
+  o.sensor_width = 648;
+  o.sensor_height = 486;
+  o.intrinsics_shots = 7;
+  o.seed = 5;
+  o.world_board_turned = true;
+  const fs::path dir = testing::SharedTestCapture("calibration-2x3-turned", o);
+  const ArrayCalibration a = CalibrateArray(dir, ReadManifest(dir), {});
+  EXPECT_TRUE(a.world_board_turned);
+  ASSERT_EQ(a.calibrated_count(), 6);
+  const auto bytes = ReadFileBytes(dir / "ground_truth.json", kMaxJsonBytes, "truth");
+  const auto truth = ParseJsonBounded(std::string(bytes.begin(), bytes.end()), "truth");
+  for (const auto& t : truth["cameras"]) {
+    const CameraCalibration& c = a.camera(t["row"].get<int>(), t["col"].get<int>());
+    EXPECT_LT((c.world_from_camera.translation - JsonVec3(t, "center", "truth")).norm(), 15.0)
+        << t["row"] << "," << t["col"];
+  }
+  EXPECT_LT(std::abs(a.fit.theta_newton), 0.05);
+  EXPECT_GT(a.fit.array.n_ca.z(), 0.999);  // the array faces the board from +z, as before
+}
+
 TEST_F(ArrayCalibrationTest, JointCalibrationMatchesTheTruthAndBeatsPerCameraCalibration) {
   const CaptureManifest manifest = ReadManifest(*dir_);
   const ArrayCalibration a = CalibrateArray(*dir_, manifest, {});

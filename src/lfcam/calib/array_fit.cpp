@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <Eigen/Dense>
 #include <Eigen/Eigenvalues>
 #include <cmath>
 
@@ -73,9 +74,11 @@ ArrayFit FitArray(const std::vector<GridCamera>& cameras, int rows, int cols, do
   fit.theta_newton = theta;
   if (std::abs(std::remainder(theta - fit.theta_closed, 2 * M_PI)) > 1e-9)
     throw Error(fmt::format(
-        "the array fit's Newton-Raphson angle {} disagrees with the closed form {} (is the grid "
-        "numbering turned by more than 90 degrees?)",
-        theta, fit.theta_closed));
+        "the array fit's Newton-Raphson angle {:.4f} rad disagrees with the closed form {:.4f} "
+        "rad: the camera grid, as numbered, is turned by {:.0f} degrees against the world "
+        "board's axes (check the array file's rows and columns: row 0 at the bottom, column 0 "
+        "at the left, seen from behind the array)",
+        theta, fit.theta_closed, fit.theta_closed * 180 / M_PI));
   const Eigen::Rotation2Dd rotation(theta);
   const Vec2 offset = q_mean - rotation * p_mean;  // (alpha*, beta*)
   fit.alpha = offset.x();
@@ -102,6 +105,42 @@ ArrayFit FitArray(const std::vector<GridCamera>& cameras, int rows, int cols, do
   }
   fit.grid_rms_mm = std::sqrt(sum2 / double(n));
   return fit;
+}
+
+GridOrientation GridAgainstBoard(const std::vector<GridCamera>& cameras) {
+  GridOrientation o;
+  const auto n = Eigen::Index(cameras.size());
+  Eigen::MatrixXd design(n, 3);
+  Eigen::MatrixXd centers(n, 3);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    design.row(i) << 1.0, cameras[std::size_t(i)].col, cameras[std::size_t(i)].row;
+    centers.row(i) = cameras[std::size_t(i)].center.transpose();
+  }
+  const bool have_cols = n > 1 && design.col(1).maxCoeff() > design.col(1).minCoeff();
+  const bool have_rows = n > 1 && design.col(2).maxCoeff() > design.col(2).minCoeff();
+  if (!have_cols && !have_rows) return o;
+  Eigen::MatrixXd columns(n, 1 + int(have_cols) + int(have_rows));
+  columns.col(0) = design.col(0);
+  if (have_cols) columns.col(1) = design.col(1);
+  if (have_rows) columns.col(columns.cols() - 1) = design.col(2);
+  const Eigen::MatrixXd coef = columns.colPivHouseholderQr().solve(centers);
+  // The columns' direction in the board's plane; from the rows' (a quarter turn back) when the
+  // grid is a single column.
+  const Vec2 u = have_cols ? Vec2(coef(1, 0), coef(1, 1)) : Vec2::Zero();
+  const Vec2 v =
+      have_rows ? Vec2(coef(columns.cols() - 1, 0), coef(columns.cols() - 1, 1)) : Vec2::Zero();
+  const double angle = have_cols ? std::atan2(u.y(), u.x()) : std::atan2(-v.x(), v.y());
+  o.angle_deg = angle * 180 / M_PI;
+  if (have_cols && have_rows && u.x() * v.y() - u.y() * v.x() < 0) {
+    o.turn = GridTurn::kMirrored;
+  } else if (std::abs(o.angle_deg) <= 45) {
+    o.turn = GridTurn::kAligned;
+  } else if (std::abs(o.angle_deg) >= 135) {
+    o.turn = GridTurn::kHalfTurn;
+  } else {
+    o.turn = GridTurn::kQuarterTurn;
+  }
+  return o;
 }
 
 }  // namespace lfcam

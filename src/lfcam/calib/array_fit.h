@@ -35,6 +35,20 @@ struct ArrayFit {
   std::vector<double> distance_to_ideal_mm;
 };
 
+// How the array's grid, as numbered (row 0 at the bottom, column 0 at the left, seen from behind
+// the array), runs in the world board's frame: the directions in which the camera centres move
+// as the column and the row grow (a least-squares fit centre = a + col u + row v), against the
+// board's x and y. A world board hung the other way up (its bottom-left square, seen from the
+// array, white) numbers its corners from the other end: the grid then runs half a turn against
+// it.
+enum class GridTurn { kAligned, kHalfTurn, kQuarterTurn, kMirrored };
+struct GridOrientation {
+  GridTurn turn = GridTurn::kAligned;
+  double angle_deg = 0;  // of the grid's columns against the board's x, in the board's plane
+};
+// Needs two distinct rows or columns among `cameras`; kAligned otherwise.
+GridOrientation GridAgainstBoard(const std::vector<GridCamera>& cameras);
+
 // Fits the array. `scene_side` is any point on the scene's side of the array (the world board's
 // centre, say): n_ca is turned to point away from it. Throws lfcam::Error when fewer than three
 // cameras are given or their centres do not span a plane (all on a line), naming the cameras.

@@ -75,5 +75,34 @@ TEST(ArrayFit, RefusesCentresOnALineOrTooFew) {
   EXPECT_THROW(FitArray(line, 1, 10, 28, Vec3::Zero()), Error);
 }
 
+// A grid numbered as lfcam numbers it, seen in a board frame turned by `degrees` (and mirrored):
+// aligned, half a turn (a board hung the other way up), a quarter turn or mirrored.
+TEST(ArrayFit, TellsHowTheGridRunsAgainstTheBoard) {
+  auto grid = [](double degrees, bool mirrored, int rows, int cols) {
+    const double a = degrees * M_PI / 180;
+    std::vector<GridCamera> cameras;
+    for (int r = 0; r < rows; ++r)
+      for (int c = 0; c < cols; ++c) {
+        const double x = 28.0 * c + 0.3 * ((r * 7 + c * 3) % 5 - 2);
+        const double y = (mirrored ? -28.0 : 28.0) * r;
+        cameras.push_back({r, c,
+                           Vec3(300 + std::cos(a) * x - std::sin(a) * y,
+                                275 + std::sin(a) * x + std::cos(a) * y, 3600)});
+      }
+    return GridAgainstBoard(cameras);
+  };
+  EXPECT_EQ(grid(0, false, 10, 10).turn, GridTurn::kAligned);
+  EXPECT_EQ(grid(30, false, 10, 10).turn, GridTurn::kAligned);
+  EXPECT_EQ(grid(180, false, 10, 10).turn, GridTurn::kHalfTurn);
+  EXPECT_NEAR(std::abs(grid(180, false, 10, 10).angle_deg), 180, 1);
+  EXPECT_EQ(grid(-170, false, 3, 3).turn, GridTurn::kHalfTurn);
+  EXPECT_EQ(grid(90, false, 10, 10).turn, GridTurn::kQuarterTurn);
+  EXPECT_EQ(grid(0, true, 10, 10).turn, GridTurn::kMirrored);
+  // A single row or column still has a direction; a single camera has none.
+  EXPECT_EQ(grid(180, false, 1, 5).turn, GridTurn::kHalfTurn);
+  EXPECT_EQ(grid(180, false, 5, 1).turn, GridTurn::kHalfTurn);
+  EXPECT_EQ(grid(180, false, 1, 1).turn, GridTurn::kAligned);
+}
+
 }  // namespace
 }  // namespace lfcam

@@ -46,6 +46,11 @@ void PrintSummary(const ArrayCalibration& a, const std::string& out) {
   const Vec3 c = a.fit.array.center();
   fmt::print("  array centre       ({:.1f}, {:.1f}, {:.1f}) mm, n_ca ({:.4f}, {:.4f}, {:.4f})\n",
              c.x(), c.y(), c.z(), a.fit.array.n_ca.x(), a.fit.array.n_ca.y(), a.fit.array.n_ca.z());
+  if (a.world_board_turned)
+    fmt::print(
+        "  world board        hung the other way up (its bottom-left square, seen from the "
+        "array, is white): its corners were numbered from the other end, so the world's origin "
+        "is still its bottom-left corner as seen from the array\n");
   for (const auto& cam : a.cameras) {
     if (!cam.calibrated)
       fmt::print(stderr, "lfcam: warning: {} not calibrated: {}\n", CameraLabel(cam.row, cam.col),

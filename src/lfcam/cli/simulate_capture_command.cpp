@@ -21,7 +21,7 @@ void AddSimulateCaptureCommand(CLI::App& simulate) {
                 board = "chessboard", intrinsics_board;
     std::uint64_t seed = 1;
     int shots = 14, supersampling = 2;
-    bool no_noise = false, quiet = false;
+    bool no_noise = false, quiet = false, world_board_turned = false;
   };
   auto flags = std::make_shared<Flags>();
   command->add_option("--scene", flags->scene, "Built-in scene (paper)")->capture_default_str();
@@ -50,6 +50,9 @@ void AddSimulateCaptureCommand(CLI::App& simulate) {
       ->capture_default_str()
       ->check(CLI::Range(1, 8));
   command->add_flag("--no-noise", flags->no_noise, "An ideal sensor: no shot or read noise");
+  command->add_flag("--world-board-turned", flags->world_board_turned,
+                    "Hang the world board the other way up (turned 180 degrees in its plane: its "
+                    "bottom-left square, seen from the array, white), as people do");
   command->add_flag("--quiet", flags->quiet, "No progress bar (it is drawn only on a terminal)");
   command->callback([flags] {
     CaptureSimulationOptions o;
@@ -77,6 +80,7 @@ void AddSimulateCaptureCommand(CLI::App& simulate) {
     o.intrinsics_shots = flags->shots;
     o.scene_supersampling = flags->supersampling;
     o.noise = !flags->no_noise;
+    o.world_board_turned = flags->world_board_turned;
     const Scene scene = FlagValue("--scene", [&] { return MakeScene(flags->scene); });
     const std::filesystem::path out = flags->out;
     std::error_code ec;

@@ -137,9 +137,16 @@ SimulatedArray::SimulatedArray(const Scene& scene, const CaptureSimulationOption
     plans_.push_back(board_plan(ShotKind::kIntrinsics, fmt::format("shot_{:02d}", k),
                                 fmt::format("calib/intrinsics/shot_{:02d}", k), o.intrinsics_board,
                                 board_poses_[std::size_t(k)]));
-  // The world frame is the world board's: it stands at the identity.
-  plans_.push_back(board_plan(ShotKind::kWorld, "world", "calib/world", world_board_, Rigid3{}));
+  // The world frame is the world board's: it stands at the identity (unless turned).
+  plans_.push_back(
+      board_plan(ShotKind::kWorld, "world", "calib/world", world_board_, world_from_world_board()));
   plans_.push_back({ShotKind::kScene, "scene", "scene", {}, {}});
+}
+
+Rigid3 SimulatedArray::world_from_world_board() const {
+  if (!options_.world_board_turned) return {};
+  return {Eigen::AngleAxisd(M_PI, Vec3::UnitZ()).toRotationMatrix(),
+          Vec3(world_board_.width_mm(), world_board_.height_mm(), 0)};
 }
 
 std::optional<std::size_t> SimulatedArray::module_at(int row, int col) const {
@@ -181,7 +188,7 @@ CaptureSimulationResult SimulateCapture(const Scene& scene, const CaptureSimulat
   const std::vector<SimulatedModule>& modules = simulated.modules();
   const std::vector<Rigid3>& board_poses = simulated.intrinsics_board_poses();
   const auto& plans = simulated.shots();
-  const Rigid3 world_from_world_board;
+  const Rigid3 world_from_world_board = simulated.world_from_world_board();
 
   const double image_bytes = double(o.sensor_width) * o.sensor_height;
   RequireMemory(image_bytes * (12 + 12 + 3 * 4) * 2, "simulating two camera modules at a time");

@@ -30,8 +30,11 @@ struct CaptureSimulationOptions {
   std::uint64_t seed = 1;
   BoardSpec intrinsics_board{10, 7, 30.0};
   int intrinsics_shots = 14;
-  int scene_supersampling = 2;       // per axis: the scene shot, and what the boards stand before
-  bool noise = true;                 // false: an ideal sensor (tests)
+  int scene_supersampling = 2;  // per axis: the scene shot, and what the boards stand before
+  bool noise = true;            // false: an ideal sensor (tests)
+  // The world board hung the other way up: turned 180 degrees in its plane about its centre (its
+  // bottom-left square, seen from the array, is white). The world frame stays where it was.
+  bool world_board_turned = false;
   std::function<void()> image_done;  // called once per image written (any thread, serialised)
 };
 
@@ -72,6 +75,8 @@ class SimulatedArray {
   const std::vector<SimulatedModule>& modules() const { return modules_; }
   const std::vector<Rigid3>& intrinsics_board_poses() const { return board_poses_; }
   const std::vector<ShotPlan>& shots() const { return plans_; }
+  // Where the world board stands: the identity (the world frame is the board's), or turned.
+  Rigid3 world_from_world_board() const;
   // Indices, or nullopt when there is no such module or shot.
   std::optional<std::size_t> module_at(int row, int col) const;
   std::optional<std::size_t> shot_named(const std::string& name) const;
