@@ -98,10 +98,9 @@ int BuildView(const ViewJob& job, const Slab& slab, const BuildOptions& options,
   const Vec3 a_s = r * (slab.st.width_mm * slab.st.x_axis);
   const Vec3 a_t = r * (slab.st.height_mm * slab.st.y_axis);
   const Vec3 a_0 = camera_from_world * slab.st.origin;
-  const StDomain& d = slab.st_domain;
+  const StSampling sampling{slab.st, slab.st_domain, n_s, n_t};
   auto pixel_of = [&](double kk, double ll) -> Vec2 {
-    const double s = d.s0 + (kk + 0.5) / n_s * d.s_extent();
-    const double t = d.t0 + (ll + 0.5) / n_t * d.t_extent();
+    const double s = sampling.s_of(kk), t = sampling.t_of(ll);
     const Vec3 q = s * a_s + t * a_t + a_0;
     if (!(q.z() > 1e-9)) return Vec2(-1e9, -1e9);  // behind the camera
     const Vec2 n = k.distortion.Apply(Vec2(q.x() / q.z(), q.y() / q.z()));

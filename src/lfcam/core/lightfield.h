@@ -16,6 +16,7 @@
 
 #include "lfcam/core/camera_model.h"
 #include "lfcam/core/slab.h"
+#include "lfcam/core/st_sampling.h"
 
 namespace lfcam {
 
@@ -102,13 +103,12 @@ class LightField {
   // Camera (row, col)'s centre: measured when known, else its ideal grid position.
   Vec3 camera_center(int row, int col) const;
 
+  // How the views sample the st-plane (core/st_sampling.h): the one mapping between the plane and
+  // the samples that every reader uses.
+  StSampling st_sampling() const { return {slab_.st, slab_.st_domain, dims_.n_s, dims_.n_t}; }
   // The st-plane position of sample (k, l), in view-window units.
-  double s_of(double k) const {
-    return slab_.st_domain.s0 + (k + 0.5) / dims_.n_s * slab_.st_domain.s_extent();
-  }
-  double t_of(double l) const {
-    return slab_.st_domain.t0 + (l + 0.5) / dims_.n_t * slab_.st_domain.t_extent();
-  }
+  double s_of(double k) const { return st_sampling().s_of(k); }
+  double t_of(double l) const { return st_sampling().t_of(l); }
   // Linear-light RGB of sample (row, col, k, l), whatever the sample type.
   Eigen::Vector3f linear_rgb(int row, int col, int k, int l) const;
   void set_linear_rgb(int row, int col, int k, int l, const Eigen::Vector3f& rgb);

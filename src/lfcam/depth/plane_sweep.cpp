@@ -67,18 +67,16 @@ struct SweepSetup {
 double ToFull(double x, double scale) { return (x + 0.5) * scale - 0.5; }
 double ToScaled(double x, double scale) { return (x + 0.5) / scale - 0.5; }
 
-Vec3 StPoint(const LightField& lf, double k, double l) {
-  return lf.slab().st.point_at(lf.s_of(k), lf.t_of(l));
-}
+Vec3 StPoint(const LightField& lf, double k, double l) { return lf.st_sampling().Point(k, l); }
 
 // The homography taking the reference's (scaled) sample coordinates to view v's, through the
 // plane of depth D.
 cv::Matx33d PlaneHomography(const SweepSetup& setup, std::size_t v, double depth) {
   const Slab& slab = setup.lf.slab();
+  const StSampling sampling = setup.lf.st_sampling();
   const double w = setup.ref.cols - 1, h = setup.ref.rows - 1;
   const cv::Point2f from[4] = {{0, 0}, {float(w), 0}, {0, float(h)}, {float(w), float(h)}};
   cv::Point2f to[4];
-  const auto& dims = setup.lf.dims();
   for (int i = 0; i < 4; ++i) {
     const Vec3 x =
         StPoint(setup.lf, ToFull(from[i].x, setup.scale_x), ToFull(from[i].y, setup.scale_y));
@@ -88,8 +86,7 @@ cv::Matx33d PlaneHomography(const SweepSetup& setup, std::size_t v, double depth
     const Vec3 p = c + lambda * (x - c);
     const auto hit = slab.intersect({setup.centers[v], p - setup.centers[v]});
     if (!hit) throw Error("plane sweep: a view's ray runs parallel to the st-plane");
-    const double k = (hit->s - slab.st_domain.s0) / slab.st_domain.s_extent() * dims.n_s - 0.5;
-    const double l = (hit->t - slab.st_domain.t0) / slab.st_domain.t_extent() * dims.n_t - 0.5;
+    const double k = sampling.k_of(hit->s), l = sampling.l_of(hit->t);
     to[i] = {float(ToScaled(k, setup.scale_x)), float(ToScaled(l, setup.scale_y))};
   }
   return cv::getPerspectiveTransform(from, to);
@@ -134,8 +131,7 @@ SweepSetup MakeSetup(const LightField& lf, int row, int col, int reach, double f
         fmt::format("depth needs at least two views; this light field has {}x{}", d.rows, d.cols));
   setup.st_depth = DepthOf(lf.slab(), StPoint(lf, (d.n_s - 1) / 2.0, (d.n_t - 1) / 2.0)) -
                    DepthOf(lf.slab(), setup.ref_center);
-  const double ds = lf.slab().st.width_mm * lf.slab().st_domain.s_extent() / d.n_s;
-  const double dt = lf.slab().st.height_mm * lf.slab().st_domain.t_extent() / d.n_t;
+  const double ds = lf.st_sampling().ds_mm(), dt = lf.st_sampling().dt_mm();
   setup.sample_mm = std::min(ds * setup.scale_x, dt * setup.scale_y);
   return setup;
 }

@@ -87,16 +87,16 @@ ViewCamera ViewAsCamera(const LightField& lf, int row, int col) {
   if (!(d > 0))
     throw Error(fmt::format("view ({}, {}): its camera is not in front of the st-plane", row, col));
   const auto& dims = lf.dims();
-  const double ds = slab.st_domain.s_extent() / dims.n_s * st.width_mm;  // mm a sample
-  const double dt = slab.st_domain.t_extent() / dims.n_t * st.height_mm;
+  const StSampling sampling = lf.st_sampling();
+  const double ds = sampling.ds_mm(), dt = sampling.dt_mm();  // mm a sample
   ViewCamera v;
   v.width = dims.n_s;
   v.height = dims.n_t;
   v.fx = d / ds;
   v.fy = d / dt;
   // Sample k sits at s_of(k) * width along x_axis from the origin; pixel u = k.
-  const double x0 = x_axis.dot(st.origin - c) + lf.s_of(0) * st.width_mm;
-  const double y0 = y_axis.dot(st.origin - c) + lf.t_of(0) * st.height_mm;
+  const double x0 = x_axis.dot(st.origin - c) + sampling.s_of(0) * st.width_mm;
+  const double y0 = y_axis.dot(st.origin - c) + sampling.t_of(0) * st.height_mm;
   v.cx = -v.fx * x0 / d;
   v.cy = dims.n_t - 1 + v.fy * y0 / d;
   Mat3 r;
@@ -146,9 +146,10 @@ ExportReport ExportLightField(const LightField& lf, ExportFormat format, const f
   for (int r = 0; r < d.rows; ++r)
     for (int c = 0; c < d.cols; ++c) centroid += lf.camera_center(r, c) / double(d.view_count());
   double reach_m = 0;  // the farthest st-window corner from the cameras' centroid
-  for (double s : {lf.slab().st_domain.s0, lf.slab().st_domain.s1})
-    for (double t : {lf.slab().st_domain.t0, lf.slab().st_domain.t1})
-      reach_m = std::max(reach_m, (lf.slab().st.point_at(s, t) - centroid).norm() / 1000.0);
+  const StSampling sampling = lf.st_sampling();
+  for (double s : {sampling.domain.s0, sampling.domain.s1})
+    for (double t : {sampling.domain.t0, sampling.domain.t1})
+      reach_m = std::max(reach_m, (sampling.window.point_at(s, t) - centroid).norm() / 1000.0);
 
   const SparsePoints points = depth ? PointsFromDepth(lf, *depth) : SparsePoints{};
   int id = 0;

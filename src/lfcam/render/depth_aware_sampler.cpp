@@ -34,8 +34,8 @@ DepthAwareSampler::DepthAwareSampler(const LightField& lf, const DepthSet& depth
   if (!range.valid()) throw Error("depth-aware rendering needs depth maps; none were given");
   q_near_ = 1.1 / range.near_mm;
   q_far_ = 0.9 / range.far_mm;
-  const double ds = slab_.st.width_mm * slab_.st_domain.s_extent() / n_s_;
-  const double dt = slab_.st.height_mm * slab_.st_domain.t_extent() / n_t_;
+  const StSampling sampling = lf.st_sampling();
+  const double ds = sampling.ds_mm(), dt = sampling.dt_mm();
   unit_q_ = std::min(ds, dt) / (slab_.separation_mm() * slab_.uv.pitch_mm);
 }
 

@@ -97,13 +97,10 @@ FocusProbe ProbeFocusDistance(const LightField& lf, const VirtualCamera& camera,
   const double far_mm = std::max(options.far_mm, near_mm * 1.1);
   // The patch's spacing: a few st samples' pitch on the st-plane (where the views are
   // sharpest), so that the patch spans some texture.
-  const Slab& slab = lf.slab();
   const double step_mm =
       options.patch_step_mm > 0
           ? options.patch_step_mm
-          : kPatchStepInSamples *
-                std::max(slab.st.width_mm * slab.st_domain.s_extent() / lf.dims().n_s,
-                         slab.st.height_mm * slab.st_domain.t_extent() / lf.dims().n_t);
+          : kPatchStepInSamples * std::max(lf.st_sampling().ds_mm(), lf.st_sampling().dt_mm());
 
   const std::vector<double> coarse = Geometric(near_mm, far_mm, 1.02);
   const std::vector<Cost> coarse_costs =

@@ -22,14 +22,15 @@ LightFieldSampler::LightFieldSampler(const LightField& lf)
   v_scaled_ = slab.uv.v_ca / slab.uv.height_mm();
   st_origin_ = slab.st.origin;
   n_st_ = slab.st.normal();
-  s_scaled_ = slab.st.x_axis / slab.st.width_mm;
-  t_scaled_ = slab.st.y_axis / slab.st.height_mm;
-  s0_ = slab.st_domain.s0;
-  s1_ = slab.st_domain.s1;
-  t0_ = slab.st_domain.t0;
-  t1_ = slab.st_domain.t1;
-  s_to_k_ = n_s_ / slab.st_domain.s_extent();
-  t_to_l_ = n_t_ / slab.st_domain.t_extent();
+  const StSampling st = lf.st_sampling();
+  s_scaled_ = st.window.x_axis / st.window.width_mm;
+  t_scaled_ = st.window.y_axis / st.window.height_mm;
+  s0_ = st.domain.s0;
+  s1_ = st.domain.s1;
+  t0_ = st.domain.t0;
+  t1_ = st.domain.t1;
+  s_to_k_ = st.s_to_k();
+  t_to_l_ = st.t_to_l();
   for (int r = 0; r < rows_; ++r)
     for (int c = 0; c < cols_; ++c) camera_centers_.push_back(lf.camera_center(r, c));
 }

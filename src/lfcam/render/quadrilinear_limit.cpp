@@ -23,11 +23,9 @@ StPrefilter QuadrilinearLimitPrefilter(const LightField& lf, const VirtualCamera
   const double h_uv = normal.dot(slab.uv.p_ca - st.origin);
   if (!(std::abs(h_uv - h_o) > 1e-9)) return f;
   f.k = -h_o / (h_uv - h_o);
-  const auto& d = lf.dims();
-  const double ds_mm = slab.st_domain.s_extent() / d.n_s * st.width_mm;
-  const double dt_mm = slab.st_domain.t_extent() / d.n_t * st.height_mm;
-  f.h_s = std::abs(f.k) * slab.uv.pitch_mm / ds_mm;
-  f.h_t = std::abs(f.k) * slab.uv.pitch_mm / dt_mm;
+  const StSampling sampling = lf.st_sampling();
+  f.h_s = std::abs(f.k) * slab.uv.pitch_mm / sampling.ds_mm();
+  f.h_t = std::abs(f.k) * slab.uv.pitch_mm / sampling.dt_mm();
   return f;
 }
 
@@ -78,6 +76,7 @@ std::vector<cv::Rect> ViewRegionsRead(const LightField& lf, const VirtualCamera&
                                       const std::vector<bool>& views) {
   const LightFieldDims& d = lf.dims();
   const Slab& slab = lf.slab();
+  const StSampling sampling = lf.st_sampling();
   const cv::Rect whole(0, 0, d.n_s, d.n_t);
   std::vector<Vec3> focus;  // the frame's corners on the plane of focus
   for (const double y : {0.0, double(camera.height())})
@@ -95,8 +94,7 @@ std::vector<cv::Rect> ViewRegionsRead(const LightField& lf, const VirtualCamera&
         all = false;
         break;
       }
-      const double k = (c->s - slab.st_domain.s0) / slab.st_domain.s_extent() * d.n_s - 0.5;
-      const double l = (c->t - slab.st_domain.t0) / slab.st_domain.t_extent() * d.n_t - 0.5;
+      const double k = sampling.k_of(c->s), l = sampling.l_of(c->t);
       k0 = std::min(k0, k), k1 = std::max(k1, k), l0 = std::min(l0, l), l1 = std::max(l1, l);
     }
     if (!all) {

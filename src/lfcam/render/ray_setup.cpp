@@ -45,15 +45,14 @@ SamplePlane UvSamplePlane(const LightField& lf) {
 }
 
 SamplePlane StSamplePlane(const LightField& lf) {
-  const Slab& slab = lf.slab();
-  const double s_to_k = lf.dims().n_s / slab.st_domain.s_extent();
-  const double t_to_l = lf.dims().n_t / slab.st_domain.t_extent();
-  return {slab.st.origin,
-          slab.st.normal(),
-          slab.st.x_axis * (s_to_k / slab.st.width_mm),
-          slab.st.y_axis * (t_to_l / slab.st.height_mm),
-          -slab.st_domain.s0 * s_to_k - 0.5,
-          -slab.st_domain.t0 * t_to_l - 0.5};
+  const StSampling st = lf.st_sampling();
+  const double s_to_k = st.s_to_k(), t_to_l = st.t_to_l();
+  return {st.window.origin,
+          st.window.normal(),
+          st.window.x_axis * (s_to_k / st.window.width_mm),
+          st.window.y_axis * (t_to_l / st.window.height_mm),
+          -st.domain.s0 * s_to_k - 0.5,
+          -st.domain.t0 * t_to_l - 0.5};
 }
 
 RaySetup::RaySetup(const LightField& lf, const VirtualCamera& camera, bool lens_samples)

@@ -56,7 +56,7 @@ LightField SimulateLightField(const Scene& scene, const SimulateLightFieldOption
 
   const int ss = o.supersampling;
   const double inv_ss2 = 1.0 / (ss * ss);
-  const double ds = slab.st_domain.s_extent() / o.n_s, dt = slab.st_domain.t_extent() / o.n_t;
+  const StSampling sampling = lf.st_sampling();
   std::atomic<int> done{0};
   std::mutex progress_mutex;
   const int total = o.rows * o.cols;
@@ -69,9 +69,9 @@ LightField SimulateLightField(const Scene& scene, const SimulateLightFieldOption
           Vec3 sum = Vec3::Zero();
           for (int a = 0; a < ss; ++a)
             for (int b = 0; b < ss; ++b) {
-              const double s = slab.st_domain.s0 + (k + (b + 0.5) / ss) * ds;
-              const double t = slab.st_domain.t0 + (l + (a + 0.5) / ss) * dt;
-              sum += scene.Radiance({center, slab.st.point_at(s, t) - center});
+              // Sub-sample (a, b) of sample (k, l), spread evenly over its cell.
+              const Vec3 at = sampling.Point(k - 0.5 + (b + 0.5) / ss, l - 0.5 + (a + 0.5) / ss);
+              sum += scene.Radiance({center, at - center});
             }
           lf.set_linear_rgb(row, col, k, l, (sum * inv_ss2).cast<float>());
         }
