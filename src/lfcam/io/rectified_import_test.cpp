@@ -18,6 +18,7 @@
 #include "lfcam/core/error.h"
 #include "lfcam/core/image_io.h"
 #include "lfcam/core/lightfield_file.h"
+#include "lfcam/io/lightfield_export.h"
 #include "lfcam/render/rig_camera.h"
 #include "lfcam/sim/board_radiance.h"
 #include "lfcam/sim/camera_module.h"
@@ -148,6 +149,44 @@ TEST(RectifiedImport, IndexNamedViewsImportSampleForSampleWithTheTrueDisparityLa
   EXPECT_NEAR(between.eye.y() - p13.center.y(), 0.5 * geo.pitch_mm, 1e-9);
   EXPECT_THROW(RigCameraParams(lf, -0.5, 0), Error);
   EXPECT_THROW(RigCameraParams(lf, 0, kN - 0.9), Error);
+  // Exported (COLMAP, NeRF, PNG views), each view's camera is the rig's: its shifted principal
+  // point, its focal length.
+  for (const auto& [r, c] : {std::pair{0, 0}, {1, 3}, {4, 2}}) {
+    const ViewCamera v = ViewAsCamera(lf, r, c);
+    const CameraIntrinsics& k = *lf.measured_poses()[std::size_t(r * kN + c)].intrinsics;
+    EXPECT_NEAR(v.cx, k.cx, 1e-6) << r << "," << c;
+    EXPECT_NEAR(v.cy, k.cy, 1e-6) << r << "," << c;
+    EXPECT_NEAR(v.fx, k.fx, 1e-6);
+  }
+
+  // Through the command: the photograph itself at a camera; flags the rig's camera sets, a
+  // position off the grid, a light field that records no cameras: refused, saying why.
+  const fs::path outputs = dir.string() + "_out";
+  fs::create_directories(outputs);
+  const std::string file = (outputs / "rig.lf").string(), out = (outputs / "as.png").string();
+  WriteLightField(lf, file);
+  auto run = testing::Lfcam(fmt::format("render {} --as-camera 3,1 --out {} --quiet", file, out));
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_EQ(
+      cv::norm(cv::imread(out), cv::imread((dir / grid.view(3, 1).file).string()), cv::NORM_INF),
+      0);
+  for (const auto& [flags, status, what] :
+       {std::tuple{"--as-camera 3,1 --size 64", 2, "--size does not go with --as-camera"},
+        {"--as-camera 3,1 --focal-length 50", 2, "--focal-length does not go with --as-camera"},
+        {"--as-camera 3", 2, "--as-camera"},
+        {"--as-camera 5,0", 2, "lies outside the 5x5 grid"}}) {
+    run = testing::Lfcam(fmt::format("render {} {} --out {} --quiet", file, flags, out));
+    EXPECT_EQ(run.status, status) << flags << ": " << run.output;
+    EXPECT_NE(run.output.find(what), std::string::npos) << flags << ": " << run.output;
+  }
+  const std::string simulated = (outputs / "sim.lf").string();
+  ASSERT_EQ(
+      testing::Lfcam("simulate lightfield --grid 2x2 --st-res 16x16 --quiet --out " + simulated)
+          .status,
+      0);
+  run = testing::Lfcam(fmt::format("render {} --as-camera 0,0 --out {} --quiet", simulated, out));
+  EXPECT_NE(run.status, 0);
+  EXPECT_NE(run.output.find("records no camera for its views"), std::string::npos) << run.output;
 
   // A missing view, allowed, is the mean of its nearest neighbours, recorded; its camera is the
   // rig's camera at its grid position.
@@ -164,6 +203,7 @@ TEST(RectifiedImport, IndexNamedViewsImportSampleForSampleWithTheTrueDisparityLa
   EXPECT_NEAR(filled.measured_poses()[2 * kN + 2].intrinsics->cx,
               lf.measured_poses()[2 * kN + 2].intrinsics->cx, 1e-9);
   fs::remove_all(dir);
+  fs::remove_all(outputs);
 }
 
 TEST(RectifiedImport, ADescriptionGivesTheMetricGeometryOrThePrincipalPoints) {
