@@ -141,6 +141,7 @@ TEST_F(CalibrateCli, BuildsTheLightFieldAndRecordsHowItWasMade) {
   const auto info = nlohmann::json::parse(run.output);
   EXPECT_EQ(info["format_version"], 3);  // each view records its camera
   EXPECT_EQ(info["measured_poses"], true);
+  EXPECT_EQ(info["view_cameras"], true);
   // The same array simulated directly from the true centres, and the two compared.
   run = Lfcam("simulate lightfield --grid 2x2 --st-res 64x58 --quiet --centers-from " +
               Path("session/ground_truth.json") + " --out " + Path("truth.lf"));

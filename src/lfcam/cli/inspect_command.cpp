@@ -54,6 +54,7 @@ nlohmann::json InfoJson(const LightFieldHeader& h) {
           {"separation_mm", h.slab.separation_mm()},
           {"metadata", h.metadata},
           {"measured_poses", !h.measured_poses.empty()},
+          {"view_cameras", !h.measured_poses.empty() && h.measured_poses.front().intrinsics},
           {"cameras", CameraCentres(h)}};
 }
 
@@ -120,8 +121,11 @@ void AddInfoCommand(CLI::App& app) {
       }
     }
     if (!h.measured_poses.empty())
-      fmt::print("  cameras       measured centres recorded for all {} views\n",
-                 h.measured_poses.size());
+      fmt::print("  cameras       {} recorded for all {} views{}\n",
+                 h.measured_poses.front().intrinsics ? "the camera that took each view"
+                                                     : "measured centres",
+                 h.measured_poses.size(),
+                 h.measured_poses.front().intrinsics ? " (render --as-camera R,C)" : "");
     if (flags->verify)
       fmt::print("  verified      all views read and checked in {:.0f} ms\n", verify_ms);
   });
