@@ -1,0 +1,110 @@
+// The HCI benchmark's parameters.cfg: what lfcam reads of it, its disparity-depth law, and bad
+// files refused naming the line and the key; a benchmark folder with one imports metrically.
+#include "lfcam/io/hci_parameters.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+
+#include "lfcam/core/error.h"
+#include "lfcam/io/grid_import.h"
+#include "lfcam/io/rectified_import.h"
+
+namespace lfcam {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr const char* kParameters = R"([intrinsics]
+focal_length_mm = 100
+image_resolution_x_px = 64
+image_resolution_y_px = 48
+sensor_size_mm = 35
+fstop = 100
+
+[extrinsics]
+num_cams_x = 3
+num_cams_y = 3
+baseline_mm = 90.0
+focus_distance_m = 4.25
+center_cam_rx_rad = 1.5707963
+
+; a comment
+[meta]
+disp_min = -2.0
+disp_max = 1.5
+scene = example
+)";
+
+TEST(HciParameters, ReadsTheRigAndItsDisparityLaw) {
+  const HciParameters p = ParseHciParameters(kParameters, "parameters.cfg");
+  EXPECT_EQ(p.width_px, 64);
+  EXPECT_EQ(p.cams_y, 3);
+  EXPECT_DOUBLE_EQ(p.focal_px(), 100.0 * 64 / 35);
+  EXPECT_DOUBLE_EQ(p.focus_distance_mm, 4250.0);
+  EXPECT_EQ(*p.disp_min, -2.0);
+  EXPECT_EQ(p.values.at("meta.scene"), "example");
+  // Zero disparity at the focus distance; the law and its inverse agree.
+  EXPECT_NEAR(p.DepthOfDisparity(0), 4250.0, 1e-9);
+  for (const double d : {-1.5, 0.3, 2.0})
+    EXPECT_NEAR(p.DisparityOfDepth(p.DepthOfDisparity(d)), d, 1e-12);
+  EXPECT_LT(p.DepthOfDisparity(1.0), 4250.0);  // positive disparity is nearer
+}
+
+TEST(HciParameters, BadFilesAreRefusedNamingTheLineAndTheKey) {
+  auto refused = [](const std::string& text, const std::string& what) {
+    try {
+      ParseHciParameters(text, "p.cfg");
+      ADD_FAILURE() << "accepted: " << what;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+    }
+  };
+  const std::string good = kParameters;
+  auto replaced = [&](const std::string& from, const std::string& to) {
+    std::string s = good;
+    s.replace(s.find(from), from.size(), to);
+    return s;
+  };
+  refused(replaced("baseline_mm = 90.0", ""), "p.cfg: extrinsics.baseline_mm is missing");
+  refused(replaced("baseline_mm = 90.0", "baseline_mm = ninety"),
+          "line 11: extrinsics.baseline_mm = 'ninety' is not a number");
+  refused(replaced("baseline_mm = 90.0", "baseline_mm = -90"),
+          "line 11: extrinsics.baseline_mm = -90 must be positive");
+  refused(replaced("num_cams_x = 3", "num_cams_x = 2.5"), "must be a whole number");
+  refused(replaced("fstop = 100", "fstop"), "line 6: expected 'key = value'");
+  refused(replaced("[meta]", "[meta"), "a section header must read [name]");
+  refused(good + "[extrinsics]\nbaseline_mm = 1\n", "extrinsics.baseline_mm is given twice");
+}
+
+TEST(HciParameters, ABenchmarkFolderWithItImportsMetrically) {
+  const fs::path dir = fs::temp_directory_path() / ("lfcam_hci_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream(dir / kHciParametersName) << kParameters;
+  for (int i = 0; i < 9; ++i)
+    cv::imwrite((dir / fmt::format("input_Cam{:03d}.png", i)).string(),
+                cv::Mat(48, 64, CV_8UC3, cv::Scalar(10 * i, 20, 30)));
+  cv::imwrite((dir / "valid_mask.png").string(), cv::Mat(48, 64, CV_8UC1, cv::Scalar(255)));
+  const ImportedGrid grid = ScanGridFolder(dir, false);
+  EXPECT_EQ(grid.naming, GridNaming::kHci);
+  EXPECT_EQ(grid.ignored, std::vector<std::string>{"valid_mask.png"});
+  EXPECT_EQ(grid.view(2, 0).file, "input_Cam000.png");  // the top left
+  EXPECT_EQ(grid.view(0, 2).file, "input_Cam008.png");
+  const RectifiedGeometry geo = ResolveRectifiedGeometry(grid, {});
+  EXPECT_TRUE(geo.assumed.empty());
+  EXPECT_DOUBLE_EQ(geo.focal_px, 100.0 * 64 / 35);
+  EXPECT_DOUBLE_EQ(geo.zero_disparity_mm, 4250.0);
+  EXPECT_DOUBLE_EQ(geo.pitch_mm, 90.0);
+  // The camera to the right of the centre: 90 mm along x, its principal point moved by f b / Z0.
+  EXPECT_NEAR(grid.view(1, 2).x_mm - grid.view(1, 1).x_mm, 90.0, 1e-12);
+  EXPECT_NEAR(geo.PrincipalPoint(90, 0).x() - geo.PrincipalPoint(0, 0).x(),
+              geo.focal_px * 90 / 4250, 1e-9);
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace lfcam
