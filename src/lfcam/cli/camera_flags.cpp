@@ -116,7 +116,10 @@ VirtualCameraParams CameraFlags::Resolve(const ArrayPlane& array) const {
   if (const auto& saved = view()) {
     // The saved view, with the flags given on the command line over it.
     VirtualCameraParams p = saved->camera;
-    if (given("--size")) std::tie(p.width, p.height) = ParseSize("--size", size, kMaxImageSide);
+    if (given("--size")) {
+      const auto [width, height] = ParseSize("--size", size, kMaxImageSide);
+      p = WithFrameSize(p, width, height);
+    }
     if (given("--eye")) p.eye = ParseVec3("--eye", eye);
     if (given("--look-at")) p.look_at = ParseVec3("--look-at", look_at);
     if (given("--up")) p.up = ParseVec3("--up", up);

@@ -61,6 +61,19 @@ VirtualCamera::VirtualCamera(const VirtualCameraParams& p) : params_(p) {
                                : UnitDiskSamples(LensSampleCount(p.lens_rate, p.aperture_mm));
 }
 
+VirtualCameraParams WithFrameSize(const VirtualCameraParams& p, int width, int height) {
+  VirtualCameraParams q = p;
+  q.width = width;
+  q.height = height;
+  // A pixel spans the film's width over the frame's width, across and up alike.
+  q.principal_offset_px = p.principal_offset_px * (double(width) / std::max(p.width, 1));
+  return q;
+}
+
+double MinFocusDistance(const VirtualCameraParams& p) {
+  return p.breathing ? 1.05 * p.focal_length_mm : 1e-3;
+}
+
 VirtualCamera VirtualCamera::WithLensSampleRange(int begin, int end) const {
   VirtualCamera part = *this;
   const int n = int(lens_samples_.size());

@@ -32,6 +32,13 @@ struct VirtualCameraParams {
 
 inline constexpr double kFilmSizeMm = 56.0;
 
+// The same camera with a frame of width x height pixels: the field of view across is the film's,
+// and a principal offset (in pixels) scales with the frame's width (a pixel is film width / W).
+VirtualCameraParams WithFrameSize(const VirtualCameraParams& p, int width, int height);
+// The nearest focus distance the camera allows: beyond the focal length when the film breathes,
+// anything in front of the lens otherwise.
+double MinFocusDistance(const VirtualCameraParams& p);
+
 double ThinLensImageDistance(double focal_length_mm, double focus_distance_mm);  // d_i
 double EffectiveFocalLength(double focal_length_mm, double focus_distance_mm);   // f_e
 double BreathingFieldOfView(double focal_length_mm, double focus_distance_mm);   // radians

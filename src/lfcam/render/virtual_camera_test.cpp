@@ -103,6 +103,35 @@ TEST(VirtualCamera, BadParametersAreRejected) {
   p = Params(500, 4000, true);
   p.look_at = p.eye;
   EXPECT_THROW(VirtualCamera{p}, Error);
+  // Without breathing the film stays at f: any focus in front of the lens will do.
+  p = Params(500, 400, false);
+  EXPECT_NO_THROW(VirtualCamera{p});
+  p.principal_offset_px = Vec2(1e9, 0);
+  EXPECT_THROW(VirtualCamera{p}, Error);
+}
+
+// A shifted film (an off-axis camera, as a rectified rig's) moves every pixel's ray by the
+// offset, and a resized frame keeps each ray where it was.
+TEST(VirtualCamera, PrincipalOffsetShiftsTheFilmAndScalesWithTheFrame) {
+  auto p = Params(56, 4000, false);
+  p.width = 200;
+  p.height = 100;
+  const VirtualCamera centred(p);
+  p.principal_offset_px = Vec2(12.5, -7.0);
+  const VirtualCamera shifted(p);
+  EXPECT_LT(
+      (shifted.direction_through(40 + 12.5, 30 - 7.0) - centred.direction_through(40, 30)).norm(),
+      1e-12);
+  // The optical axis meets the film at its centre plus the offset.
+  EXPECT_LT((shifted.direction_through(100 + 12.5, 50 - 7.0) + shifted.n_c()).norm(), 1e-12);
+  const VirtualCamera doubled(WithFrameSize(p, 400, 200));
+  EXPECT_LT(
+      (doubled.direction_through(80 + 25, 60 - 14) - shifted.direction_through(40 + 12.5, 30 - 7.0))
+          .norm(),
+      1e-12);
+  EXPECT_EQ(MinFocusDistance(p), 1e-3);
+  p.breathing = true;
+  EXPECT_DOUBLE_EQ(MinFocusDistance(p), 1.05 * 56);
 }
 
 }  // namespace

@@ -28,7 +28,11 @@ bool SliderLog(const char* label, double& value, double lo, double hi, const cha
 
 }  // namespace
 
-bool DrawCameraWindow(ViewSettings& view, const ArrayPlane& array, bool* open) {
+bool DrawCameraWindow(ViewSettings& view, const Slab& slab, bool* open) {
+  const ArrayPlane& array = slab.uv;
+  // The sliders span the light field's own scale (an imported one may be in assumed units).
+  const double separation = std::max(std::abs(slab.separation_mm()), 1e-3);
+  const double array_size = std::max(array.width_mm(), array.height_mm());
   bool changed = false;
   VirtualCameraParams& p = view.camera;
   ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
@@ -47,14 +51,15 @@ bool DrawCameraWindow(ViewSettings& view, const ArrayPlane& array, bool* open) {
       changed = true;
     }
     changed |= SliderLog("focal length f (mm)", p.focal_length_mm, 20, 2000, "%.1f");
-    changed |= SliderLog("focus distance d_o (mm)", p.focus_distance_mm, 500, 50000, "%.0f");
-    changed |= SliderLog("aperture d_l (mm)", p.aperture_mm, 0, 1000, "%.1f");
+    changed |= SliderLog("focus distance d_o (mm)", p.focus_distance_mm, separation / 8,
+                         separation * 15, separation < 100 ? "%.2f" : "%.0f");
+    changed |= SliderLog("aperture d_l (mm)", p.aperture_mm, 0, 4 * array_size, "%.2f");
     changed |= ImGui::Checkbox("focus breathing", &p.breathing);
     if (ImGui::Button("reset to the array's centre view (R)")) {
       p = ResetToArrayCentre(p, array);
       changed = true;
     }
-    p.focus_distance_mm = std::max(p.focus_distance_mm, 1.05 * p.focal_length_mm);
+    p.focus_distance_mm = std::max(p.focus_distance_mm, MinFocusDistance(p));
     p.aperture_mm = std::max(p.aperture_mm, 0.0);
     ImGui::PopItemWidth();
   }

@@ -32,7 +32,7 @@ struct FrameStats {
 
 // Each returns true when it changed the view. `render_scale` is the render resolution over the
 // window's framebuffer.
-bool DrawCameraWindow(ViewSettings& view, const ArrayPlane& array, bool* open);
+bool DrawCameraWindow(ViewSettings& view, const Slab& slab, bool* open);
 // `has_depth`: the depth lookup is offered (the viewer has the views' depth maps).
 bool DrawRenderingWindow(ViewSettings& view, double& render_scale, const FrameStats& stats,
                          bool has_depth, bool* open);

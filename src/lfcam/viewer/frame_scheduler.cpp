@@ -10,16 +10,17 @@ bool SameView(const ViewSettings& a, const ViewSettings& b) {
   return p.width == q.width && p.height == q.height && p.eye == q.eye && p.look_at == q.look_at &&
          p.up == q.up && p.focal_length_mm == q.focal_length_mm &&
          p.focus_distance_mm == q.focus_distance_mm && p.aperture_mm == q.aperture_mm &&
-         p.lens_rate == q.lens_rate && p.breathing == q.breathing && a.integrator == b.integrator &&
+         p.lens_rate == q.lens_rate && p.breathing == q.breathing &&
+         p.principal_offset_px == q.principal_offset_px && a.integrator == b.integrator &&
          a.interpolation == b.interpolation;
 }
 
 VirtualCameraParams ScaledCamera(const VirtualCameraParams& camera, double scale) {
   VirtualCameraParams p = camera;
   if (scale >= 1) return p;
-  p.width = std::max(16, int(std::lround(camera.width * scale)));
-  p.height = std::max(16, int(std::lround(double(p.width) * camera.height / camera.width)));
-  return p;
+  const int width = std::max(16, int(std::lround(camera.width * scale)));
+  return WithFrameSize(
+      p, width, std::max(16, int(std::lround(double(width) * camera.height / camera.width))));
 }
 
 FrameScheduler::FrameScheduler(const LightField& lf, const FrameRenderer& renderer,

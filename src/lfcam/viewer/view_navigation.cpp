@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "lfcam/render/rig_camera.h"
+
 namespace lfcam {
 namespace {
 
@@ -62,15 +64,32 @@ VirtualCameraParams ResetToArrayCentre(const VirtualCameraParams& p, const Array
   return q;
 }
 
+VirtualCameraParams StartingView(const LightField& lf, int width, int height) {
+  if (lf.has_view_cameras()) {
+    const auto& d = lf.dims();
+    const VirtualCameraParams rig = RigCameraParams(lf, 0.5 * (d.rows - 1), 0.5 * (d.cols - 1));
+    return WithFrameSize(rig, width, height);
+  }
+  VirtualCameraParams p;
+  p.width = width;
+  p.height = height;
+  p = ResetToArrayCentre(p, lf.slab().uv);
+  p.focal_length_mm = 500;
+  p.focus_distance_mm = 4000;
+  return p;
+}
+
 VirtualCameraParams ScaleFocusDistance(const VirtualCameraParams& p, double factor) {
   VirtualCameraParams q = p;
-  q.focus_distance_mm = std::max(p.focus_distance_mm * factor, 1.05 * p.focal_length_mm);
+  q.focus_distance_mm = std::max(p.focus_distance_mm * factor, MinFocusDistance(p));
   return q;
 }
 
 VirtualCameraParams ScaleFocalLength(const VirtualCameraParams& p, double factor) {
   VirtualCameraParams q = p;
-  q.focal_length_mm = std::clamp(p.focal_length_mm * factor, 10.0, p.focus_distance_mm / 1.05);
+  q.focal_length_mm = p.breathing
+                          ? std::clamp(p.focal_length_mm * factor, 10.0, p.focus_distance_mm / 1.05)
+                          : std::max(p.focal_length_mm * factor, 10.0);
   return q;
 }
 

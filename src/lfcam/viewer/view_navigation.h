@@ -6,6 +6,7 @@
 // camera turns around what it is focused on. Panning moves the eye and the point looked at
 // together, in the camera's own right and up directions; dollying moves them along the view
 // direction, and moving (WASD/QE) does the same in the camera's frame.
+#include "lfcam/core/lightfield.h"
 #include "lfcam/core/slab.h"
 #include "lfcam/render/virtual_camera.h"
 
@@ -27,7 +28,12 @@ double MmPerPixelAtFocus(const VirtualCameraParams& p);
 // the frame size and the lens settings.
 VirtualCameraParams ResetToArrayCentre(const VirtualCameraParams& p, const ArrayPlane& array);
 
-// Multiplies the focus distance by `factor`, keeping it beyond the focal length.
+// The view the viewer opens on, framed width x height: the rig's central camera (its centre,
+// field of view and principal point: render/rig_camera.h) when the light field records its
+// cameras, else the array's centre along -n_ca with the paper's f 500 mm and d_o 4000 mm.
+VirtualCameraParams StartingView(const LightField& lf, int width, int height);
+
+// Multiplies the focus distance by `factor`, keeping it beyond the focal length (with breathing).
 VirtualCameraParams ScaleFocusDistance(const VirtualCameraParams& p, double factor);
 
 // Multiplies the focal length by `factor` (zoom), keeping it below the focus distance.

@@ -60,9 +60,7 @@ class Viewer {
     if (!options.view_file.empty()) {
       view_ = ReadViewFile(options.view_file);
     } else {
-      view_.camera = ResetToArrayCentre(view_.camera, lf_.slab().uv);
-      view_.camera.focal_length_mm = 500;
-      view_.camera.focus_distance_mm = 4000;
+      view_.camera = StartingView(lf_, view_.camera.width, view_.camera.height);
       view_.integrator = Integrator::kCameras;
     }
     view_.light_field = options.light_field;
@@ -111,8 +109,7 @@ class Viewer {
     const int w = std::max(16, int(std::lround(fb_width_ * render_scale_)));
     const int h = std::max(16, int(std::lround(fb_height_ * render_scale_)));
     if (w != view_.camera.width || h != view_.camera.height) {
-      view_.camera.width = w;
-      view_.camera.height = h;
+      view_.camera = WithFrameSize(view_.camera, w, h);
       Changed();
     }
   }
@@ -143,7 +140,7 @@ class Viewer {
       stats_.status = fmt::format("focus: no camera sees ({:.0f}, {:.0f})", x, y);
     } else {
       VirtualCameraParams p = view_.camera;
-      p.focus_distance_mm = std::max(probe.focus_distance_mm, 1.05 * p.focal_length_mm);
+      p.focus_distance_mm = std::max(probe.focus_distance_mm, MinFocusDistance(p));
       SetView(p);
       stats_.status =
           fmt::format("focus: {:.0f} mm at ({:.0f}, {:.0f}), confidence {:.2f}, {} cameras",
@@ -407,7 +404,7 @@ class Viewer {
                                  : (view_.integrator != Integrator::kLensSamples ? 1.0 : 4.0) *
                                        double(shown.rays_hit) / pixels;
     bool changed = false;
-    if (panels_.camera) changed |= DrawCameraWindow(view_, lf_.slab().uv, &panels_.camera);
+    if (panels_.camera) changed |= DrawCameraWindow(view_, lf_.slab(), &panels_.camera);
     if (panels_.rendering)
       changed |=
           DrawRenderingWindow(view_, render_scale_, stats_, depth_.count() > 0, &panels_.rendering);

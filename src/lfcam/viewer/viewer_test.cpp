@@ -2,6 +2,7 @@
 // click to focus, wait, save a screenshot, quit), checked against `lfcam render` and the scene's
 // truth; and bad input refused before any window opens. Without xvfb-run the test says so and
 // skips, unless LFCAM_REQUIRE_GL=1 (scripts/test.sh, which installs it), where that fails.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -10,6 +11,8 @@
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 #include <string>
 
 #include "lfcam/cli/cli_test_support.h"
@@ -217,6 +220,38 @@ TEST_F(ViewerWithDepth, OffersTheDepthLookupAndItsScreenshotRendersAgainOffline)
   run = View(Path("small.lf") + " --script " + Path("depth.script") + " --window 160x120");
   EXPECT_NE(run.status, 0) << run.output;
   EXPECT_NE(run.output.find("--depth"), std::string::npos) << run.output;
+}
+
+// An imported rectified rig in assumed units: the viewer opens on the rig's central camera (its
+// own field of view and principal point, no breathing), so its first frame is that camera's
+// photograph.
+TEST_F(Viewer, OpensAnImportedRigAsItsCentralCamera) {
+  fs::create_directories(Path("rig"));
+  cv::Mat texture(96 * 3, 128 * 3, CV_8UC3);
+  cv::randu(texture, 0, 255);
+  cv::GaussianBlur(texture, texture, {0, 0}, 1.5);
+  for (int r = 1; r <= 3; ++r)
+    for (int c = 1; c <= 3; ++c)  // a plane at the zero-disparity distance: the same pixels
+      cv::imwrite(Path(fmt::format("rig/v_{:02d}_{:02d}.png", r, c)),
+                  texture(cv::Rect(128, 96, 128, 96)) + cv::Scalar(r, c, 0));
+  CommandResult run = Lfcam("import " + Path("rig") + " --out " + Path("rig.lf") + " --quiet");
+  ASSERT_EQ(run.status, 0) << run.output;
+  Write("rig.script",
+        "window 128 96\n"
+        "wait\n"
+        "print\n"
+        "screenshot " +
+            Path("rig_shot.png") + "\nquit\n");
+  run = View(Path("rig.lf") + " --script " + Path("rig.script") + " --window 128x96");
+  ASSERT_EQ(run.status, 0) << run.output;
+  const auto line = run.output.find("{\"camera\"");
+  ASSERT_NE(line, std::string::npos) << run.output;
+  const auto view =
+      nlohmann::json::parse(run.output.substr(line, run.output.find('\n', line) - line));
+  EXPECT_EQ(view["camera"]["breathing"], false) << view.dump();
+  const auto photo = cv::imread(Path("rig/v_02_02.png")), shot = cv::imread(Path("rig_shot.png"));
+  ASSERT_EQ(shot.size(), photo.size());
+  EXPECT_LE(cv::norm(shot, photo, cv::NORM_INF), 1) << view.dump();
 }
 
 TEST_F(Viewer, RefusesMissingOrCorruptFilesBeforeAnyWindow) {
