@@ -204,22 +204,25 @@ void AddImportCommand(CLI::App& app) {
         BuildLightField(f->dir, session.manifest, session.calibration, b, &report);
     progress.finish();
     WriteLightField(lf, f->out, w);
-    const nlohmann::json summary = {{"out", f->out},
-                                    {"naming", ToString(grid.naming)},
-                                    {"rig", ToString(grid.rig)},
-                                    {"rows", grid.rows},
-                                    {"cols", grid.cols},
-                                    {"view_width", grid.width},
-                                    {"view_height", grid.height},
-                                    {"pitch_mm", grid.pitch_mm},
-                                    {"focal_px", session.focal_px},
-                                    {"st_distance_mm", session.st_distance_mm},
-                                    {"st_distance_estimated", session.st_distance_estimated},
-                                    {"n_s", lf.dims().n_s},
-                                    {"n_t", lf.dims().n_t},
-                                    {"filled", report.filled},
-                                    {"views", ViewFiles(grid)},
-                                    {"seconds", report.seconds}};
+    const nlohmann::json summary = {
+        {"out", f->out},
+        {"naming", ToString(grid.naming)},
+        {"rig", ToString(grid.rig)},
+        {"rows", grid.rows},
+        {"cols", grid.cols},
+        {"view_width", grid.width},
+        {"view_height", grid.height},
+        {"pitch_mm", grid.pitch_mm},
+        {"focal_px", session.focal_px},
+        {"st_distance_mm", session.st_distance_mm},
+        {"st_distance_estimated", session.st_distance_estimated},
+        {"st_distance_estimate_mm",
+         session.st_distance_unsnapped_mm.value_or(session.st_distance_mm)},
+        {"n_s", lf.dims().n_s},
+        {"n_t", lf.dims().n_t},
+        {"filled", report.filled},
+        {"views", ViewFiles(grid)},
+        {"seconds", report.seconds}};
     if (f->json) {
       fmt::print("{}\n", JsonToText(summary, 2));
       return;
@@ -228,10 +231,17 @@ void AddImportCommand(CLI::App& app) {
         "imported {}x{} views of {}x{} ({} naming), pitch {:.3f} mm, focal length {:.1f} px\n",
         grid.rows, grid.cols, grid.width, grid.height, ToString(grid.naming), grid.pitch_mm,
         session.focal_px);
-    fmt::print("  st-plane {:.0f} mm from the cameras{}; {}x{} st samples in {:.2f} s\n",
-               session.st_distance_mm,
-               session.st_distance_estimated ? " (estimated: where most of the scene is)" : "",
-               lf.dims().n_s, lf.dims().n_t, report.seconds);
+    fmt::print(
+        "  st-plane {:.0f} mm from the cameras{}; {}x{} st samples in {:.2f} s\n",
+        session.st_distance_mm,
+        !session.st_distance_estimated ? std::string()
+        : session.st_distance_unsnapped_mm
+            ? fmt::format(" (estimated: most of the scene is at {:.0f} mm; moved so that "
+                          "neighbouring views lie {} samples apart there and every "
+                          "view's pixels stay samples)",
+                          *session.st_distance_unsnapped_mm, session.samples_between_neighbours)
+            : std::string(" (estimated: where most of the scene is)"),
+        lf.dims().n_s, lf.dims().n_t, report.seconds);
     for (const auto& filled : report.filled)
       fmt::print(stderr, "lfcam: warning: filled {}\n", filled);
     fmt::print("wrote {}\n", f->out);

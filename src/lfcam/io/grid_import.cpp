@@ -523,6 +523,38 @@ ImportedGrid ScanGridFolder(const fs::path& dir, bool allow_missing,
   return g;
 }
 
+double HalfSample(int count, int samples_between_neighbours) {
+  return count % 2 == 0 && samples_between_neighbours % 2 == 1 ? 0.5 : 0.0;
+}
+
+std::optional<std::pair<double, int>> WholeSampleStDistance(const ImportedGrid& g, double focal_px,
+                                                            double distance_mm) {
+  if (!(distance_mm > 0) || !(g.pitch_mm > 0) || !(focal_px > 0)) return std::nullopt;
+  const double step = g.pitch_mm * focal_px / distance_mm;  // samples between neighbours
+  const int n = std::max(1, int(std::lround(step)));
+  const double snapped = g.pitch_mm * focal_px / n;
+  double x_sum = 0, y_sum = 0;
+  int present = 0;
+  for (const GridView& v : g.views)
+    if (!v.file.empty()) {
+      x_sum += v.x_mm - v.col * g.pitch_mm;
+      y_sum += v.y_mm - v.row * g.pitch_mm;
+      ++present;
+    }
+  if (present == 0) return std::nullopt;
+  const double cx = x_sum / present + 0.5 * (g.cols - 1) * g.pitch_mm;
+  const double cy = y_sum / present + 0.5 * (g.rows - 1) * g.pitch_mm;
+  for (const GridView& v : g.views) {
+    if (v.file.empty()) continue;
+    // With an even count and n odd the grid's centre lies half a sample off: the window moves.
+    const double ox = (v.x_mm - cx) * focal_px / snapped + HalfSample(g.cols, n);
+    const double oy = (v.y_mm - cy) * focal_px / snapped + HalfSample(g.rows, n);
+    if (std::abs(ox - std::round(ox)) > 1e-3 || std::abs(oy - std::round(oy)) > 1e-3)
+      return std::nullopt;  // not a regular grid: no distance puts every view on whole samples
+  }
+  return std::pair{snapped, n};
+}
+
 double EstimateDominantDepthMm(const fs::path& dir, const ImportedGrid& g, double focal_px) {
   // The two outermost views of the middle row, else of the middle column.
   const bool along_row = g.cols >= g.rows;
@@ -582,6 +614,11 @@ ImportedSession MakeImportedSession(const fs::path& dir, const ImportedGrid& g,
   } else {
     s.st_distance_mm = EstimateDominantDepthMm(dir, g, s.focal_px);
     s.st_distance_estimated = true;
+    if (const auto snapped = WholeSampleStDistance(g, s.focal_px, s.st_distance_mm)) {
+      s.st_distance_unsnapped_mm = s.st_distance_mm;
+      s.st_distance_mm = snapped->first;
+      s.samples_between_neighbours = snapped->second;
+    }
   }
   if (!(s.st_distance_mm > 0)) throw Error("the st distance must be positive");
   const double d = s.st_distance_mm;
@@ -614,8 +651,13 @@ ImportedSession MakeImportedSession(const fs::path& dir, const ImportedGrid& g,
   const Vec3 centre = slab.uv.center();
   slab.st.width_mm = d * g.width / s.focal_px;
   slab.st.height_mm = d * g.height / s.focal_px;
-  slab.st.origin =
-      Vec3(centre.x() - 0.5 * slab.st.width_mm, centre.y() - 0.5 * slab.st.height_mm, 0);
+  // Moved by half a sample where the grid's centre lies half a sample off the views' pixels.
+  const double sample_mm = d / s.focal_px;
+  slab.st.origin = Vec3(centre.x() - 0.5 * slab.st.width_mm +
+                            sample_mm * HalfSample(g.cols, s.samples_between_neighbours),
+                        centre.y() - 0.5 * slab.st.height_mm +
+                            sample_mm * HalfSample(g.rows, s.samples_between_neighbours),
+                        0);
   slab.st.x_axis = Vec3::UnitX();
   slab.st.y_axis = Vec3::UnitY();
   // The sampled domain: what every camera sees there, not only the central one (each camera's
@@ -664,6 +706,7 @@ ImportedSession MakeImportedSession(const fs::path& dir, const ImportedGrid& g,
                    {"focal_px", s.focal_px},
                    {"st_distance_mm", d},
                    {"st_distance_estimated", s.st_distance_estimated},
+                   {"st_distance_estimate_mm", s.st_distance_unsnapped_mm.value_or(d)},
                    {"missing", g.missing}}}};
 
   CaptureManifest& m = s.manifest;

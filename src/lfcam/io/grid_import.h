@@ -105,8 +105,22 @@ struct ImportedSession {
   CalibrationFile calibration;  // ideal cameras at the named positions, looking along -z
   double st_distance_mm = 0;
   bool st_distance_estimated = false;
+  // Estimated, then moved to where neighbouring views lie a whole number of samples apart on
+  // the st-plane (WholeSampleStDistance): the estimate, and that number.
+  std::optional<double> st_distance_unsnapped_mm;
+  int samples_between_neighbours = 0;
   double focal_px = 0;
 };
+
+// The st-plane distance nearest `distance_mm` at which neighbouring cameras of a regular grid of
+// parallel cameras see the plane a whole number n >= 1 of samples (pixels) apart: every view's
+// pixels then fall on st samples (the window centred on the grid moved by half a sample where a
+// count is even and n odd), and the build's resampling copies them. Returns the distance
+// and n; nullopt when the cameras are not on a regular grid (to within 0.001 px).
+// Half a sample where `count` cameras (even) lie n (odd) samples apart, else 0.
+double HalfSample(int count, int samples_between_neighbours);
+std::optional<std::pair<double, int>> WholeSampleStDistance(const ImportedGrid& grid,
+                                                            double focal_px, double distance_mm);
 
 // The manifest and calibration `build` needs. The world frame: x right, y up, z toward the
 // cameras, which sit on the plane z = st distance and look along -z; the st-plane is z = 0 and
