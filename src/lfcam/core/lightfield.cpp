@@ -3,6 +3,9 @@
 #include <fmt/format.h>
 
 #include <Eigen/Core>
+#include <algorithm>
+#include <climits>
+#include <cstdlib>
 #include <cstring>
 
 #include "lfcam/core/color.h"
@@ -115,6 +118,40 @@ void LightField::set_measured_poses(std::vector<ViewPose> poses) {
     if (pose.intrinsics.has_value() != poses.front().intrinsics.has_value())
       throw Error("view intrinsics must be given for every view or none");
   measured_poses_ = std::move(poses);
+}
+
+void LightField::set_st_offsets(std::vector<StOffset> offsets) {
+  if (!offsets.empty() && offsets.size() != dims_.view_count())
+    throw Error(fmt::format("{} view windows for {} views", offsets.size(), dims_.view_count()));
+  for (const StOffset& o : offsets)
+    if (std::abs(o.k) > kMaxStOffset || std::abs(o.l) > kMaxStOffset)
+      throw Error(fmt::format("a view window moved by ({}, {}) samples (at most {} each way)", o.k,
+                              o.l, kMaxStOffset));
+  const bool shared = std::all_of(offsets.begin(), offsets.end(),
+                                  [](const StOffset& o) { return o == StOffset{}; });
+  st_offsets_ = shared ? std::vector<StOffset>{} : std::move(offsets);
+}
+
+LightField::SampleRange LightField::st_union_samples() const {
+  SampleRange r{0, 0, dims_.n_s - 1, dims_.n_t - 1};
+  if (st_offsets_.empty()) return r;
+  r = {INT_MAX, INT_MAX, INT_MIN, INT_MIN};
+  for (const StOffset& o : st_offsets_) {
+    r.k0 = std::min(r.k0, o.k);
+    r.l0 = std::min(r.l0, o.l);
+    r.k1 = std::max(r.k1, o.k + dims_.n_s - 1);
+    r.l1 = std::max(r.l1, o.l + dims_.n_t - 1);
+  }
+  return r;
+}
+
+StDomain LightField::st_union() const {
+  if (st_offsets_.empty()) return slab_.st_domain;
+  const SampleRange r = st_union_samples();
+  const StSampling st = st_sampling();
+  const double ds = st.domain.s_extent() / dims_.n_s, dt = st.domain.t_extent() / dims_.n_t;
+  return {st.domain.s0 + r.k0 * ds, st.domain.t0 + r.l0 * dt, st.domain.s0 + (r.k1 + 1) * ds,
+          st.domain.t0 + (r.l1 + 1) * dt};
 }
 
 Vec3 LightField::camera_center(int row, int col) const {

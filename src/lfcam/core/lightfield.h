@@ -104,9 +104,30 @@ class LightField {
   Vec3 camera_center(int row, int col) const;
 
   // How the views sample the st-plane (core/st_sampling.h): the one mapping between the plane and
-  // the samples that every reader uses.
+  // the samples that every reader uses. st_sampling() is the reference grid (the slab's st
+  // domain); st_sampling(row, col) is view (row, col)'s own window, the reference grid moved by
+  // st_offset(row, col) whole samples.
   StSampling st_sampling() const { return {slab_.st, slab_.st_domain, dims_.n_s, dims_.n_t}; }
-  // The st-plane position of sample (k, l), in view-window units.
+  StSampling st_sampling(int row, int col) const {
+    return st_sampling().Moved(st_offset(row, col));
+  }
+  // Each view's window (format version 4), row-major; empty when every view has the reference
+  // grid's. set_st_offsets() takes view_count() entries or none (all zero is stored as none).
+  const std::vector<StOffset>& st_offsets() const { return st_offsets_; }
+  void set_st_offsets(std::vector<StOffset> offsets);
+  bool has_view_windows() const { return !st_offsets_.empty(); }
+  StOffset st_offset(int row, int col) const {
+    return st_offsets_.empty() ? StOffset{} : st_offsets_[std::size_t(row) * dims_.cols + col];
+  }
+  // What the views cover together: the union of their windows, in reference samples (the first
+  // and last sample along each axis) and in window units (the samples' outer edges).
+  struct SampleRange {
+    int k0 = 0, l0 = 0, k1 = 0, l1 = 0;
+  };
+  SampleRange st_union_samples() const;
+  StDomain st_union() const;
+  // The st-plane position of reference sample (k, l), in view-window units (a view's own samples:
+  // st_sampling(row, col).s_of, t_of).
   double s_of(double k) const { return st_sampling().s_of(k); }
   double t_of(double l) const { return st_sampling().t_of(l); }
   // Linear-light RGB of sample (row, col, k, l), whatever the sample type.
@@ -123,6 +144,10 @@ class LightField {
   nlohmann::json metadata_ = nlohmann::json::object();
   SampleBuffer samples_;
   std::vector<ViewPose> measured_poses_;
+  std::vector<StOffset> st_offsets_;
 };
+
+// The largest st offset a view may have, in samples (keeps every sample coordinate in 32 bits).
+inline constexpr int kMaxStOffset = 1 << 20;
 
 }  // namespace lfcam

@@ -13,6 +13,7 @@
 #include <bit>
 #include <cerrno>
 #include <cstring>
+#include <cstdlib>
 #include <vector>
 
 #include "lfcam/core/atomic_file.h"
@@ -218,6 +219,24 @@ ParsedFile ParseHeader(const InputFile& fd) {
         }
         h.measured_poses.push_back(pose);
       }
+      // Version 4: the view's own st window, on every view or on none.
+      const bool has_window = v.contains("st_offset");
+      if (i > 0 && has_window != !h.st_offsets.empty())
+        throw Error(fmt::format("{}: st windows must be given for every view or none", where));
+      if (has_window) {
+        if (h.version < 4)
+          throw Error(fmt::format("{}: a version {} file has no view st windows", where, h.version));
+        const auto& o = JsonField(v, "st_offset", where);
+        const std::string field = where + ": st_offset";
+        if (!o.is_array() || o.size() != 2 || !o[0].is_number_integer() ||
+            !o[1].is_number_integer())
+          throw Error(fmt::format("{} must be [k, l], two whole numbers of samples", field));
+        const auto k = o[0].get<std::int64_t>(), l = o[1].get<std::int64_t>();
+        if (std::abs(k) > kMaxStOffset || std::abs(l) > kMaxStOffset)
+          throw Error(fmt::format("{} ({}, {}) is out of range (at most {} samples each way)",
+                                  field, k, l, kMaxStOffset));
+        h.st_offsets.push_back({int(k), int(l)});
+      }
     }
     return parsed;
   });
@@ -282,7 +301,7 @@ void WriteLightField(const LightField& lf, const std::filesystem::path& path,
     }
   }
 
-  const std::uint32_t version = lf.has_view_cameras() ? 3 : 2;
+  const std::uint32_t version = lf.has_view_windows() ? 4 : lf.has_view_cameras() ? 3 : 2;
   nlohmann::json views = nlohmann::json::array();
   for (std::size_t i = 0; i < n_views; ++i) {
     nlohmann::json view = {{"row", i / dims.cols},
@@ -295,6 +314,10 @@ void WriteLightField(const LightField& lf, const std::filesystem::path& path,
       view["center"] = {pose.center.x(), pose.center.y(), pose.center.z()};
       view["orientation"] = RotationToJson(pose.orientation);
       if (pose.intrinsics) view["intrinsics"] = IntrinsicsToJson(*pose.intrinsics);
+    }
+    if (lf.has_view_windows()) {
+      const StOffset& o = lf.st_offsets()[i];
+      view["st_offset"] = {o.k, o.l};
     }
     views.push_back(view);
   }
@@ -405,6 +428,7 @@ LightField ReadLightField(const std::filesystem::path& path, const LightFieldRea
   LightField lf(h.dims, h.sample_type, h.slab, std::move(samples));
   lf.metadata() = h.metadata;
   lf.set_measured_poses(h.measured_poses);
+  lf.set_st_offsets(h.st_offsets);
   return lf;
 }
 

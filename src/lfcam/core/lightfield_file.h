@@ -11,9 +11,10 @@
 namespace lfcam {
 
 // Version 2 adds each view's measured camera pose (optional), version 3 the intrinsics of the
-// camera that recorded each view (optional); older files are still read, and a file is written
-// with the oldest version that holds what it carries (an older lfcam reads it then).
-inline constexpr std::uint32_t kLightFieldFormatVersion = 3;
+// camera that recorded each view (optional), version 4 each view's own st window (optional: its
+// offset from the reference grid in whole samples); older files are still read, and a file is
+// written with the oldest version that holds what it carries (an older lfcam reads it then).
+inline constexpr std::uint32_t kLightFieldFormatVersion = 4;
 inline constexpr std::uint32_t kOldestLightFieldFormatVersion = 1;
 inline constexpr std::size_t kLightFieldAlignment = 4096;
 
@@ -47,6 +48,7 @@ struct LightFieldHeader {
   Slab slab;
   nlohmann::json metadata;
   std::vector<ViewPose> measured_poses;  // empty, or one per view
+  std::vector<StOffset> st_offsets;      // empty (the views share the reference grid), or one per view
   std::uint64_t file_bytes = 0;
   std::uint64_t stored_sample_bytes = 0;
 };

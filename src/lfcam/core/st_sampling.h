@@ -6,12 +6,22 @@
 //
 // A view's samples cover `domain` of the view window (window units, [0, 1]^2 = the window):
 // sample (k, l) sits at window coordinates (s0 + (k + 0.5) / n_s * extent_s, t0 + ...), its
-// centre at the integer point (k, l) of the continuous sample coordinates used below. Today every
-// view shares the light field's st domain.
+// centre at the integer point (k, l) of the continuous sample coordinates used below.
+//
+// Views share the light field's sampling (the slab's st domain, n_s x n_t: the reference grid)
+// or each has its own window (format version 4): the reference grid moved by a whole number of
+// samples, StOffset, so that a view's samples are still samples of the reference grid and sample
+// (k, l) of view v is reference sample (k + offset.k, l + offset.l).
 #include "lfcam/core/geometry.h"
 #include "lfcam/core/slab.h"
 
 namespace lfcam {
+
+// A view's window: how many samples its grid is moved from the reference grid, along s and t.
+struct StOffset {
+  int k = 0, l = 0;
+  bool operator==(const StOffset&) const = default;
+};
 
 struct StSampling {
   ViewWindow window;  // the st-plane's frame in the world and its unit square
@@ -40,6 +50,11 @@ struct StSampling {
   // Whether window coordinates (s, t) lie in the sampled domain.
   bool Contains(double s, double t) const {
     return s >= domain.s0 && s <= domain.s1 && t >= domain.t0 && t <= domain.t1;
+  }
+  // The same sampling moved by whole samples (a view's own window).
+  StSampling Moved(StOffset o) const {
+    const double ds = o.k * domain.s_extent() / n_s, dt = o.l * domain.t_extent() / n_t;
+    return {window, {domain.s0 + ds, domain.t0 + dt, domain.s1 + ds, domain.t1 + dt}, n_s, n_t};
   }
 };
 

@@ -57,6 +57,8 @@ struct SweepSetup {
   std::vector<cv::Mat> images;      // the other views (scaled), CV_8UC4
   std::vector<Vec3> centers;        // their cameras' centres
   std::vector<Side> sides;          // where each lies
+  StSampling ref_sampling;          // the reference view's window on the st-plane
+  std::vector<StSampling> samplings;  // the other views' windows
   double scale_x = 1, scale_y = 1;  // full-resolution samples per scaled sample
   double st_depth = 0;              // D of the st-plane at the view's centre
   double farthest_mm = 0;           // the largest baseline used
@@ -67,19 +69,17 @@ struct SweepSetup {
 double ToFull(double x, double scale) { return (x + 0.5) * scale - 0.5; }
 double ToScaled(double x, double scale) { return (x + 0.5) / scale - 0.5; }
 
-Vec3 StPoint(const LightField& lf, double k, double l) { return lf.st_sampling().Point(k, l); }
-
 // The homography taking the reference's (scaled) sample coordinates to view v's, through the
 // plane of depth D.
 cv::Matx33d PlaneHomography(const SweepSetup& setup, std::size_t v, double depth) {
   const Slab& slab = setup.lf.slab();
-  const StSampling sampling = setup.lf.st_sampling();
+  const StSampling& sampling = setup.samplings[v];  // view v's own window
   const double w = setup.ref.cols - 1, h = setup.ref.rows - 1;
   const cv::Point2f from[4] = {{0, 0}, {float(w), 0}, {0, float(h)}, {float(w), float(h)}};
   cv::Point2f to[4];
   for (int i = 0; i < 4; ++i) {
-    const Vec3 x =
-        StPoint(setup.lf, ToFull(from[i].x, setup.scale_x), ToFull(from[i].y, setup.scale_y));
+    const Vec3 x = setup.ref_sampling.Point(ToFull(from[i].x, setup.scale_x),
+                                            ToFull(from[i].y, setup.scale_y));
     const Vec3& c = setup.ref_center;
     // P on the reference camera's line through x, at depth D.
     const double lambda = (depth - DepthOf(slab, c)) / (DepthOf(slab, x) - DepthOf(slab, c));
@@ -94,7 +94,8 @@ cv::Matx33d PlaneHomography(const SweepSetup& setup, std::size_t v, double depth
 
 SweepSetup MakeSetup(const LightField& lf, int row, int col, int reach, double factor) {
   const auto& d = lf.dims();
-  SweepSetup setup{lf, lf.camera_center(row, col), {}, {}, {}, {}, {}};
+  SweepSetup setup{lf, lf.camera_center(row, col), {}, {}, {}, {}, {}, {}, {}};
+  setup.ref_sampling = lf.st_sampling(row, col);
   const auto load = [&](int r, int c) {
     cv::Mat view = ViewSrgba8(lf, r, c);
     if (factor > 1.0) {
@@ -116,6 +117,7 @@ SweepSetup MakeSetup(const LightField& lf, int row, int col, int reach, double f
   const auto add = [&](int r, int c, Side side) {
     setup.images.push_back(load(r, c));
     setup.centers.push_back(lf.camera_center(r, c));
+    setup.samplings.push_back(lf.st_sampling(r, c));
     setup.sides.push_back(side);
     setup.farthest_mm =
         std::max(setup.farthest_mm, (setup.centers.back() - setup.ref_center).norm());
@@ -129,7 +131,7 @@ SweepSetup MakeSetup(const LightField& lf, int row, int col, int reach, double f
   if (setup.images.empty())
     throw Error(
         fmt::format("depth needs at least two views; this light field has {}x{}", d.rows, d.cols));
-  setup.st_depth = DepthOf(lf.slab(), StPoint(lf, (d.n_s - 1) / 2.0, (d.n_t - 1) / 2.0)) -
+  setup.st_depth = DepthOf(lf.slab(), setup.ref_sampling.Point((d.n_s - 1) / 2.0, (d.n_t - 1) / 2.0)) -
                    DepthOf(lf.slab(), setup.ref_center);
   const double ds = lf.st_sampling().ds_mm(), dt = lf.st_sampling().dt_mm();
   setup.sample_mm = std::min(ds * setup.scale_x, dt * setup.scale_y);

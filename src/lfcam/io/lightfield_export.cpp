@@ -87,7 +87,7 @@ ViewCamera ViewAsCamera(const LightField& lf, int row, int col) {
   if (!(d > 0))
     throw Error(fmt::format("view ({}, {}): its camera is not in front of the st-plane", row, col));
   const auto& dims = lf.dims();
-  const StSampling sampling = lf.st_sampling();
+  const StSampling sampling = lf.st_sampling(row, col);  // the view's own window
   const double ds = sampling.ds_mm(), dt = sampling.dt_mm();  // mm a sample
   ViewCamera v;
   v.width = dims.n_s;
@@ -146,10 +146,10 @@ ExportReport ExportLightField(const LightField& lf, ExportFormat format, const f
   for (int r = 0; r < d.rows; ++r)
     for (int c = 0; c < d.cols; ++c) centroid += lf.camera_center(r, c) / double(d.view_count());
   double reach_m = 0;  // the farthest st-window corner from the cameras' centroid
-  const StSampling sampling = lf.st_sampling();
-  for (double s : {sampling.domain.s0, sampling.domain.s1})
-    for (double t : {sampling.domain.t0, sampling.domain.t1})
-      reach_m = std::max(reach_m, (sampling.window.point_at(s, t) - centroid).norm() / 1000.0);
+  const StDomain all = lf.st_union();
+  for (double s : {all.s0, all.s1})
+    for (double t : {all.t0, all.t1})
+      reach_m = std::max(reach_m, (lf.slab().st.point_at(s, t) - centroid).norm() / 1000.0);
 
   const SparsePoints points = depth ? PointsFromDepth(lf, *depth) : SparsePoints{};
   int id = 0;

@@ -64,6 +64,7 @@ SparsePoints PointsFromDepth(const LightField& lf, const DepthSet& depth,
     const DepthMap& map = depth.at(r, c);
     const Vec3 eye = lf.camera_center(r, c);
     const double eye_depth = DepthOf(slab, eye);
+    const StSampling sampling = lf.st_sampling(r, c);  // the view's own window
     for (int l = stride / 2; l < d.n_t; l += stride)
       for (int k = stride / 2; k < d.n_s; k += stride) {
         const float depth_mm = map.depth.at<float>(l, k);
@@ -71,7 +72,7 @@ SparsePoints PointsFromDepth(const LightField& lf, const DepthSet& depth,
         if (!map.confidence.empty() && map.confidence.at<float>(l, k) < options.min_confidence)
           continue;
         // Along the ray from the camera through the sample, depth changes linearly.
-        const Vec3 on_st = slab.st.point_at(lf.s_of(k), lf.t_of(l));
+        const Vec3 on_st = sampling.Point(k, l);
         const double st_depth = DepthOf(slab, on_st);
         if (!(std::abs(st_depth - eye_depth) > 1e-9)) continue;
         const Vec3 p = eye + (depth_mm - eye_depth) / (st_depth - eye_depth) * (on_st - eye);

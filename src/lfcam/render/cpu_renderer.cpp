@@ -53,20 +53,26 @@ int RenderPixelCameras(const Frame& frame, int i, int j, float* weights, float o
   if (!frame.sampler.MeetsStDomain(camera.e_c(), direction)) return 0;
   float sum[3] = {0, 0, 0};
   int read = 0;
+  float weight = 0, added = 0;  // the weights of the cameras, and of those that held p_o's rays
+  const auto accumulate = [&](int row, int col, float w) {
+    const float a = frame.sampler.AccumulateFocused(row, col, p_o, w, sum);
+    weight += w;
+    added += a;
+    read += a > 0 ? 1 : 0;
+  };
   if (const auto& uniform = frame.cameras->uniform_weights(); !uniform.empty()) {
-    for (const GridCameraWeight& c : uniform)
-      frame.sampler.AccumulateFocused(c.row, c.col, p_o, float(c.weight), sum);
-    for (int k = 0; k < 3; ++k) out[k] = sum[k];
-    return int(uniform.size());
+    for (const GridCameraWeight& c : uniform) accumulate(c.row, c.col, float(c.weight));
+    if (!frame.sampler.view_windows()) read = int(uniform.size());  // zero weights count too
+  } else {
+    frame.cameras->Weights(frame.cameras->FootprintOf(i, j), weights);
+    const int cols = frame.sampler.cols();
+    for (int c = 0; c < frame.view_count; ++c)
+      if (weights[c] > 0.0f) accumulate(c / cols, c % cols, weights[c]);
   }
-  frame.cameras->Weights(frame.cameras->FootprintOf(i, j), weights);
-  const int cols = frame.sampler.cols();
-  for (int c = 0; c < frame.view_count; ++c) {
-    if (!(weights[c] > 0.0f)) continue;
-    frame.sampler.AccumulateFocused(c / cols, c % cols, p_o, weights[c], sum);
-    ++read;
-  }
-  for (int k = 0; k < 3; ++k) out[k] = sum[k];
+  // Views with their own windows: the cameras whose windows miss the point are left out and the
+  // others' weights scaled up to the whole.
+  const float scale = !frame.sampler.view_windows() ? 1.0f : added > 0 ? weight / added : 0.0f;
+  for (int k = 0; k < 3; ++k) out[k] = sum[k] * scale;
   return read;
 }
 

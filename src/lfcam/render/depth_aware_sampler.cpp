@@ -17,12 +17,14 @@ DepthAwareSampler::DepthAwareSampler(const LightField& lf, const DepthSet& depth
       cols_(lf.dims().cols),
       n_s_(lf.dims().n_s),
       n_t_(lf.dims().n_t) {
+  slab_.st_domain = lf.st_union();
   if (!(depth.dims() == lf.dims()))
     throw Error("the depth maps were made for another light field (grid or st resolution differ)");
   for (int r = 0; r < rows_; ++r)
     for (int c = 0; c < cols_; ++c) {
       Camera camera;
       camera.center = lf.camera_center(r, c);
+      camera.window = lf.st_offset(r, c);
       if (depth.has(r, c)) {
         const cv::Mat& m = depth.at(r, c).depth;
         camera.depth = m.ptr<float>(0);
@@ -48,6 +50,8 @@ bool DepthAwareSampler::Project(int c, const Vec3& p, double& k, double& l) cons
 float DepthAwareSampler::DepthAt(int c, double k, double l) const {
   const Camera& camera = cameras_[std::size_t(c)];
   if (!camera.depth) return NAN;
+  k -= camera.window.k;  // the view's own samples
+  l -= camera.window.l;
   if (!(k >= -0.5 && k < n_s_ - 0.5 && l >= -0.5 && l < n_t_ - 0.5)) return NAN;
   const int ki = std::clamp(int(std::lround(k)), 0, n_s_ - 1);
   const int li = std::clamp(int(std::lround(l)), 0, n_t_ - 1);
@@ -151,14 +155,14 @@ bool DepthAwareSampler::Sample(const Vec3& origin, const Vec3& direction, float 
       return true;
     }
   }
-  colour_.Fetch(c->u, c->v, c->s, c->t, rgb);  // no depth found: the paper's lookup
-  return true;
+  return colour_.Fetch(c->u, c->v, c->s, c->t, rgb);  // no depth found: the paper's lookup
 }
 
 std::vector<bool> DepthViewsNeeded(const LightField& lf, const VirtualCamera& camera) {
   const auto& d = lf.dims();
   std::vector<bool> needed(d.view_count(), false);
-  const Slab& slab = lf.slab();
+  Slab slab = lf.slab();
+  slab.st_domain = lf.st_union();
   const auto mark = [&](const Vec3& origin, const Vec3& direction) {
     const auto c = slab.intersect({origin, direction});
     if (!c || !slab.contains(*c)) return;

@@ -44,6 +44,7 @@ class DepthAwareSampler {
   struct Camera {
     const float* depth = nullptr;  // the view's map, row l, column k
     std::size_t stride = 0;        // floats per row
+    StOffset window;               // the view's st window (its depth map's too)
     Vec3 center;
   };
   // Continuous sample coordinates of world point p in camera c's view; false when its line runs
@@ -60,7 +61,7 @@ class DepthAwareSampler {
   double March(int c, const Vec3& origin, const Vec3& direction) const;
 
   const LightFieldSampler& colour_;
-  const Slab& slab_;
+  Slab slab_;  // the light field's, its st domain the union of the views' windows
   int rows_, cols_, n_s_, n_t_;
   std::vector<Camera> cameras_;  // row-major
   double q_near_, q_far_;        // the depth range's ends, widened a little

@@ -21,7 +21,8 @@ struct Cost {
 
 // The spread of the cameras' colours over the patch on the plane of focus at distance d: the
 // variance across cameras, summed over the patch's points and channels, per point. Cameras
-// whose lines to a point leave the sampled st domain are left out of that point.
+// whose lines to a point leave the sampled st domain (or their own window) are left out of that
+// point.
 Cost PatchCost(const LightField& lf, const LightFieldSampler& sampler, const VirtualCamera& camera,
                const Vec3& direction, double d, const FocusProbeOptions& o, double step_mm) {
   const int rows = lf.dims().rows, cols = lf.dims().cols;
@@ -40,7 +41,7 @@ Cost PatchCost(const LightField& lf, const LightFieldSampler& sampler, const Vir
           // The camera sees p only in front of it (toward the scene) and inside the domain.
           if (n_ca.dot(p - origin) >= 0 || !sampler.MeetsStDomain(origin, p - origin)) continue;
           float rgb[3] = {0, 0, 0};
-          sampler.AccumulateFocused(r, c, p, 1.0f, rgb);
+          if (!(sampler.AccumulateFocused(r, c, p, 1.0f, rgb) > 0)) continue;  // outside its window
           for (int k = 0; k < 3; ++k) {
             sum[k] += rgb[k];
             squares[k] += double(rgb[k]) * rgb[k];

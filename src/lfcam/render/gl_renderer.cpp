@@ -19,7 +19,15 @@ namespace {
 enum Mode { kLensQuadrilinear = 0, kLensFocalPlane = 1, kCamerasUniform = 2, kCamerasTable = 3 };
 
 // The buffers' binding points in the shader.
-enum Binding { kLensUv = 0, kLensSt = 1, kCameraSt = 2, kCameraWeights = 3, kWeightTable = 4 };
+enum Binding {
+  kLensUv = 0,
+  kLensSt = 1,
+  kCameraSt = 2,
+  kCameraWeights = 3,
+  kWeightTable = 4,
+  kCameraOffsets = 5,
+  kBindings = 6
+};
 
 struct ShaderCameraWeight {
   std::int32_t index;
@@ -152,7 +160,7 @@ GlRenderer::GlRenderer(std::unique_ptr<GlContext> context) : context_(std::move(
     glGetIntegerv(GL_GPU_MEMORY_INFO_DEDICATED_VIDMEM_NVX, &v);
     limits_.dedicated_memory_kb = v;
   }
-  glGenBuffers(5, buffers_);
+  glGenBuffers(kBindings, buffers_);
   glGenQueries(1, &timer_);
   CheckGl("setting up the renderer");
 }
@@ -164,7 +172,7 @@ GlRenderer::~GlRenderer() {
     return;  // the context goes with its objects
   }
   for (const auto& [key, program] : programs_) glDeleteProgram(program);
-  glDeleteBuffers(5, buffers_);
+  glDeleteBuffers(kBindings, buffers_);
   glDeleteQueries(1, &timer_);
   if (views_) glDeleteTextures(1, &views_);
   if (output_) glDeleteTextures(1, &output_);
@@ -292,7 +300,11 @@ double GlRenderer::RenderToTexture(const LightField& lf, const VirtualCamera& ca
   FillBuffer(buffers_[kCameraSt], camera_st);
   FillBuffer(buffers_[kCameraWeights], weights);
   FillBuffer(buffers_[kWeightTable], table);
-  for (int b = 0; b < 5; ++b) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GLuint(b), buffers_[b]);
+  std::vector<float> offsets;  // each view's window (k, l), read by the quadrilinear lookup
+  for (std::size_t i = 0; i < setup.cam_k_offset.size(); ++i)
+    offsets.insert(offsets.end(), {setup.cam_k_offset[i], setup.cam_l_offset[i]});
+  FillBuffer(buffers_[kCameraOffsets], offsets);
+  for (int b = 0; b < kBindings; ++b) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GLuint(b), buffers_[b]);
   CheckGl("uploading the frame's set-up");
 
   const GLuint program = Program(mode, options);
@@ -301,6 +313,9 @@ double GlRenderer::RenderToTexture(const LightField& lf, const VirtualCamera& ca
   u.Int2("frame_size", camera.width(), camera.height());
   u.Int2("grid", d.cols, d.rows);
   u.Int2("st_size", d.n_s, d.n_t);
+  glUniform4f(u.At("st_domain"), setup.domain[0], setup.domain[1], setup.domain[2],
+              setup.domain[3]);
+  u.Int("view_windows", setup.view_windows ? 1 : 0);
   u.Plane("uv", setup.uv);
   u.Plane("st", setup.st);
   u.Origin("eye_st", setup.eye_st);

@@ -74,7 +74,7 @@ class GlRenderer {
   LightFieldDims uploaded_dims_{};
   unsigned output_ = 0;  // the frame, RGBA32F
   int output_width_ = 0, output_height_ = 0;
-  unsigned buffers_[5] = {0, 0, 0, 0, 0};  // the shader's storage buffers
+  unsigned buffers_[6] = {0, 0, 0, 0, 0, 0};  // the shader's storage buffers
   unsigned timer_ = 0;
   std::map<std::string, unsigned> programs_;  // by mode and work group size
   long long last_lens_count_ = 0;

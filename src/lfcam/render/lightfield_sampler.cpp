@@ -26,9 +26,13 @@ LightFieldSampler::LightFieldSampler(const LightField& lf)
   s_scaled_ = st.window.x_axis / st.window.width_mm;
   t_scaled_ = st.window.y_axis / st.window.height_mm;
   s0_ = st.domain.s0;
-  s1_ = st.domain.s1;
   t0_ = st.domain.t0;
-  t1_ = st.domain.t1;
+  const StDomain all = lf.st_union();
+  u_s0_ = all.s0;
+  u_s1_ = all.s1;
+  u_t0_ = all.t0;
+  u_t1_ = all.t1;
+  offsets_ = lf.st_offsets();
   s_to_k_ = st.s_to_k();
   t_to_l_ = st.t_to_l();
   for (int r = 0; r < rows_; ++r)

@@ -2,7 +2,9 @@
 // Radiance lookup in a discrete light field (§6.2): a line meets the uv- and st-planes, and the
 // radiance is the quadrilinear blend of the 16 nearest samples, taken in linear light.
 // Coordinates clamp to the outermost samples inside the windows; lines outside the PRP window
-// or the sampled st domain miss.
+// or the sampled st domain miss. Where the views have their own st windows (format version 4),
+// a view is read only inside its window and the blend renormalises over the views that hold
+// the point.
 //
 // Besides the paper's lookup there is the focal-plane lookup of Isaksen, McMillan and Gortler
 // (Dynamically reparameterized light fields, 2000): the four nearest cameras are blended as
@@ -61,58 +63,66 @@ class LightFieldSampler {
     if (!(u >= 0.0 && u <= 1.0 && v >= 0.0 && v <= 1.0)) return false;
     const Vec3 at_st = origin + (n_st_.dot(st_origin_ - origin) / n_st) * direction - st_origin_;
     const double s = at_st.dot(s_scaled_), t = at_st.dot(t_scaled_);
-    if (!(s >= s0_ && s <= s1_ && t >= t0_ && t <= t1_)) return false;
-    if (interpolation == Interpolation::kQuadrilinear)
-      Fetch(u, v, s, t, rgb);
-    else
-      FetchFocused(u, v, p_o, rgb);
-    return true;
+    if (!(s >= u_s0_ && s <= u_s1_ && t >= u_t0_ && t <= u_t1_)) return false;
+    return interpolation == Interpolation::kQuadrilinear ? Fetch(u, v, s, t, rgb)
+                                                         : FetchFocused(u, v, p_o, rgb);
   }
 
-  // Whether the line (origin, direction) meets the st-plane inside the sampled st domain.
+  // Whether the line (origin, direction) meets the st-plane inside the sampled st domain (the
+  // union of the views' windows).
   bool MeetsStDomain(const Vec3& origin, const Vec3& direction) const {
     const double n_st = n_st_.dot(direction);
     if (n_st == 0.0) return false;
     const Vec3 at_st = origin + (n_st_.dot(st_origin_ - origin) / n_st) * direction - st_origin_;
     const double s = at_st.dot(s_scaled_), t = at_st.dot(t_scaled_);
-    return s >= s0_ && s <= s1_ && t >= t0_ && t <= t1_;
+    return s >= u_s0_ && s <= u_s1_ && t >= u_t0_ && t <= u_t1_;
   }
 
-  // Quadrilinear fetch at window coordinates (u, v) and st-plane coordinates (s, t).
-  void Fetch(double u, double v, double s, double t, float rgb[3]) const {
+  // Quadrilinear fetch at window coordinates (u, v) and st-plane coordinates (s, t). False when no
+  // view's window holds (s, t) (views with their own windows; with shared windows it always
+  // reads, coordinates clamped to the sampled domain).
+  bool Fetch(double u, double v, double s, double t, float rgb[3]) const {
     const AxisLerp c = AxisLerp::At(u * cols_ - 0.5, cols_);
     const AxisLerp r = AxisLerp::At(v * rows_ - 0.5, rows_);
-    const AxisLerp k = AxisLerp::At((s - s0_) * s_to_k_ - 0.5, n_s_);
-    const AxisLerp l = AxisLerp::At((t - t0_) * t_to_l_ - 0.5, n_t_);
-    float acc[3] = {0, 0, 0};
-    ForNearestCameras(c, r,
-                      [&](int row, int col, float w) { AccumulateView(row, col, k, l, w, acc); });
-    rgb[0] = acc[0];
-    rgb[1] = acc[1];
-    rgb[2] = acc[2];
+    const double k = (s - s0_) * s_to_k_ - 0.5, l = (t - t0_) * t_to_l_ - 0.5;
+    float acc[3] = {0, 0, 0}, weight = 0;
+    ForNearestCameras(c, r, [&](int row, int col, float w) {
+      weight += AccumulateAt(row, col, k, l, w, acc);
+    });
+    return Normalise(acc, weight, rgb);
   }
 
   // Focal-plane fetch: the cameras around (u, v), each read where its ray to p_o meets the
-  // st-plane.
-  void FetchFocused(double u, double v, const Vec3& p_o, float rgb[3]) const {
+  // st-plane (false as Fetch).
+  bool FetchFocused(double u, double v, const Vec3& p_o, float rgb[3]) const {
     const AxisLerp c = AxisLerp::At(u * cols_ - 0.5, cols_);
     const AxisLerp r = AxisLerp::At(v * rows_ - 0.5, rows_);
-    float acc[3] = {0, 0, 0};
-    ForNearestCameras(c, r,
-                      [&](int row, int col, float w) { AccumulateFocused(row, col, p_o, w, acc); });
-    rgb[0] = acc[0];
-    rgb[1] = acc[1];
-    rgb[2] = acc[2];
+    float acc[3] = {0, 0, 0}, weight = 0;
+    ForNearestCameras(c, r, [&](int row, int col, float w) {
+      weight += AccumulateFocused(row, col, p_o, w, acc);
+    });
+    return Normalise(acc, weight, rgb);
   }
 
-  // acc += w * view (row, col) read bilinearly at continuous sample coordinates (k, l) (sample
-  // centres at integers; clamped to the sampled domain).
-  void AccumulateAt(int row, int col, double k, double l, float w, float acc[3]) const {
+  // acc += w * view (row, col) read bilinearly at continuous reference sample coordinates (k, l)
+  // (sample centres at integers). Returns the weight it added: w, or 0 where (k, l) lies outside
+  // the view's own window (a light field whose views have their own windows: the caller
+  // renormalises over the views that hold the point); with shared windows it clamps to the
+  // sampled domain and always reads.
+  float AccumulateAt(int row, int col, double k, double l, float w, float acc[3]) const {
+    if (!offsets_.empty()) {
+      const StOffset& o = offsets_[std::size_t(row) * cols_ + col];
+      k -= o.k;
+      l -= o.l;
+      if (!(k >= -0.5 && k <= n_s_ - 0.5 && l >= -0.5 && l <= n_t_ - 0.5)) return 0.0f;
+    }
     AccumulateView(row, col, AxisLerp::At(k, n_s_), AxisLerp::At(l, n_t_), w, acc);
+    return w;
   }
 
-  // Where the line from `from` through `to` meets the st-plane, in continuous sample coordinates
-  // (k, l) (sample centres at integers, not clamped); false when it runs parallel to the plane.
+  // Where the line from `from` through `to` meets the st-plane, in continuous reference sample
+  // coordinates (k, l) (sample centres at integers, not clamped); false when it runs parallel to
+  // the plane.
   bool StSampleAt(const Vec3& from, const Vec3& to, double& k, double& l) const {
     const Vec3 d = to - from;
     const double n_st = n_st_.dot(d);
@@ -124,11 +134,22 @@ class LightFieldSampler {
   }
 
   // acc += w * camera (row, col) read where its own ray toward p_o meets the st-plane
-  // (bilinearly, clamped to the sampled domain).
-  void AccumulateFocused(int row, int col, const Vec3& p_o, float w, float acc[3]) const {
+  // (bilinearly; the weight it added, as AccumulateAt).
+  float AccumulateFocused(int row, int col, const Vec3& p_o, float w, float acc[3]) const {
     double k, l;
-    if (!StSampleAt(camera_centers_[std::size_t(row) * cols_ + col], p_o, k, l)) return;
-    AccumulateAt(row, col, k, l, w, acc);
+    if (!StSampleAt(camera_centers_[std::size_t(row) * cols_ + col], p_o, k, l)) return 0.0f;
+    return AccumulateAt(row, col, k, l, w, acc);
+  }
+
+  // Whether the views have their own windows (reads outside a view's window then add nothing).
+  bool view_windows() const { return !offsets_.empty(); }
+
+  // rgb = acc, renormalised by the weight the reads added when views have their own windows;
+  // false when nothing was read.
+  bool Normalise(const float acc[3], float weight, float rgb[3]) const {
+    const float scale = offsets_.empty() ? 1.0f : weight > 0 ? 1.0f / weight : 0.0f;
+    for (int ch = 0; ch < 3; ++ch) rgb[ch] = acc[ch] * scale;
+    return offsets_.empty() || weight > 0;
   }
 
  private:
@@ -178,8 +199,10 @@ class LightFieldSampler {
   std::size_t view_samples_;  // channel values per view
   Vec3 p_ca_, n_ca_, u_scaled_, v_scaled_;
   Vec3 st_origin_, n_st_, s_scaled_, t_scaled_;
-  double s0_, s1_, t0_, t1_, s_to_k_, t_to_l_;
-  std::vector<Vec3> camera_centers_;  // row-major
+  double s0_, t0_, s_to_k_, t_to_l_;  // the reference grid
+  double u_s0_, u_s1_, u_t0_, u_t1_;   // the sampled domain: the union of the views' windows
+  std::vector<Vec3> camera_centers_;   // row-major
+  std::vector<StOffset> offsets_;      // each view's window, row-major; empty when shared
 };
 
 }  // namespace lfcam

@@ -76,7 +76,6 @@ std::vector<cv::Rect> ViewRegionsRead(const LightField& lf, const VirtualCamera&
                                       const std::vector<bool>& views) {
   const LightFieldDims& d = lf.dims();
   const Slab& slab = lf.slab();
-  const StSampling sampling = lf.st_sampling();
   const cv::Rect whole(0, 0, d.n_s, d.n_t);
   std::vector<Vec3> focus;  // the frame's corners on the plane of focus
   for (const double y : {0.0, double(camera.height())})
@@ -86,6 +85,7 @@ std::vector<cv::Rect> ViewRegionsRead(const LightField& lf, const VirtualCamera&
   for (int v = 0; v < int(d.view_count()); ++v) {
     if (!views[std::size_t(v)]) continue;
     const Vec3 eye = lf.camera_center(v / d.cols, v % d.cols);
+    const StSampling sampling = lf.st_sampling(v / d.cols, v % d.cols);  // the view's own window
     double k0 = 1e300, k1 = -1e300, l0 = 1e300, l1 = -1e300;
     bool all = true;
     for (const Vec3& p : focus) {
@@ -119,6 +119,7 @@ LightField PrefilterViews(const LightField& lf, const StPrefilter& prefilter,
                 "the prefiltered copy of the light field");
   LightField out(d, lf.sample_type(), lf.slab());
   out.set_measured_poses(lf.measured_poses());
+  out.set_st_offsets(lf.st_offsets());
   const std::vector<float> taps_s = PrefilterTaps(prefilter.h_s);
   const std::vector<float> taps_t = PrefilterTaps(prefilter.h_t);
   const cv::Mat kernel_s(1, int(taps_s.size()), CV_32F, const_cast<float*>(taps_s.data()));

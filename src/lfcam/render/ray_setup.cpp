@@ -69,6 +69,12 @@ RaySetup::RaySetup(const LightField& lf, const VirtualCamera& camera, bool lens_
   uv = uv_plane.Affines(camera);
   st = st_plane.Affines(camera);
   eye_st = st_plane.Origin(camera.e_c());
+  const LightField::SampleRange all = lf.st_union_samples();
+  domain[0] = float(all.k0 - 0.5);
+  domain[1] = float(all.l0 - 0.5);
+  domain[2] = float(all.k1 + 0.5);
+  domain[3] = float(all.l1 + 0.5);
+  view_windows = lf.has_view_windows();
   if (lens_samples)
     for (const Vec2& disk : camera.lens_samples()) {
       const Vec3 lens = camera.lens_point(disk);
@@ -78,12 +84,15 @@ RaySetup::RaySetup(const LightField& lf, const VirtualCamera& camera, bool lens_
   for (int r = 0; r < rows; ++r)
     for (int c = 0; c < cols; ++c) {
       const OriginConstants k = st_plane.Origin(lf.camera_center(r, c));
+      const StOffset window = lf.st_offset(r, c);
       cam_num.push_back(k.num);
       cam_n_o.push_back(k.n_o);
       cam_x_o.push_back(k.x_o);
       cam_y_o.push_back(k.y_o);
-      cam_x0.push_back(k.x0);
-      cam_y0.push_back(k.y0);
+      cam_x0.push_back(k.x0 - float(window.k));
+      cam_y0.push_back(k.y0 - float(window.l));
+      cam_k_offset.push_back(float(window.k));
+      cam_l_offset.push_back(float(window.l));
     }
 }
 

@@ -12,8 +12,10 @@
 // three affine functions of (i, j) per plane (n.p_o, a_x.p_o, a_y.p_o), shared by every origin,
 // and six constants per origin and plane. Coordinates are in sample units: on the uv-plane
 // camera column and row (camera (col, row) at the integer point; the window is
-// [-0.5, cols - 0.5] x [-0.5, rows - 0.5]); on the st-plane sample k and l (the sampled domain
-// is [-0.5, n_s - 0.5] x [-0.5, n_t - 0.5]).
+// [-0.5, cols - 0.5] x [-0.5, rows - 0.5]); on the st-plane sample k and l of the reference grid
+// (the sampled domain is [-0.5, n_s - 0.5] x [-0.5, n_t - 0.5] when the views share it, else the
+// union of their windows). A camera's own lines (cam_*) are in that view's own samples: its
+// window's offset is folded into cam_x0 and cam_y0.
 #include <vector>
 
 #include "lfcam/core/lightfield.h"
@@ -64,6 +66,13 @@ struct RaySetup {
   int width = 0, height = 0;
   PlaneAffines uv, st;                   // p_o against the uv- and st-planes
   OriginConstants eye_st;                // the central lines (the st-domain test)
+  // The sampled st domain in reference samples (lo_k, lo_l, hi_k, hi_l: the outer edges of the
+  // union of the views' windows).
+  float domain[4] = {0, 0, 0, 0};
+  // Whether the views have their own windows: a read outside a view's window then adds nothing
+  // and the blend renormalises over the views that hold the point; otherwise reads clamp.
+  bool view_windows = false;
+  std::vector<float> cam_k_offset, cam_l_offset;  // each view's window offset (per camera)
   std::vector<OriginConstants> lens_uv;  // per lens sample (the eye alone for a pinhole)
   std::vector<OriginConstants> lens_st;
   // Per camera (row-major), the st constants of its own lines, one array per field (the

@@ -128,7 +128,9 @@ bool BuildLensSamples(const LightField& lf, const VirtualCamera& camera, bool fo
 
 std::optional<SeparableFrame> MakeSeparableFrame(const LightField& lf, const VirtualCamera& camera,
                                                  const CpuRenderOptions& options) {
-  if (!FastKernelsSupport(lf)) return std::nullopt;
+  // Views with their own windows renormalise over the cameras that hold each point: the per-pixel
+  // kernels do that.
+  if (!FastKernelsSupport(lf) || lf.has_view_windows()) return std::nullopt;
   Builder builder(lf, camera);
   const bool focal_plane = options.integrator == Integrator::kCameras ||
                            options.interpolation == Interpolation::kFocalPlane;

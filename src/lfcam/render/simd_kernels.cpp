@@ -85,6 +85,14 @@ MF Inside(const PlaneHit& h, int nx, int ny) {
   return hn::And(h.valid, hn::And(in_x, in_y));
 }
 
+// Whether st coordinates lie in the sampled domain (the union of the views' windows).
+MF InsideDomain(const PlaneHit& h, const RaySetup& s) {
+  const DF d;
+  const MF in_x = hn::And(hn::Ge(h.x, hn::Set(d, s.domain[0])), hn::Le(h.x, hn::Set(d, s.domain[2])));
+  const MF in_y = hn::And(hn::Ge(h.y, hn::Set(d, s.domain[1])), hn::Le(h.y, hn::Set(d, s.domain[3])));
+  return hn::And(h.valid, hn::And(in_x, in_y));
+}
+
 // AxisLerp, per lane: x clamped to [0, n - 1], split into i0, the step to i1 (0 or 1) and w1.
 struct LerpLanes {
   VI i0, step;
@@ -146,11 +154,52 @@ VI ViewOffset(const RaySetup& s, const VI& row, const VI& col) {
 }
 
 // acc += w * camera `index`'s own line through p_o, read bilinearly (the focal-plane read).
-void AddFocused(const RaySetup& s, const ChunkPoints& st, const VI& index, const OriginLanes& cam,
-                const VF& w, Rgb& acc) {
+// Returns the weight added: w, or (views with their own windows) 0 in the lanes whose line
+// leaves the camera's window.
+VF AddFocused(const RaySetup& s, const ChunkPoints& st, const VI& index, const OriginLanes& cam,
+              const VF& w, Rgb& acc) {
   const PlaneHit h = Project(st, cam);
   const VI view = hn::Mul(index, hn::Set(DI(), int(s.view_bytes)));
-  AddView(s, view, Lerp(h.x, s.n_s), Lerp(h.y, s.n_t), hn::IfThenElseZero(h.valid, w), acc);
+  const VF held = s.view_windows ? hn::IfThenElseZero(Inside(h, s.n_s, s.n_t), w) : w;
+  AddView(s, view, Lerp(h.x, s.n_s), Lerp(h.y, s.n_t), hn::IfThenElseZero(h.valid, held), acc);
+  return held;
+}
+
+// acc += w * the bilinear reads of the four cameras around the lens sample's uv point at the
+// ray's own st point (the paper's lookup) or along each camera's own line through p_o (the
+// focal-plane lookup), weights wr x wc. Returns the weight added (less than the weights' sum
+// only where views have their own windows and a camera's misses the point).
+VF AddNearestCameras(const RaySetup& s, bool focal_plane, const ChunkPoints& p_st,
+                     const PlaneHit& at_st, const VI rows[2], const VI cols[2], const VF wr[2],
+                     const VF wc[2], Rgb& acc) {
+  const DF d;
+  const DI di;
+  VF held = hn::Zero(d);
+  if (!focal_plane && !s.view_windows) {
+    const LerpLanes k = Lerp(at_st.x, s.n_s), l = Lerp(at_st.y, s.n_t);
+    for (int a = 0; a < 2; ++a)
+      for (int b = 0; b < 2; ++b)
+        AddView(s, ViewOffset(s, rows[a], cols[b]), k, l, hn::Mul(wr[a], wc[b]), acc);
+    return hn::Add(wr[0], wr[1]);
+  }
+  for (int a = 0; a < 2; ++a)
+    for (int b = 0; b < 2; ++b) {
+      const VI index = hn::Add(hn::Mul(rows[a], hn::Set(di, s.cols)), cols[b]);
+      const VF w = hn::Mul(wr[a], wc[b]);
+      if (focal_plane) {
+        held = hn::Add(held, AddFocused(s, p_st, index, OriginLanes::Gather(s, index), w, acc));
+        continue;
+      }
+      // The view's own samples.
+      const PlaneHit local{hn::Sub(at_st.x, hn::GatherIndex(d, s.cam_k_offset.data(), index)),
+                           hn::Sub(at_st.y, hn::GatherIndex(d, s.cam_l_offset.data(), index)),
+                           at_st.valid};
+      const VF w_in = hn::IfThenElseZero(Inside(local, s.n_s, s.n_t), w);
+      AddView(s, ViewOffset(s, rows[a], cols[b]), Lerp(local.x, s.n_s), Lerp(local.y, s.n_t),
+              w_in, acc);
+      held = hn::Add(held, w_in);
+    }
+  return held;
 }
 
 void StoreChunk(const RowOutput& out, int i, const Rgb& acc, const VI& count) {
@@ -177,26 +226,28 @@ void RenderRowLensSamplesT(const RaySetup& s, bool focal_plane, int j, const Row
     for (std::size_t n = 0; n < s.lens_uv.size(); ++n) {
       const PlaneHit at_uv = Project(p_uv, OriginLanes::Broadcast(s.lens_uv[n]));
       const PlaneHit at_st = Project(p_st, OriginLanes::Broadcast(s.lens_st[n]));
-      const MF hit = hn::And(Inside(at_uv, s.cols, s.rows), Inside(at_st, s.n_s, s.n_t));
+      const MF hit = hn::And(Inside(at_uv, s.cols, s.rows), InsideDomain(at_st, s));
       if (hn::AllFalse(d, hit)) continue;
-      hits = hn::Add(hits, hn::IfThenElseZero(hn::RebindMask(di, hit), hn::Set(di, 1)));
       const LerpLanes c = Lerp(at_uv.x, s.cols), r = Lerp(at_uv.y, s.rows);
       const VF one = hn::Set(d, 1.0f);
       const VF wr[2] = {hn::IfThenElseZero(hit, hn::Sub(one, r.w1)), hn::IfThenElseZero(hit, r.w1)};
       const VF wc[2] = {hn::Sub(one, c.w1), c.w1};
       const VI rows[2] = {r.i0, hn::Add(r.i0, r.step)}, cols[2] = {c.i0, hn::Add(c.i0, c.step)};
-      if (!focal_plane) {
-        const LerpLanes k = Lerp(at_st.x, s.n_s), l = Lerp(at_st.y, s.n_t);
-        for (int a = 0; a < 2; ++a)
-          for (int b = 0; b < 2; ++b)
-            AddView(s, ViewOffset(s, rows[a], cols[b]), k, l, hn::Mul(wr[a], wc[b]), sum);
-      } else {
-        for (int a = 0; a < 2; ++a)
-          for (int b = 0; b < 2; ++b) {
-            const VI index = hn::Add(hn::Mul(rows[a], hn::Set(di, s.cols)), cols[b]);
-            AddFocused(s, p_st, index, OriginLanes::Gather(s, index), hn::Mul(wr[a], wc[b]), sum);
-          }
+      if (!s.view_windows) {
+        hits = hn::Add(hits, hn::IfThenElseZero(hn::RebindMask(di, hit), hn::Set(di, 1)));
+        AddNearestCameras(s, focal_plane, p_st, at_st, rows, cols, wr, wc, sum);
+        continue;
       }
+      // Views with their own windows: this lens sample's blend over the cameras that hold its
+      // point, renormalised; a sample no camera holds misses.
+      Rgb one_sample{hn::Zero(d), hn::Zero(d), hn::Zero(d)};
+      const VF held = AddNearestCameras(s, focal_plane, p_st, at_st, rows, cols, wr, wc, one_sample);
+      const MF read = hn::Gt(held, hn::Zero(d));
+      const VF inv = hn::IfThenElseZero(read, hn::Div(one, hn::IfThenElse(read, held, one)));
+      sum.r = hn::MulAdd(one_sample.r, inv, sum.r);
+      sum.g = hn::MulAdd(one_sample.g, inv, sum.g);
+      sum.b = hn::MulAdd(one_sample.b, inv, sum.b);
+      hits = hn::Add(hits, hn::IfThenElseZero(hn::RebindMask(di, read), hn::Set(di, 1)));
     }
     const MF any = hn::RebindMask(d, hn::Gt(hits, hn::Zero(di)));
     const VF inv = hn::IfThenElseZero(any, hn::Div(hn::Set(d, 1.0f), hn::ConvertTo(d, hits)));
@@ -218,16 +269,25 @@ void RenderRowCamerasT(const RaySetup& s, const GridCameraWeight* uniform, int u
     const ChunkPoints p_st = st.At(pixel);
     Rgb sum{hn::Zero(d), hn::Zero(d), hn::Zero(d)};
     VI reads = hn::Zero(di);
+    VF weight = hn::Zero(d), held = hn::Zero(d);  // the cameras' weights, and those that read
     // The pixel's central line decides whether the pixel meets the sampled st domain.
-    const MF in_domain = Inside(Project(p_st, eye), s.n_s, s.n_t);
+    const MF in_domain = InsideDomain(Project(p_st, eye), s);
     if (!hn::AllFalse(d, in_domain)) {
+      const auto read_camera = [&](int index, const VF& w) {
+        const VF h = AddFocused(s, p_st, hn::Set(di, index),
+                                OriginLanes::Broadcast(s.camera_st(index)), w, sum);
+        weight = hn::Add(weight, w);
+        held = hn::Add(held, h);
+        reads = hn::Add(reads, hn::IfThenElseZero(hn::RebindMask(di, hn::Gt(h, hn::Zero(d))),
+                                                  hn::Set(di, 1)));
+      };
       if (uniform_count > 0) {
-        for (int n = 0; n < uniform_count; ++n) {
-          const int index = uniform[n].row * s.cols + uniform[n].col;
-          AddFocused(s, p_st, hn::Set(di, index), OriginLanes::Broadcast(s.camera_st(index)),
-                     hn::IfThenElseZero(in_domain, hn::Set(d, float(uniform[n].weight))), sum);
-        }
-        reads = hn::IfThenElseZero(hn::RebindMask(di, in_domain), hn::Set(di, uniform_count));
+        for (int n = 0; n < uniform_count; ++n)
+          read_camera(uniform[n].row * s.cols + uniform[n].col,
+                      hn::IfThenElseZero(in_domain, hn::Set(d, float(uniform[n].weight))));
+        // Every camera counts as read, zero weights too (as the scalar renderer counts them).
+        if (!s.view_windows)
+          reads = hn::IfThenElseZero(hn::RebindMask(di, in_domain), hn::Set(di, uniform_count));
       } else {
         const int padded_width = PaddedRowWidth(s.width);
         for (int n = 0; n < camera_count; ++n) {
@@ -235,11 +295,16 @@ void RenderRowCamerasT(const RaySetup& s, const GridCameraWeight* uniform, int u
           const VF w = hn::LoadU(d, pixel_weights + std::size_t(index) * padded_width + i);
           const MF read = hn::And(in_domain, hn::Gt(w, hn::Zero(d)));
           if (hn::AllFalse(d, read)) continue;
-          AddFocused(s, p_st, hn::Set(di, index), OriginLanes::Broadcast(s.camera_st(index)),
-                     hn::IfThenElseZero(read, w), sum);
-          reads = hn::Add(reads, hn::IfThenElseZero(hn::RebindMask(di, read), hn::Set(di, 1)));
+          read_camera(index, hn::IfThenElseZero(read, w));
         }
       }
+    }
+    if (s.view_windows) {
+      // The cameras whose windows miss the point are left out, the others' weights scaled up.
+      const MF any = hn::Gt(held, hn::Zero(d));
+      const VF scale =
+          hn::IfThenElseZero(any, hn::Div(weight, hn::IfThenElse(any, held, hn::Set(d, 1.0f))));
+      sum = {hn::Mul(sum.r, scale), hn::Mul(sum.g, scale), hn::Mul(sum.b, scale)};
     }
     StoreChunk(out, i, sum, reads);
   }
@@ -248,6 +313,7 @@ void RenderRowCamerasT(const RaySetup& s, const GridCameraWeight* uniform, int u
 bool RenderRowCamerasResampledT(const RaySetup& s, const GridCameraWeight* uniform,
                                 int uniform_count, const float* pixel_weights, const int* cameras,
                                 int camera_count, int j, const RowOutput& out) {
+  if (s.view_windows) return false;  // views with their own windows: the per-pixel reads
   const DF d;
   const DI di;
   const int lanes = int(hn::Lanes(d));

@@ -17,9 +17,10 @@ DepthTruth GroundTruthDepth(const Scene& scene, const LightField& lf, int row, i
   truth.map.confidence.create(d.n_t, d.n_s, CV_32FC1);
   truth.object.create(d.n_t, d.n_s, CV_32SC1);
   const Vec3 center = lf.camera_center(row, col);
+  const StSampling sampling = lf.st_sampling(row, col);  // the view's own window
   tbb::parallel_for(0, d.n_t, [&](int l) {
     for (int k = 0; k < d.n_s; ++k) {
-      const Ray ray{center, lf.slab().st.point_at(lf.s_of(k), lf.t_of(l)) - center};
+      const Ray ray{center, sampling.Point(k, l) - center};
       const Scene::Hit hit = scene.FirstHit(ray);
       const bool found = std::isfinite(hit.t);
       truth.map.depth.at<float>(l, k) = found ? float(DepthOf(lf.slab(), ray.at(hit.t))) : NAN;

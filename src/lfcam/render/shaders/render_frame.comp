@@ -30,10 +30,17 @@ struct CameraWeight {
 };
 layout(std430, binding = 3) readonly buffer CameraWeights { CameraWeight camera_weights[]; };
 layout(std430, binding = 4) readonly buffer WeightTable { float weight_table[]; };
+// Each view's st window: its offset (k, l) from the reference grid in samples.
+layout(std430, binding = 5) readonly buffer CameraOffsets { vec2 camera_offset[]; };
 
 uniform ivec2 frame_size;  // width, height
 uniform ivec2 grid;        // camera columns, rows
 uniform ivec2 st_size;     // n_s, n_t
+// The sampled st domain in reference samples (lo k, lo l, hi k, hi l: the union of the views'
+// windows), and whether the views have their own windows: a read outside a view's window then
+// adds nothing and the blend renormalises over the views that hold the point (RaySetup).
+uniform vec4 st_domain;
+uniform bool view_windows;
 // p_o against the uv- and st-planes: (n.p_o, a_x.p_o, a_y.p_o) = at00 + di * i + dj * j.
 uniform vec3 uv_at00, uv_di, uv_dj, st_at00, st_di, st_dj;
 uniform Origin eye_st;  // the central lines
@@ -71,6 +78,15 @@ bool Inside(Hit h, ivec2 n) {
          all(lessThanEqual(h.at, vec2(n) - 0.5));
 }
 
+bool InsideDomain(Hit h) {
+  return h.valid && all(greaterThanEqual(h.at, st_domain.xy)) &&
+         all(lessThanEqual(h.at, st_domain.zw));
+}
+
+// The weight a read at a view's own sample coordinates carries: 1, or with views' own windows 0
+// outside the view's window.
+float Held(Hit local) { return !view_windows || Inside(local, st_size) ? 1.0 : 0.0; }
+
 // The clamped linear interpolation along one axis of n samples (AxisLerp in C++).
 void AxisLerp(float x, int n, out int i0, out int i1, out float w1) {
   x = clamp(x, 0.0, float(n - 1));
@@ -84,10 +100,22 @@ vec3 ReadView(int layer, vec2 kl) {
   return texture(views, vec3((kl + 0.5) / vec2(st_size), float(layer))).rgb;
 }
 
-// Camera `index` read along its own line through p_o (the focal-plane read).
-vec3 ReadFocused(int index, vec3 p_st) {
+// Camera `index` read along its own line through p_o (the focal-plane read), and in alpha the
+// weight the read carries (Held).
+vec4 ReadFocused(int index, vec3 p_st) {
   const Hit h = Project(p_st, camera_st[index]);
-  return h.valid ? ReadView(index, h.at) : vec3(0.0);
+  const float held = Held(h);
+  return vec4(h.valid && held > 0.0 ? ReadView(index, h.at) : vec3(0.0), held);
+}
+
+// Camera `index` read at the ray's own st point (reference samples; the paper's lookup), the
+// weight in alpha.
+vec4 ReadAt(int index, Hit at_st) {
+  if (!view_windows) return vec4(ReadView(index, at_st.at), 1.0);
+  Hit local = at_st;
+  local.at -= camera_offset[index];
+  const float held = Held(local);
+  return vec4(held > 0.0 ? ReadView(index, local.at) : vec3(0.0), held);
 }
 
 #if MODE == 3
@@ -148,8 +176,10 @@ void RenderCamerasTable(ivec2 pixel, vec3 p_st, out vec3 sum, out int reads) {
       float w = LevelWeight(k, index, cx, cy);
       if (level_count > 1) w = (1.0 - t) * w + t * LevelWeight(k + 1, index, cx, cy);
       if (!(w > 0.0)) continue;
+      const vec4 read = ReadFocused(index, p_st);
+      if (!(read.a > 0.0)) continue;
       total += w;
-      sum += w * ReadFocused(index, p_st);
+      sum += w * read.rgb;
       ++reads;
     }
   // Renormalised, as next to the window's edge a lattice node may miss the window.
@@ -169,33 +199,51 @@ void main() {
   for (int n = 0; n < lens_count; ++n) {
     const Hit at_uv = Project(p_uv, lens_uv[n]);
     const Hit at_st = Project(p_st, lens_st[n]);
-    if (!Inside(at_uv, grid) || !Inside(at_st, st_size)) continue;
-    ++count;
+    if (!Inside(at_uv, grid) || !InsideDomain(at_st)) continue;
     int c[2], r[2];
     float wc, wr;
     AxisLerp(at_uv.at.x, grid.x, c[0], c[1], wc);
     AxisLerp(at_uv.at.y, grid.y, r[0], r[1], wr);
     const float row_w[2] = float[2](1.0 - wr, wr), col_w[2] = float[2](1.0 - wc, wc);
+    vec3 one = vec3(0.0);
+    float held = 0.0;
     for (int a = 0; a < 2; ++a)
       for (int b = 0; b < 2; ++b) {
         const float w = row_w[a] * col_w[b];
         if (w == 0.0) continue;
         const int index = r[a] * grid.x + c[b];
 #if MODE == 0
-        sum += w * ReadView(index, at_st.at);
+        const vec4 read = ReadAt(index, at_st);
 #else
-        sum += w * ReadFocused(index, p_st);
+        const vec4 read = ReadFocused(index, p_st);
 #endif
+        one += w * read.rgb;
+        held += w * read.a;
       }
+    // With views' own windows the lens sample's blend is renormalised over the cameras that hold
+    // its point, and a sample none holds misses.
+    if (!view_windows) {
+      sum += one;
+      ++count;
+    } else if (held > 0.0) {
+      sum += one / held;
+      ++count;
+    }
   }
   if (count > 0) sum /= float(count);
 #else
   // The pixel's central line decides whether the pixel meets the sampled st domain.
-  if (Inside(Project(p_st, eye_st), st_size)) {
+  if (InsideDomain(Project(p_st, eye_st))) {
 #if MODE == 2
-    for (int n = 0; n < weight_count; ++n)
-      sum += camera_weights[n].weight * ReadFocused(camera_weights[n].index, p_st);
-    count = weight_count;
+    float weight = 0.0, held = 0.0;
+    for (int n = 0; n < weight_count; ++n) {
+      const vec4 read = ReadFocused(camera_weights[n].index, p_st);
+      sum += camera_weights[n].weight * read.rgb;
+      weight += camera_weights[n].weight;
+      held += camera_weights[n].weight * read.a;
+      if (read.a > 0.0) ++count;
+    }
+    if (view_windows) sum = held > 0.0 ? sum * (weight / held) : vec3(0.0);
 #else
     RenderCamerasTable(pixel, p_st, sum, count);
 #endif
