@@ -88,17 +88,18 @@ DecodedRegion DecodeRegion(std::span<const std::uint8_t> bytes, const std::strin
 }
 
 // Resamples one camera's image into its view. Returns the decode reduction used.
-int BuildView(const ViewJob& job, const Slab& slab, const BuildOptions& options, std::uint8_t* view,
-              ViewStats* stats, double* decode_seconds) {
+int BuildView(const ViewJob& job, const StSampling& sampling, StOffset window,
+              const BuildOptions& options, std::uint8_t* view, ViewStats* stats,
+              double* decode_seconds) {
   const int n_s = options.n_s, n_t = options.n_t;
+  const ViewWindow& st = sampling.window;
   const CameraIntrinsics& k = job.camera->intrinsics;
   const Rigid3 camera_from_world = job.camera->world_from_camera.inverse();
   const Mat3& r = camera_from_world.rotation;
   // Camera-frame point of st position (s, t): s * a_s + t * a_t + a_0.
-  const Vec3 a_s = r * (slab.st.width_mm * slab.st.x_axis);
-  const Vec3 a_t = r * (slab.st.height_mm * slab.st.y_axis);
-  const Vec3 a_0 = camera_from_world * slab.st.origin;
-  const StSampling sampling{slab.st, slab.st_domain, n_s, n_t};
+  const Vec3 a_s = r * (st.width_mm * st.x_axis);
+  const Vec3 a_t = r * (st.height_mm * st.y_axis);
+  const Vec3 a_0 = camera_from_world * st.origin;
   auto pixel_of = [&](double kk, double ll) -> Vec2 {
     const double s = sampling.s_of(kk), t = sampling.t_of(ll);
     const Vec3 q = s * a_s + t * a_t + a_0;
@@ -216,9 +217,12 @@ int BuildView(const ViewJob& job, const Slab& slab, const BuildOptions& options,
     for (int kk = 0; kk < n_s; ++kk)
       for (int ch = 0; ch < 3; ++ch) out[kk * 3 + ch] = LinearToSrgb8With(encode, in[kk][ch]);
   }
-  // Colour statistics on the coarse grid: inside the image, with and without the correction.
-  for (int l = 0, i = 0; l < n_t; l += kStatsStride)
-    for (int kk = 0; kk < n_s; kk += kStatsStride, ++i) {
+  // Colour statistics on the coarse grid of the reference window (the st domain): inside the
+  // view's window and its image, with and without the correction.
+  for (int ref_l = 0, i = 0; ref_l < n_t; ref_l += kStatsStride)
+    for (int ref_k = 0; ref_k < n_s; ref_k += kStatsStride, ++i) {
+      const int kk = ref_k - window.k, l = ref_l - window.l;
+      if (kk < 0 || l < 0 || kk >= n_s || l >= n_t) continue;
       const float mx = map_x.at<float>(l, kk), my = map_y.at<float>(l, kk);
       const bool inside = mx >= 1 && my >= 1 && mx <= scaled.width - 2 && my <= scaled.height - 2;
       stats->valid[std::size_t(i)] = inside;
@@ -231,6 +235,26 @@ int BuildView(const ViewJob& job, const Slab& slab, const BuildOptions& options,
           after.cwiseProduct(photometry.gain) * photometry.falloff(k, full_x, full_y);
     }
   return reduction;
+}
+
+// Where a view's window lies: the reference grid moved by whole samples so that its centre is
+// nearest where the camera's image centre looks (its pinhole's line; distortion is negligible
+// there). (0, 0) for a camera whose line misses the plane.
+StOffset ViewWindowOffset(const StSampling& reference, const Rigid3& world_from_camera,
+                          const CameraIntrinsics& k) {
+  const Vec3 in_camera(((k.width - 1) * 0.5 - k.cx) / k.fx, ((k.height - 1) * 0.5 - k.cy) / k.fy,
+                       1.0);
+  const Vec3 direction = world_from_camera.rotation * in_camera;
+  const Vec3& centre = world_from_camera.translation;
+  const Vec3 normal = reference.window.normal();
+  const double along = normal.dot(direction);
+  if (!(std::abs(along) > 1e-12)) return {};
+  const double lambda = normal.dot(reference.window.origin - centre) / along;
+  if (!(lambda > 0)) return {};
+  const Vec2 at = reference.SampleOf(centre + lambda * direction);
+  const double k_off = at.x() - 0.5 * (reference.n_s - 1), l_off = at.y() - 0.5 * (reference.n_t - 1);
+  if (!(std::abs(k_off) < kMaxStOffset && std::abs(l_off) < kMaxStOffset)) return {};
+  return {int(std::lround(k_off)), int(std::lround(l_off))};
 }
 
 ColourSpread Spread(const std::vector<ViewStats>& stats, const std::vector<bool>& built,
@@ -349,6 +373,26 @@ LightField BuildLightField(const std::filesystem::path& dir, const CaptureManife
   if (jobs.empty()) throw Error("no camera of the session can be built");
 
   LightField lf({rows, cols, o.n_s, o.n_t}, SampleType::kSrgb8, slab);
+  if (o.view_windows) {
+    // Each camera's window; a camera that is not built takes its ideal grid position with its
+    // nearest built neighbour's orientation and pinhole (as its pose below).
+    std::vector<StOffset> offsets(image_of.size());
+    for (int r = 0; r < rows; ++r)
+      for (int c = 0; c < cols; ++c) {
+        const std::size_t i = std::size_t(r * cols + c);
+        if (built[i]) {
+          offsets[i] = ViewWindowOffset(lf.st_sampling(), cal.cameras[i].world_from_camera,
+                                        cal.cameras[i].intrinsics);
+          continue;
+        }
+        const auto from = NearestPresentViews(rows, cols, built, r, c);
+        const CalibratedCamera& nearest = cal.cameras[std::size_t(from[0].first * cols + from[0].second)];
+        offsets[i] = ViewWindowOffset(
+            lf.st_sampling(), {nearest.world_from_camera.rotation, slab.uv.camera_center(r, c)},
+            nearest.intrinsics);
+      }
+    lf.set_st_offsets(std::move(offsets));
+  }
   const std::size_t cells = std::size_t((o.n_s + kStatsStride - 1) / kStatsStride) *
                             std::size_t((o.n_t + kStatsStride - 1) / kStatsStride);
   std::vector<ViewStats> stats(image_of.size());
@@ -362,8 +406,9 @@ LightField BuildLightField(const std::filesystem::path& dir, const CaptureManife
     s.after.assign(cells, Vec3::Zero());
     s.before.assign(cells, Vec3::Zero());
     double decode = 0;
-    const int reduction =
-        BuildView(job, slab, o, lf.mutable_view_data(job.row, job.col), &s, &decode);
+    const int reduction = BuildView(job, lf.st_sampling(job.row, job.col),
+                                    lf.st_offset(job.row, job.col), o,
+                                    lf.mutable_view_data(job.row, job.col), &s, &decode);
     std::lock_guard lock(mutex);
     decode_seconds += decode;
     reduction_max = std::max(reduction_max.load(), reduction);

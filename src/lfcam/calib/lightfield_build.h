@@ -30,6 +30,10 @@ struct BuildOptions {
   // the luma (core/chroma_upsampling.h) or interpolated as any decoder does.
   ChromaUpsampling chroma = ChromaUpsampling::kGuided;
   std::optional<StDomain> st_domain;  // default: the calibration's (the world board, [0, 1]^2)
+  // Each view in its own window (format version 4): the st domain's grid moved by whole samples
+  // to be centred where the camera's image centre looks, so that together the views cover what
+  // every camera saw. Otherwise every view samples the st domain itself.
+  bool view_windows = false;
   bool allow_missing = false;  // fill cameras without an image or calibration from neighbours
   bool photometric_correction = true;  // when the calibration has it
   std::string shot = "scene";  // the shot to build (the world shot shows the board at the st-plane)

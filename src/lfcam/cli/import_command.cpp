@@ -191,7 +191,8 @@ void AddImportCommand(CLI::App& app) {
     if (o.pitch_mm && grid.positions_known)
       throw UsageError("--pitch-mm: the names give the cameras' positions");
     const ImportedSession session = MakeImportedSession(f->dir, grid, o);
-    // By default the views' own sample spacing over the domain every camera sees.
+    // By default the views' own sample spacing, each view in its own window.
+    b.view_windows = true;
     const StDomain& domain = b.st_domain.value_or(session.calibration.slab.st_domain);
     std::tie(b.n_s, b.n_t) =
         st_size.value_or(std::pair{int(std::lround(grid.width * domain.s_extent())),

@@ -36,6 +36,18 @@ nlohmann::json CameraCentres(const LightFieldHeader& h) {
   return cameras;
 }
 
+// Each view's st window (format version 4): null when the views share the st domain, else each
+// view's offset from it in samples.
+nlohmann::json StWindows(const LightFieldHeader& h) {
+  if (h.st_offsets.empty()) return nullptr;
+  nlohmann::json views = nlohmann::json::array();
+  for (std::size_t i = 0; i < h.st_offsets.size(); ++i)
+    views.push_back({{"row", i / std::size_t(h.dims.cols)},
+                     {"col", i % std::size_t(h.dims.cols)},
+                     {"st_offset", {h.st_offsets[i].k, h.st_offsets[i].l}}});
+  return views;
+}
+
 nlohmann::json InfoJson(const LightFieldHeader& h) {
   const std::size_t bytes =
       h.dims.samples_per_view() * h.dims.view_count() * 3 * BytesPerChannel(h.sample_type);
@@ -55,6 +67,7 @@ nlohmann::json InfoJson(const LightFieldHeader& h) {
           {"metadata", h.metadata},
           {"measured_poses", !h.measured_poses.empty()},
           {"view_cameras", !h.measured_poses.empty() && h.measured_poses.front().intrinsics},
+          {"view_windows", StWindows(h)},
           {"cameras", CameraCentres(h)}};
 }
 
@@ -107,6 +120,15 @@ void AddInfoCommand(CLI::App& app) {
                Vec(s.st.x_axis), Vec(s.st.y_axis), s.st.width_mm, s.st.height_mm);
     fmt::print("  st domain     [{}, {}] x [{}, {}]\n", s.st_domain.s0, s.st_domain.s1,
                s.st_domain.t0, s.st_domain.t1);
+    if (!h.st_offsets.empty()) {
+      int k0 = 0, k1 = 0, l0 = 0, l1 = 0;
+      for (const StOffset& o : h.st_offsets)
+        k0 = std::min(k0, o.k), k1 = std::max(k1, o.k), l0 = std::min(l0, o.l),
+        l1 = std::max(l1, o.l);
+      fmt::print("  view windows  each view its own: the st domain's grid moved by {}..{} samples "
+                 "along s, {}..{} along t\n",
+                 k0, k1, l0, l1);
+    }
     fmt::print("  plane gap     {:.1f} mm\n", s.separation_mm());
     // Metadata: in full when short; else each top-level field, long values elided.
     const std::string metadata = JsonToText(h.metadata);

@@ -431,5 +431,59 @@ TEST_F(LightFieldFileTest, ViewIntrinsicsRoundTripAsVersionThree) {
   EXPECT_THROW(lf.set_measured_poses(poses), Error);
 }
 
+// Format version 4: each view's own st window (its offset from the reference grid in whole
+// samples) round-trips and makes the file version 4; a version 3 file that claims windows,
+// windows on some views only, offsets that are not whole numbers or out of range are refused
+// naming the view; all-zero offsets are the shared grid (version 2 or 3).
+TEST_F(LightFieldFileTest, ViewWindowsRoundTripAsVersionFour) {
+  LightField lf = MakeLightField(SampleType::kSrgb8);
+  std::vector<StOffset> offsets;
+  for (int i = 0; i < 12; ++i) offsets.push_back({3 * (i % 4) - 4, -2 * (i / 4)});
+  lf.set_st_offsets(offsets);
+  const fs::path p = dir_ / "windows.lf";
+  WriteLightField(lf, p);
+  EXPECT_EQ(ReadLightFieldHeader(p).version, 4u);
+  const LightField back = ReadLightField(p);
+  ASSERT_TRUE(back.has_view_windows());
+  EXPECT_EQ(back.st_offsets(), offsets);
+  EXPECT_EQ(back.st_offset(2, 3), (StOffset{5, -4}));
+  // The union of the windows, in reference samples and in window units.
+  const LightField::SampleRange all = back.st_union_samples();
+  EXPECT_EQ(all.k0, -4);
+  EXPECT_EQ(all.k1, 5 + 36);
+  EXPECT_EQ(all.l0, -4);
+  EXPECT_EQ(all.l1, 20);
+  const double ds = 1.4 / 37;
+  EXPECT_NEAR(back.st_union().s0, -0.2 - 4 * ds, 1e-12);
+  EXPECT_NEAR(back.st_union().s1, 1.2 + 5 * ds, 1e-12);
+  EXPECT_NEAR(back.st_sampling(2, 3).s_of(0), back.st_sampling().s_of(5), 1e-12);
+
+  const fs::path bad = dir_ / "bad.lf";
+  const auto refused = [&](const std::function<void(nlohmann::json&)>& edit) {
+    fs::copy_file(p, bad, fs::copy_options::overwrite_existing);
+    RewriteHeader(bad, edit);
+    return ReadError(bad);
+  };
+  std::string bytes = Bytes(p);
+  bytes[8] = 3;
+  Save(bad, bytes);
+  EXPECT_NE(ReadError(bad).find("version 3 file has no view st windows"), std::string::npos)
+      << ReadError(bad);
+  std::string e = refused([](nlohmann::json& h) { h["views"][5].erase("st_offset"); });
+  EXPECT_NE(e.find("view (row 1, col 1)"), std::string::npos) << e;
+  EXPECT_NE(e.find("every view or none"), std::string::npos) << e;
+  e = refused([](nlohmann::json& h) { h["views"][0]["st_offset"] = {0.5, 1}; });
+  EXPECT_NE(e.find("st_offset must be [k, l]"), std::string::npos) << e;
+  e = refused([](nlohmann::json& h) { h["views"][0]["st_offset"] = {1 << 24, 0}; });
+  EXPECT_NE(e.find("out of range"), std::string::npos) << e;
+  EXPECT_THROW(lf.set_st_offsets({{1, 1}}), Error);  // not one per view
+
+  // No windows (all zero): the shared grid, written as before.
+  lf.set_st_offsets(std::vector<StOffset>(12));
+  EXPECT_FALSE(lf.has_view_windows());
+  WriteLightField(lf, p);
+  EXPECT_EQ(ReadLightFieldHeader(p).version, 2u);
+}
+
 }  // namespace
 }  // namespace lfcam

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <algorithm>
 #include <climits>
 
 #include "lfcam/core/color.h"
@@ -34,12 +35,32 @@ void FillViewWithMean(LightField& lf, int row, int col,
     throw Error("a view is filled from at least one view of an srgb8 light field");
   const auto& lut = SrgbDecodeTable();
   std::uint8_t* out = lf.mutable_view_data(row, col);
-  const std::size_t n = lf.view_bytes();
-  for (std::size_t b = 0; b < n; ++b) {
-    float sum = 0;
-    for (const auto& [r, c] : from) sum += lut[lf.view_data(r, c)[b]];
-    out[b] = LinearToSrgb8Table(sum / float(from.size()));
+  if (!lf.has_view_windows()) {
+    const std::size_t n = lf.view_bytes();
+    for (std::size_t b = 0; b < n; ++b) {
+      float sum = 0;
+      for (const auto& [r, c] : from) sum += lut[lf.view_data(r, c)[b]];
+      out[b] = LinearToSrgb8Table(sum / float(from.size()));
+    }
+    return;
   }
+  // Views with their own windows: each sample of the filled view's window from the same st
+  // sample of every view `from` (the nearest sample of its window where the point lies outside).
+  const int n_s = lf.dims().n_s, n_t = lf.dims().n_t;
+  const StOffset to = lf.st_offset(row, col);
+  for (int l = 0; l < n_t; ++l)
+    for (int k = 0; k < n_s; ++k)
+      for (int ch = 0; ch < 3; ++ch) {
+        float sum = 0;
+        for (const auto& [r, c] : from) {
+          const StOffset o = lf.st_offset(r, c);
+          const int kk = std::clamp(k + to.k - o.k, 0, n_s - 1);
+          const int ll = std::clamp(l + to.l - o.l, 0, n_t - 1);
+          sum += lut[lf.view_data(r, c)[(std::size_t(ll) * n_s + std::size_t(kk)) * 3 + ch]];
+        }
+        out[(std::size_t(l) * n_s + std::size_t(k)) * 3 + ch] =
+            LinearToSrgb8Table(sum / float(from.size()));
+      }
 }
 
 std::string FilledViewLabel(int row, int col, const std::vector<std::pair<int, int>>& from) {

@@ -660,23 +660,11 @@ ImportedSession MakeImportedSession(const fs::path& dir, const ImportedGrid& g,
                         0);
   slab.st.x_axis = Vec3::UnitX();
   slab.st.y_axis = Vec3::UnitY();
-  // The sampled domain: what every camera sees there, not only the central one (each camera's
-  // window is the central one's moved by the camera's offset), so that a render at any of the
-  // grid's cameras has no band outside the st domain.
-  double x_lo = 0, x_hi = 0, y_lo = 0, y_hi = 0;
-  for (const GridView& v : g.views)
-    if (!v.file.empty()) {
-      x_lo = std::min(x_lo, v.x_mm - centre.x()), x_hi = std::max(x_hi, v.x_mm - centre.x());
-      y_lo = std::min(y_lo, v.y_mm - centre.y()), y_hi = std::max(y_hi, v.y_mm - centre.y());
-    }
-  // Widened by whole samples of the views' own spacing (one pixel of the central camera), so
-  // that the central camera's pixels stay st samples.
-  auto whole = [](double extent_mm, double window_mm, int pixels) {
-    return std::ceil(extent_mm / window_mm * pixels - 1e-9) / pixels;
-  };
-  slab.st_domain = {
-      -whole(-x_lo, slab.st.width_mm, g.width), -whole(-y_lo, slab.st.height_mm, g.height),
-      1 + whole(x_hi, slab.st.width_mm, g.width), 1 + whole(y_hi, slab.st.height_mm, g.height)};
+  // The reference window is what the central camera sees; each view is built in its own window
+  // (BuildOptions::view_windows: the reference moved by the camera's offset in whole samples), so
+  // that together they cover what every camera saw and a render at any of the grid's cameras has
+  // no band outside the st domain.
+  slab.st_domain = {};
   slab.validate();
 
   CalibrationFile& cal = s.calibration;

@@ -104,25 +104,39 @@ TEST(GridImport, ABlenderGridOfAPlaneBecomesViewsThatAgreeOnIt) {
   EXPECT_NEAR(session.focal_px, kFocalPx, 1e-9);
   EXPECT_NEAR(session.st_distance_mm, kPlaneMm, 0.03 * kPlaneMm);
 
-  // With the st-plane on the textured plane, every view is the same picture of it, and the
-  // central one is the central camera's image.
+  // With the st-plane on the textured plane, the reference window is what the central camera
+  // sees, and built in its own window (the reference moved by the camera's offset, a whole number
+  // of samples here) every view is its own camera's image, sample for sample.
   ImportOptions exact;
   exact.st_distance_mm = kPlaneMm;
   const ImportedSession s = MakeImportedSession(dir, grid, exact);
-  // The window the central camera sees (the import's default domain covers every camera's).
-  EXPECT_LT(s.calibration.slab.st_domain.s0, 0);
-  EXPECT_GT(s.calibration.slab.st_domain.t1, 1);
+  EXPECT_EQ(s.calibration.slab.st_domain.s0, 0);
+  EXPECT_EQ(s.calibration.slab.st_domain.t1, 1);
   BuildOptions b;
   b.n_s = kWidth;
   b.n_t = kHeight;
-  b.st_domain = StDomain{};
+  b.view_windows = true;
   const LightField lf = BuildLightField(dir, s.manifest, s.calibration, b);
-  const cv::Rect inner(12, 12, kWidth - 24, kHeight - 24);  // away from the views' edges
-  const cv::Mat centre = ViewImage(lf, 1, 1);
-  EXPECT_GT(Psnr(centre(inner), cv::imread((dir / grid.view(1, 1).file).string())(inner)), 40.0);
+  ASSERT_TRUE(lf.has_view_windows());
+  const cv::Rect inner(2, 2, kWidth - 4, kHeight - 4);  // the bilinear reads' last sample aside
+  const int step = int(std::lround(40.0 * kFocalPx / kPlaneMm));  // samples between cameras
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_EQ(lf.st_offset(r, c), (StOffset{(c - 1) * step, (r - 1) * step})) << r << "," << c;
+      EXPECT_GT(Psnr(ViewImage(lf, r, c)(inner),
+                     cv::imread((dir / grid.view(r, c).file).string())(inner)),
+                40.0)
+          << r << "," << c;
+    }
+  // Shared windows (every view samples the central camera's window): the same picture of the
+  // plane in every view.
+  b.view_windows = false;
+  const LightField shared = BuildLightField(dir, s.manifest, s.calibration, b);
+  const cv::Rect away(12, 12, kWidth - 24, kHeight - 24);  // away from the views' edges
+  const cv::Mat centre = ViewImage(shared, 1, 1);
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c)
-      EXPECT_GT(Psnr(ViewImage(lf, r, c)(inner), centre(inner)), 35.0) << r << "," << c;
+      EXPECT_GT(Psnr(ViewImage(shared, r, c)(away), centre(away)), 35.0) << r << "," << c;
   // A mirrored convention would put the views 2 x 40 mm apart on the plane: far from agreeing.
   EXPECT_EQ(lf.camera_center(0, 2), Vec3(40, -40, kPlaneMm));
   fs::remove_all(dir);
@@ -143,6 +157,7 @@ TEST(GridImport, EveryParallelViewKeepsItsPixelsAtAWholeSampleDistance) {
   auto run = testing::Lfcam("import " + dir.string() + " --out " + lf + " --json --quiet");
   ASSERT_EQ(run.status, 0) << run.output;
   EXPECT_NEAR(nlohmann::json::parse(run.output)["st_distance_mm"].get<double>(), kPlaneMm, 1e-6);
+  EXPECT_EQ(ReadLightFieldHeader(lf).version, 4u);  // each view in its own window
   for (const auto& [r, c] : {std::pair{0, 0}, {3, 3}, {1, 2}, {0, 3}}) {
     const std::string as = dir.string() + "_as.png";
     run = testing::Lfcam(fmt::format("render {} --as-camera {},{} --out {} --quiet", lf, r, c, as));
