@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -252,7 +253,8 @@ StOffset ViewWindowOffset(const StSampling& reference, const Rigid3& world_from_
   const double lambda = normal.dot(reference.window.origin - centre) / along;
   if (!(lambda > 0)) return {};
   const Vec2 at = reference.SampleOf(centre + lambda * direction);
-  const double k_off = at.x() - 0.5 * (reference.n_s - 1), l_off = at.y() - 0.5 * (reference.n_t - 1);
+  const double k_off = at.x() - 0.5 * (reference.n_s - 1),
+               l_off = at.y() - 0.5 * (reference.n_t - 1);
   if (!(std::abs(k_off) < kMaxStOffset && std::abs(l_off) < kMaxStOffset)) return {};
   return {int(std::lround(k_off)), int(std::lround(l_off))};
 }
@@ -374,22 +376,32 @@ LightField BuildLightField(const std::filesystem::path& dir, const CaptureManife
 
   LightField lf({rows, cols, o.n_s, o.n_t}, SampleType::kSrgb8, slab);
   if (o.view_windows) {
-    // Each camera's window; a camera that is not built takes its ideal grid position with its
-    // nearest built neighbour's orientation and pinhole (as its pose below).
+    // Each camera's window; a camera that is not built takes the plane through the built ones'
+    // (the windows move linearly across a rigid array), or its nearest neighbour's.
     std::vector<StOffset> offsets(image_of.size());
+    Eigen::MatrixXd a(Eigen::Index(jobs.size()), 3);
+    Eigen::MatrixXd b(Eigen::Index(jobs.size()), 2);
+    for (std::size_t j = 0; j < jobs.size(); ++j) {
+      const std::size_t i = std::size_t(jobs[j].row * cols + jobs[j].col);
+      offsets[i] = ViewWindowOffset(lf.st_sampling(), cal.cameras[i].world_from_camera,
+                                    cal.cameras[i].intrinsics);
+      a.row(Eigen::Index(j)) << 1.0, jobs[j].col, jobs[j].row;
+      b.row(Eigen::Index(j)) << offsets[i].k, offsets[i].l;
+    }
+    const bool plane = Eigen::FullPivLU<Eigen::MatrixXd>(a).rank() == 3;
+    const Eigen::MatrixXd fit =
+        plane ? Eigen::MatrixXd(a.colPivHouseholderQr().solve(b)) : Eigen::MatrixXd();
     for (int r = 0; r < rows; ++r)
       for (int c = 0; c < cols; ++c) {
         const std::size_t i = std::size_t(r * cols + c);
-        if (built[i]) {
-          offsets[i] = ViewWindowOffset(lf.st_sampling(), cal.cameras[i].world_from_camera,
-                                        cal.cameras[i].intrinsics);
-          continue;
+        if (built[i]) continue;
+        if (plane) {
+          const Eigen::RowVector2d at = Eigen::RowVector3d(1.0, c, r) * fit;
+          offsets[i] = {int(std::lround(at(0))), int(std::lround(at(1)))};
+        } else {
+          const auto from = NearestPresentViews(rows, cols, built, r, c);
+          offsets[i] = offsets[std::size_t(from[0].first * cols + from[0].second)];
         }
-        const auto from = NearestPresentViews(rows, cols, built, r, c);
-        const CalibratedCamera& nearest = cal.cameras[std::size_t(from[0].first * cols + from[0].second)];
-        offsets[i] = ViewWindowOffset(
-            lf.st_sampling(), {nearest.world_from_camera.rotation, slab.uv.camera_center(r, c)},
-            nearest.intrinsics);
       }
     lf.set_st_offsets(std::move(offsets));
   }
@@ -406,9 +418,9 @@ LightField BuildLightField(const std::filesystem::path& dir, const CaptureManife
     s.after.assign(cells, Vec3::Zero());
     s.before.assign(cells, Vec3::Zero());
     double decode = 0;
-    const int reduction = BuildView(job, lf.st_sampling(job.row, job.col),
-                                    lf.st_offset(job.row, job.col), o,
-                                    lf.mutable_view_data(job.row, job.col), &s, &decode);
+    const int reduction =
+        BuildView(job, lf.st_sampling(job.row, job.col), lf.st_offset(job.row, job.col), o,
+                  lf.mutable_view_data(job.row, job.col), &s, &decode);
     std::lock_guard lock(mutex);
     decode_seconds += decode;
     reduction_max = std::max(reduction_max.load(), reduction);

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstring>
 #include <fstream>
 
@@ -19,6 +20,8 @@
 #include "lfcam/core/lightfield_compare.h"
 #include "lfcam/core/lightfield_file.h"
 #include "lfcam/core/test_support.h"
+#include "lfcam/render/cpu_renderer.h"
+#include "lfcam/render/rig_camera.h"
 #include "lfcam/sim/capture_simulation.h"
 #include "lfcam/sim/simulate_lightfield.h"
 #include "lfcam/sim/test_capture.h"
@@ -223,6 +226,66 @@ TEST_F(LightFieldBuildTest, BadImagesAndMismatchedCalibrationsAreNamed) {
               BuildLightField(session(), other, *calibration_, Small());
             }).find("calibration is for 648x486"),
             std::string::npos);
+}
+
+// Each view in its own window (--st-windows views): the same samples as the shared grid where
+// both hold the point, and together the views cover what every camera saw, so that a render as
+// a corner camera over its whole frame has no band outside the st domain; a missing camera is
+// filled in its own window.
+TEST_F(LightFieldBuildTest, EachViewInItsOwnWindowCoversWhatItsCameraSaw) {
+  BuildOptions o;
+  o.n_s = 162;
+  o.n_t = 126;
+  o.st_domain = StDomain{-2.6, -2.0, 3.6, 3.0};  // about the central camera's frame
+  const LightField shared = BuildLightField(session(), ReadManifest(session()), *calibration_, o);
+  o.view_windows = true;
+  const LightField own = BuildLightField(session(), ReadManifest(session()), *calibration_, o);
+  ASSERT_TRUE(own.has_view_windows());
+  // The corner cameras' windows move toward their own side, the grid's centre's not at all.
+  EXPECT_LT(own.st_offset(0, 0).k, 0);
+  EXPECT_LT(own.st_offset(0, 0).l, 0);
+  EXPECT_GT(own.st_offset(2, 2).k, 0);
+  EXPECT_GT(own.st_offset(2, 2).l, 0);
+  EXPECT_LE(std::abs(own.st_offset(1, 1).k), 3);  // (the domain is centred by eye)
+  EXPECT_LE(std::abs(own.st_offset(1, 1).l), 3);
+  // Sample for sample the same as the shared grid where both hold the point.
+  int largest = 0;
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) {
+      const StOffset w = own.st_offset(r, c);
+      for (int l = 0; l < o.n_t; ++l)
+        for (int k = 0; k < o.n_s; ++k) {
+          const int ks = k + w.k, ls = l + w.l;
+          if (ks < 0 || ls < 0 || ks >= o.n_s || ls >= o.n_t) continue;
+          for (int ch = 0; ch < 3; ++ch)
+            largest = std::max(
+                largest,
+                std::abs(int(own.view_data(r, c)[(std::size_t(l) * o.n_s + k) * 3 + ch]) -
+                         int(shared.view_data(r, c)[(std::size_t(ls) * o.n_s + ks) * 3 + ch])));
+        }
+    }
+  EXPECT_LE(largest, 1);
+  // As the corner cameras, over their whole frames.
+  for (const auto& [r, c] : {std::pair{0, 0}, {2, 2}, {0, 2}}) {
+    const VirtualCamera camera(RigCameraParams(own, r, c));
+    const double hit_own = cv::countNonZero(RenderLightFieldCpu(own, camera).hit_mask),
+                 hit_shared = cv::countNonZero(RenderLightFieldCpu(shared, camera).hit_mask);
+    const double pixels = double(camera.width()) * camera.height();
+    EXPECT_GT(hit_own / pixels, 0.99) << r << "," << c;
+    EXPECT_GT(hit_own, hit_shared) << r << "," << c;
+  }
+  // A missing camera, filled from its neighbours in its own window: not black where they saw.
+  CaptureManifest m = ReadManifest(session());
+  for (Shot& shot : m.shots)
+    if (shot.kind == ShotKind::kScene)
+      std::erase_if(shot.images, [](const ShotImage& i) { return i.row == 0 && i.col == 0; });
+  o.allow_missing = true;
+  const LightField filled = BuildLightField(session(), m, *calibration_, o);
+  // (where the others' windows put it: a module's mounting error, up to a degree, moves a window
+  // by up to 3 samples here, and the fit through the other eight by as much again)
+  EXPECT_NEAR(filled.st_offset(0, 0).k, own.st_offset(0, 0).k, 6);
+  EXPECT_NEAR(filled.st_offset(0, 0).l, own.st_offset(0, 0).l, 6);
+  EXPECT_GT(filled.linear_rgb(0, 0, o.n_s / 2, o.n_t / 2).sum(), 0.01);
 }
 
 }  // namespace

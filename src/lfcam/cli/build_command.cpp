@@ -23,7 +23,8 @@ void AddBuildCommand(CLI::App& app) {
       app.add_subcommand("build", "Build the light field of a calibrated capture session");
   struct Flags {
     std::string session, calibration, out, st_res = "1248x1152", st_domain, compression = "none",
-                                           shot = "scene", resampling = "linear", chroma = "guided";
+                                           shot = "scene", resampling = "linear", chroma = "guided",
+                                           st_windows = "shared";
     bool allow_missing = false, no_color = false, json = false, quiet = false;
   };
   auto flags = std::make_shared<Flags>();
@@ -35,6 +36,12 @@ void AddBuildCommand(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--st-domain", flags->st_domain,
                       "Sampled st domain S0,T0,S1,T1 (view-window units; default 0,0,1,1)");
+  command
+      ->add_option("--st-windows", flags->st_windows,
+                   "shared (every view samples the st domain: what the paper's array all sees) "
+                   "or views (each view the st domain's grid moved to where its camera looks: "
+                   "together they cover what every camera saw; format version 4)")
+      ->capture_default_str();
   command->add_option("--compress", flags->compression, "none or zstd")->capture_default_str();
   command->add_option("--shot", flags->shot, "The session's shot to build (scene, or world)")
       ->capture_default_str();
@@ -69,6 +76,7 @@ void AddBuildCommand(CLI::App& app) {
         FlagValue("--resampling", [&] { return ResamplingFromString(flags->resampling); });
     o.chroma = FlagValue("--chroma", [&] { return ChromaUpsamplingFromString(flags->chroma); });
     o.photometric_correction = !flags->no_color;
+    o.view_windows = ParseStWindows("--st-windows", flags->st_windows);
     RequireWritableOutput(flags->out, "--out");
     const CaptureManifest manifest = ReadManifest(flags->session);
     const CalibrationFile calibration = ReadCalibration(flags->calibration);

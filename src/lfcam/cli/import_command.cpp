@@ -93,7 +93,8 @@ void AddImportCommand(CLI::App& app) {
       "plenoptic NAME_RR_CC views, described)");
   struct Flags {
     std::string dir, out, st_res, st_domain, compression = "none", resampling = "linear",
-                                             chroma = "guided", naming = "auto", rig = "auto";
+                                             chroma = "guided", naming = "auto", rig = "auto",
+                                             st_windows = "views";
     double st_distance = 0, focal_px = 0, focal_mm = 0, sensor_width_mm = 0, pitch_mm = 0;
     bool allow_missing = false, json = false, quiet = false;
   };
@@ -127,7 +128,14 @@ void AddImportCommand(CLI::App& app) {
   auto* st_domain = command->add_option(
       "--st-domain", f->st_domain,
       "Parallel rig: sampled st domain S0,T0,S1,T1 (view-window units, [0, 1]^2 being what the "
-      "central camera sees on the st-plane; default: what every camera sees there)");
+      "central camera sees on the st-plane, the default)");
+  auto* st_windows =
+      command
+          ->add_option("--st-windows", f->st_windows,
+                       "Parallel rig: views (each view in its own window, the st domain's grid "
+                       "moved to where its camera looks: its own pixels) or shared (every view "
+                       "samples the st domain)")
+          ->capture_default_str();
   command->add_option("--focal-px", f->focal_px, "The views' focal length in pixels");
   command->add_option("--focal-mm", f->focal_mm,
                       "The lens's focal length, mm (with --sensor-width-mm)");
@@ -144,7 +152,7 @@ void AddImportCommand(CLI::App& app) {
                     "Fill views missing from the grid from their nearest neighbours (recorded)");
   command->add_flag("--json", f->json, "Print a summary as JSON on stdout");
   command->add_flag("--quiet", f->quiet, "No progress bar");
-  command->callback([f, st_res, st_domain, resampling] {
+  command->callback([f, st_res, st_domain, resampling, st_windows] {
     ImportOptions o;
     auto positive = [](const char* flag, double value) -> std::optional<double> {
       if (value == 0) return std::nullopt;
@@ -179,7 +187,7 @@ void AddImportCommand(CLI::App& app) {
     for (const std::string& ignored : grid.ignored)
       if (!f->json) fmt::print(stderr, "lfcam: note: {} is not a view: left out\n", ignored);
     if (grid.rig == RigModel::kRectified) {
-      for (const CLI::Option* flag : {st_res, st_domain, resampling})
+      for (const CLI::Option* flag : {st_res, st_domain, resampling, st_windows})
         if (flag->count() > 0)
           throw UsageError(fmt::format(
               "{}: a rectified rig's views are stored sample for sample, not resampled (--rig "
@@ -192,7 +200,7 @@ void AddImportCommand(CLI::App& app) {
       throw UsageError("--pitch-mm: the names give the cameras' positions");
     const ImportedSession session = MakeImportedSession(f->dir, grid, o);
     // By default the views' own sample spacing, each view in its own window.
-    b.view_windows = true;
+    b.view_windows = ParseStWindows("--st-windows", f->st_windows);
     const StDomain& domain = b.st_domain.value_or(session.calibration.slab.st_domain);
     std::tie(b.n_s, b.n_t) =
         st_size.value_or(std::pair{int(std::lround(grid.width * domain.s_extent())),

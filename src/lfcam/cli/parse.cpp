@@ -64,6 +64,12 @@ StDomain ParseStDomain(const std::string& flag, const std::string& text) {
   return {d[0], d[1], d[2], d[3]};
 }
 
+bool ParseStWindows(const std::string& flag, const std::string& text) {
+  if (text == "shared") return false;
+  if (text == "views") return true;
+  throw UsageError(fmt::format("{}: '{}' is not shared or views", flag, text));
+}
+
 void RequireNewOrEmptyFolder(const std::string& flag, const std::string& path) {
   std::error_code ec;
   if (std::filesystem::exists(path, ec) &&

@@ -31,6 +31,8 @@ std::pair<int, int> ParseSize(const std::string& flag, const std::string& text, 
 
 // "S0,T0,S1,T1": the sampled st domain, S1 > S0, T1 > T0, each within +-kMaxStDomainBound.
 StDomain ParseStDomain(const std::string& flag, const std::string& text);
+// "shared" (false) or "views" (true: each view in its own st window).
+bool ParseStWindows(const std::string& flag, const std::string& text);
 
 // An output folder (`export --out`, `depth --all --out`, `simulate lightfield --depth-out`): new,
 // or an empty folder; otherwise UsageError naming `flag`.

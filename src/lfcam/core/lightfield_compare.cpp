@@ -18,6 +18,10 @@ LightFieldComparison CompareLightFields(const LightField& a, const LightField& b
                     b.dims().cols, b.dims().n_s, b.dims().n_t));
   if (a.sample_type() != SampleType::kSrgb8 || b.sample_type() != SampleType::kSrgb8)
     throw Error("only srgb8 light fields can be compared");
+  if (a.st_offsets() != b.st_offsets())
+    throw Error(
+        "the light fields' views sample different st windows (format version 4): their samples "
+        "are not the same points; compare renders instead");
   const auto& d = a.dims();
   LightFieldComparison out;
   out.worst_view_psnr_db = std::numeric_limits<double>::infinity();
