@@ -125,9 +125,10 @@ void AddInfoCommand(CLI::App& app) {
       for (const StOffset& o : h.st_offsets)
         k0 = std::min(k0, o.k), k1 = std::max(k1, o.k), l0 = std::min(l0, o.l),
         l1 = std::max(l1, o.l);
-      fmt::print("  view windows  each view its own: the st domain's grid moved by {}..{} samples "
-                 "along s, {}..{} along t\n",
-                 k0, k1, l0, l1);
+      fmt::print(
+          "  view windows  each view its own: the st domain's grid moved by {}..{} samples "
+          "along s, {}..{} along t\n",
+          k0, k1, l0, l1);
     }
     fmt::print("  plane gap     {:.1f} mm\n", s.separation_mm());
     // Metadata: in full when short; else each top-level field, long values elided.

@@ -12,8 +12,8 @@
 #include <array>
 #include <bit>
 #include <cerrno>
-#include <cstring>
 #include <cstdlib>
+#include <cstring>
 #include <vector>
 
 #include "lfcam/core/atomic_file.h"
@@ -225,7 +225,8 @@ ParsedFile ParseHeader(const InputFile& fd) {
         throw Error(fmt::format("{}: st windows must be given for every view or none", where));
       if (has_window) {
         if (h.version < 4)
-          throw Error(fmt::format("{}: a version {} file has no view st windows", where, h.version));
+          throw Error(
+              fmt::format("{}: a version {} file has no view st windows", where, h.version));
         const auto& o = JsonField(v, "st_offset", where);
         const std::string field = where + ": st_offset";
         if (!o.is_array() || o.size() != 2 || !o[0].is_number_integer() ||

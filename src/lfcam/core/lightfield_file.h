@@ -48,7 +48,7 @@ struct LightFieldHeader {
   Slab slab;
   nlohmann::json metadata;
   std::vector<ViewPose> measured_poses;  // empty, or one per view
-  std::vector<StOffset> st_offsets;      // empty (the views share the reference grid), or one per view
+  std::vector<StOffset> st_offsets;  // empty (the views share the reference grid), or one per view
   std::uint64_t file_bytes = 0;
   std::uint64_t stored_sample_bytes = 0;
 };

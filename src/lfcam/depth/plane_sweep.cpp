@@ -52,17 +52,17 @@ cv::Mat ViewSrgba8(const LightField& lf, int row, int col) {
 struct SweepSetup {
   const LightField& lf;
   Vec3 ref_center;
-  cv::Mat ref;                      // the reference view (scaled), CV_8UC4
-  cv::Mat guide;                    // the same, CV_32FC3 in [0, 1]: the filters' guide
-  std::vector<cv::Mat> images;      // the other views (scaled), CV_8UC4
-  std::vector<Vec3> centers;        // their cameras' centres
-  std::vector<Side> sides;          // where each lies
-  StSampling ref_sampling;          // the reference view's window on the st-plane
+  cv::Mat ref;                        // the reference view (scaled), CV_8UC4
+  cv::Mat guide;                      // the same, CV_32FC3 in [0, 1]: the filters' guide
+  std::vector<cv::Mat> images;        // the other views (scaled), CV_8UC4
+  std::vector<Vec3> centers;          // their cameras' centres
+  std::vector<Side> sides;            // where each lies
+  StSampling ref_sampling;            // the reference view's window on the st-plane
   std::vector<StSampling> samplings;  // the other views' windows
-  double scale_x = 1, scale_y = 1;  // full-resolution samples per scaled sample
-  double st_depth = 0;              // D of the st-plane at the view's centre
-  double farthest_mm = 0;           // the largest baseline used
-  double sample_mm = 0;             // a scaled sample's size on the st-plane (the smaller side)
+  double scale_x = 1, scale_y = 1;    // full-resolution samples per scaled sample
+  double st_depth = 0;                // D of the st-plane at the view's centre
+  double farthest_mm = 0;             // the largest baseline used
+  double sample_mm = 0;               // a scaled sample's size on the st-plane (the smaller side)
 };
 
 // Scaled sample coordinates <-> full-resolution ones (sample centres at integers).
@@ -131,8 +131,9 @@ SweepSetup MakeSetup(const LightField& lf, int row, int col, int reach, double f
   if (setup.images.empty())
     throw Error(
         fmt::format("depth needs at least two views; this light field has {}x{}", d.rows, d.cols));
-  setup.st_depth = DepthOf(lf.slab(), setup.ref_sampling.Point((d.n_s - 1) / 2.0, (d.n_t - 1) / 2.0)) -
-                   DepthOf(lf.slab(), setup.ref_center);
+  setup.st_depth =
+      DepthOf(lf.slab(), setup.ref_sampling.Point((d.n_s - 1) / 2.0, (d.n_t - 1) / 2.0)) -
+      DepthOf(lf.slab(), setup.ref_center);
   const double ds = lf.st_sampling().ds_mm(), dt = lf.st_sampling().dt_mm();
   setup.sample_mm = std::min(ds * setup.scale_x, dt * setup.scale_y);
   return setup;

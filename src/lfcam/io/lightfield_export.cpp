@@ -87,7 +87,7 @@ ViewCamera ViewAsCamera(const LightField& lf, int row, int col) {
   if (!(d > 0))
     throw Error(fmt::format("view ({}, {}): its camera is not in front of the st-plane", row, col));
   const auto& dims = lf.dims();
-  const StSampling sampling = lf.st_sampling(row, col);  // the view's own window
+  const StSampling sampling = lf.st_sampling(row, col);       // the view's own window
   const double ds = sampling.ds_mm(), dt = sampling.dt_mm();  // mm a sample
   ViewCamera v;
   v.width = dims.n_s;

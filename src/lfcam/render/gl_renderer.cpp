@@ -304,7 +304,8 @@ double GlRenderer::RenderToTexture(const LightField& lf, const VirtualCamera& ca
   for (std::size_t i = 0; i < setup.cam_k_offset.size(); ++i)
     offsets.insert(offsets.end(), {setup.cam_k_offset[i], setup.cam_l_offset[i]});
   FillBuffer(buffers_[kCameraOffsets], offsets);
-  for (int b = 0; b < kBindings; ++b) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GLuint(b), buffers_[b]);
+  for (int b = 0; b < kBindings; ++b)
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GLuint(b), buffers_[b]);
   CheckGl("uploading the frame's set-up");
 
   const GLuint program = Program(mode, options);

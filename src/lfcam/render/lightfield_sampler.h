@@ -86,9 +86,8 @@ class LightFieldSampler {
     const AxisLerp r = AxisLerp::At(v * rows_ - 0.5, rows_);
     const double k = (s - s0_) * s_to_k_ - 0.5, l = (t - t0_) * t_to_l_ - 0.5;
     float acc[3] = {0, 0, 0}, weight = 0;
-    ForNearestCameras(c, r, [&](int row, int col, float w) {
-      weight += AccumulateAt(row, col, k, l, w, acc);
-    });
+    ForNearestCameras(
+        c, r, [&](int row, int col, float w) { weight += AccumulateAt(row, col, k, l, w, acc); });
     return Normalise(acc, weight, rgb);
   }
 
@@ -200,9 +199,9 @@ class LightFieldSampler {
   Vec3 p_ca_, n_ca_, u_scaled_, v_scaled_;
   Vec3 st_origin_, n_st_, s_scaled_, t_scaled_;
   double s0_, t0_, s_to_k_, t_to_l_;  // the reference grid
-  double u_s0_, u_s1_, u_t0_, u_t1_;   // the sampled domain: the union of the views' windows
-  std::vector<Vec3> camera_centers_;   // row-major
-  std::vector<StOffset> offsets_;      // each view's window, row-major; empty when shared
+  double u_s0_, u_s1_, u_t0_, u_t1_;  // the sampled domain: the union of the views' windows
+  std::vector<Vec3> camera_centers_;  // row-major
+  std::vector<StOffset> offsets_;     // each view's window, row-major; empty when shared
 };
 
 }  // namespace lfcam

@@ -64,8 +64,8 @@ struct RaySetup {
   int rows = 0, cols = 0, n_s = 0, n_t = 0;
   long long view_bytes = 0;
   int width = 0, height = 0;
-  PlaneAffines uv, st;                   // p_o against the uv- and st-planes
-  OriginConstants eye_st;                // the central lines (the st-domain test)
+  PlaneAffines uv, st;     // p_o against the uv- and st-planes
+  OriginConstants eye_st;  // the central lines (the st-domain test)
   // The sampled st domain in reference samples (lo_k, lo_l, hi_k, hi_l: the outer edges of the
   // union of the views' windows).
   float domain[4] = {0, 0, 0, 0};
@@ -73,7 +73,7 @@ struct RaySetup {
   // and the blend renormalises over the views that hold the point; otherwise reads clamp.
   bool view_windows = false;
   std::vector<float> cam_k_offset, cam_l_offset;  // each view's window offset (per camera)
-  std::vector<OriginConstants> lens_uv;  // per lens sample (the eye alone for a pinhole)
+  std::vector<OriginConstants> lens_uv;           // per lens sample (the eye alone for a pinhole)
   std::vector<OriginConstants> lens_st;
   // Per camera (row-major), the st constants of its own lines, one array per field (the
   // kernels gather them by camera index).

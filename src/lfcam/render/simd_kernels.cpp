@@ -88,8 +88,10 @@ MF Inside(const PlaneHit& h, int nx, int ny) {
 // Whether st coordinates lie in the sampled domain (the union of the views' windows).
 MF InsideDomain(const PlaneHit& h, const RaySetup& s) {
   const DF d;
-  const MF in_x = hn::And(hn::Ge(h.x, hn::Set(d, s.domain[0])), hn::Le(h.x, hn::Set(d, s.domain[2])));
-  const MF in_y = hn::And(hn::Ge(h.y, hn::Set(d, s.domain[1])), hn::Le(h.y, hn::Set(d, s.domain[3])));
+  const MF in_x =
+      hn::And(hn::Ge(h.x, hn::Set(d, s.domain[0])), hn::Le(h.x, hn::Set(d, s.domain[2])));
+  const MF in_y =
+      hn::And(hn::Ge(h.y, hn::Set(d, s.domain[1])), hn::Le(h.y, hn::Set(d, s.domain[3])));
   return hn::And(h.valid, hn::And(in_x, in_y));
 }
 
@@ -195,8 +197,8 @@ VF AddNearestCameras(const RaySetup& s, bool focal_plane, const ChunkPoints& p_s
                            hn::Sub(at_st.y, hn::GatherIndex(d, s.cam_l_offset.data(), index)),
                            at_st.valid};
       const VF w_in = hn::IfThenElseZero(Inside(local, s.n_s, s.n_t), w);
-      AddView(s, ViewOffset(s, rows[a], cols[b]), Lerp(local.x, s.n_s), Lerp(local.y, s.n_t),
-              w_in, acc);
+      AddView(s, ViewOffset(s, rows[a], cols[b]), Lerp(local.x, s.n_s), Lerp(local.y, s.n_t), w_in,
+              acc);
       held = hn::Add(held, w_in);
     }
   return held;
@@ -241,7 +243,8 @@ void RenderRowLensSamplesT(const RaySetup& s, bool focal_plane, int j, const Row
       // Views with their own windows: this lens sample's blend over the cameras that hold its
       // point, renormalised; a sample no camera holds misses.
       Rgb one_sample{hn::Zero(d), hn::Zero(d), hn::Zero(d)};
-      const VF held = AddNearestCameras(s, focal_plane, p_st, at_st, rows, cols, wr, wc, one_sample);
+      const VF held =
+          AddNearestCameras(s, focal_plane, p_st, at_st, rows, cols, wr, wc, one_sample);
       const MF read = hn::Gt(held, hn::Zero(d));
       const VF inv = hn::IfThenElseZero(read, hn::Div(one, hn::IfThenElse(read, held, one)));
       sum.r = hn::MulAdd(one_sample.r, inv, sum.r);
@@ -278,8 +281,8 @@ void RenderRowCamerasT(const RaySetup& s, const GridCameraWeight* uniform, int u
                                 OriginLanes::Broadcast(s.camera_st(index)), w, sum);
         weight = hn::Add(weight, w);
         held = hn::Add(held, h);
-        reads = hn::Add(reads, hn::IfThenElseZero(hn::RebindMask(di, hn::Gt(h, hn::Zero(d))),
-                                                  hn::Set(di, 1)));
+        reads = hn::Add(
+            reads, hn::IfThenElseZero(hn::RebindMask(di, hn::Gt(h, hn::Zero(d))), hn::Set(di, 1)));
       };
       if (uniform_count > 0) {
         for (int n = 0; n < uniform_count; ++n)

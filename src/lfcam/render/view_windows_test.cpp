@@ -68,8 +68,7 @@ cv::Mat HeldByEveryView(const LightField& shared, const VirtualCamera& camera, d
   for (int j = 0; j < camera.height(); ++j)
     for (int i = 0; i < camera.width(); ++i) {
       double k, l;
-      if (!sampler.StSampleAt(camera.e_c(), camera.focus_point(camera.pixel_direction(i, j)), k,
-                              l))
+      if (!sampler.StSampleAt(camera.e_c(), camera.focus_point(camera.pixel_direction(i, j)), k, l))
         continue;
       const double lo = 2 * kMargin + slack;
       if (k >= lo && k <= n_s - 1 - lo && l >= lo && l <= n_t - 1 - lo)
@@ -181,8 +180,7 @@ TEST(ViewWindows, TheGlRendererReadsEachViewInItsOwnWindow) {
     const cv::Mat both = frame.hit_mask & cpu.hit_mask;
     ASSERT_GT(cv::countNonZero(both), 0) << c.name;
     EXPECT_LT(MaxDifference(frame.image, cpu.image, both), 3.0 / 255) << c.name;
-    EXPECT_LT(double(cv::countNonZero(frame.hit_mask != cpu.hit_mask)) / double(both.total()),
-              0.01)
+    EXPECT_LT(double(cv::countNonZero(frame.hit_mask != cpu.hit_mask)) / double(both.total()), 0.01)
         << c.name;
   }
 }
