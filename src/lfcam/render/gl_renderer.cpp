@@ -223,10 +223,10 @@ void GlRenderer::Upload(const LightField& lf) {
   uploaded_dims_ = d;
 }
 
-unsigned GlRenderer::Program(int mode, const GlRenderOptions& options) {
-  const std::string defines =
-      fmt::format("#define WORKGROUP_X {}\n#define WORKGROUP_Y {}\n#define MODE {}\n",
-                  options.workgroup_x, options.workgroup_y, mode);
+unsigned GlRenderer::Program(int mode, bool view_windows, const GlRenderOptions& options) {
+  const std::string defines = fmt::format(
+      "#define WORKGROUP_X {}\n#define WORKGROUP_Y {}\n#define MODE {}\n#define VIEW_WINDOWS {}\n",
+      options.workgroup_x, options.workgroup_y, mode, view_windows ? 1 : 0);
   auto& program = programs_[defines];
   if (!program) program = CompileProgram(defines);
   return program;
@@ -308,7 +308,7 @@ double GlRenderer::RenderToTexture(const LightField& lf, const VirtualCamera& ca
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GLuint(b), buffers_[b]);
   CheckGl("uploading the frame's set-up");
 
-  const GLuint program = Program(mode, options);
+  const GLuint program = Program(mode, setup.view_windows, options);
   glUseProgram(program);
   const Uniforms u{program};
   u.Int2("frame_size", camera.width(), camera.height());
@@ -316,7 +316,6 @@ double GlRenderer::RenderToTexture(const LightField& lf, const VirtualCamera& ca
   u.Int2("st_size", d.n_s, d.n_t);
   glUniform4f(u.At("st_domain"), setup.domain[0], setup.domain[1], setup.domain[2],
               setup.domain[3]);
-  u.Int("view_windows", setup.view_windows ? 1 : 0);
   u.Plane("uv", setup.uv);
   u.Plane("st", setup.st);
   u.Origin("eye_st", setup.eye_st);

@@ -64,7 +64,7 @@ class GlRenderer {
 
  private:
   void Upload(const LightField& lf);
-  unsigned Program(int mode, const GlRenderOptions& options);
+  unsigned Program(int mode, bool view_windows, const GlRenderOptions& options);
   void EnsureOutput(int width, int height);
 
   std::unique_ptr<GlContext> context_;
@@ -76,7 +76,7 @@ class GlRenderer {
   int output_width_ = 0, output_height_ = 0;
   unsigned buffers_[6] = {0, 0, 0, 0, 0, 0};  // the shader's storage buffers
   unsigned timer_ = 0;
-  std::map<std::string, unsigned> programs_;  // by mode and work group size
+  std::map<std::string, unsigned> programs_;  // by mode, view windows and work group size
   long long last_lens_count_ = 0;
 };
 

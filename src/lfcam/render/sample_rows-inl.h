@@ -160,13 +160,13 @@ struct RowFunctions {
 };
 
 // Where the lines from origin `o` through the chunk's points in focus meet the st-plane, and
-// whether they meet the sampled domain.
+// whether they meet `bounds` (lo k, lo l, hi k, hi l: the sampled domain, RaySetup::domain).
 struct Hit {
   VF k, l;
   hn::Mask<DF> inside;
 };
-inline Hit Project(const OriginConstants& o, const RowFunctions& row, const VF& pixel, int n_s,
-                   int n_t) {
+inline Hit Project(const OriginConstants& o, const RowFunctions& row, const VF& pixel,
+                   const float bounds[4]) {
   const DF d;
   const VF den =
       hn::Sub(hn::MulAdd(hn::Set(d, row.dn), pixel, hn::Set(d, row.n0)), hn::Set(d, o.n_o));
@@ -175,10 +175,16 @@ inline Hit Project(const OriginConstants& o, const RowFunctions& row, const VF& 
   const VF y = hn::MulAdd(hn::Set(d, row.dy), pixel, hn::Set(d, row.y0));
   const VF k = hn::MulAdd(lambda, hn::Sub(x, hn::Set(d, o.x_o)), hn::Set(d, o.x0));
   const VF l = hn::MulAdd(lambda, hn::Sub(y, hn::Set(d, o.y_o)), hn::Set(d, o.y0));
-  const VF lo = hn::Set(d, -0.5f);
-  const auto in_k = hn::And(hn::Ge(k, lo), hn::Le(k, hn::Set(d, float(n_s) - 0.5f)));
-  const auto in_l = hn::And(hn::Ge(l, lo), hn::Le(l, hn::Set(d, float(n_t) - 0.5f)));
+  const auto in_k = hn::And(hn::Ge(k, hn::Set(d, bounds[0])), hn::Le(k, hn::Set(d, bounds[2])));
+  const auto in_l = hn::And(hn::Ge(l, hn::Set(d, bounds[1])), hn::Le(l, hn::Set(d, bounds[3])));
   return {k, l, hn::And(in_k, in_l)};
+}
+// ... and whether they meet [-0.5, n_s - 0.5] x [-0.5, n_t - 0.5] (one view's window, or the
+// shared grid).
+inline Hit Project(const OriginConstants& o, const RowFunctions& row, const VF& pixel, int n_s,
+                   int n_t) {
+  const float bounds[4] = {-0.5f, -0.5f, float(n_s) - 0.5f, float(n_t) - 0.5f};
+  return Project(o, row, pixel, bounds);
 }
 
 // The st coordinates (double) of origin o's line through pixel (i, j)'s point in focus.

@@ -66,6 +66,32 @@ class Builder {
   }
   SeparableFrame& frame() { return frame_; }
 
+  // Views with their own windows: each term reads its view in the view's own samples (its read
+  // origin moved by the window's offset). Where every term's reads stay inside its view's window
+  // over the whole frame, no blend needs renormalising and the frame stays separable; otherwise
+  // false (the per-pixel kernels renormalise). The maps are monotonic over the frame: the
+  // corners bound them.
+  bool ReadsInsideTheirWindows() {
+    if (!lf_.has_view_windows()) return true;
+    const int w = camera_.width() - 1, h = camera_.height() - 1;
+    const double k_hi = lf_.dims().n_s - 0.5, l_hi = lf_.dims().n_t - 0.5;
+    for (SeparableTerm& t : frame_.terms) {
+      const StOffset o = lf_.st_offset(t.view / lf_.dims().cols, t.view % lf_.dims().cols);
+      OriginConstants read = frame_.origins[std::size_t(t.read)];
+      read.x0 -= float(o.k);
+      read.y0 -= float(o.l);
+      for (const auto& [i, j] : {std::pair{0, 0}, {w, 0}, {0, h}, {w, h}}) {
+        const double lambda = read.num / (frame_.st.n.at(i, j) - read.n_o);
+        const double k = read.x0 + lambda * (frame_.st.x.at(i, j) - read.x_o);
+        const double l = read.y0 + lambda * (frame_.st.y.at(i, j) - read.y_o);
+        if (!(k >= -0.5 && k <= k_hi && l >= -0.5 && l <= l_hi)) return false;
+      }
+      frame_.origins.push_back(read);
+      t.read = int(frame_.origins.size()) - 1;
+    }
+    return true;
+  }
+
  private:
   const LightField& lf_;
   const VirtualCamera& camera_;
@@ -128,16 +154,15 @@ bool BuildLensSamples(const LightField& lf, const VirtualCamera& camera, bool fo
 
 std::optional<SeparableFrame> MakeSeparableFrame(const LightField& lf, const VirtualCamera& camera,
                                                  const CpuRenderOptions& options) {
-  // Views with their own windows renormalise over the cameras that hold each point: the per-pixel
-  // kernels do that.
-  if (!FastKernelsSupport(lf) || lf.has_view_windows()) return std::nullopt;
+  if (!FastKernelsSupport(lf)) return std::nullopt;
   Builder builder(lf, camera);
   const bool focal_plane = options.integrator == Integrator::kCameras ||
                            options.interpolation == Interpolation::kFocalPlane;
   const bool built = options.integrator == Integrator::kCameras && !camera.is_pinhole()
                          ? BuildCamerasIntegrator(lf, camera, builder)
                          : BuildLensSamples(lf, camera, focal_plane, builder);
-  if (!built || !builder.WithinTolerance()) return std::nullopt;
+  if (!built || !builder.WithinTolerance() || !builder.ReadsInsideTheirWindows())
+    return std::nullopt;
   return std::move(builder.frame());
 }
 

@@ -98,7 +98,7 @@ void AddTerm(const SeparableFrame& f, const RaySetup& s, const SeparableTerm& t,
       Coordinates(mask, f.st, 0, j, &k_a, &l_ma);
       Coordinates(mask, f.st, last, j, &k_b, &l_mb);
       const auto in = [&](double k, double l) {
-        return k >= -0.5 && k <= s.n_s - 0.5 && l >= -0.5 && l <= s.n_t - 0.5;
+        return k >= s.domain[0] && k <= s.domain[2] && l >= s.domain[1] && l <= s.domain[3];
       };
       all_inside = in(k_a, l_ma) && in(k_b, l_mb);
     }
@@ -142,7 +142,7 @@ void AddTerm(const SeparableFrame& f, const RaySetup& s, const SeparableTerm& t,
         w = hn::Mul(w, hn::LoadU(d, band_mask + at + i));
       } else {
         const auto inside =
-            t.mask == t.read ? r.inside : Project(mask, row, pixel, s.n_s, s.n_t).inside;
+            t.mask == t.read ? r.inside : Project(mask, row, pixel, s.domain).inside;
         w = hn::IfThenElseZero(inside, w);
         if (count_hits)
           hn::StoreU(hn::Add(hn::LoadU(d, hits + at + i), hn::IfThenElseZero(hn::Gt(w, zero), one)),
@@ -188,7 +188,7 @@ void RenderSeparableBandT(const SeparableFrame& f, const RaySetup& s, int j0, in
       float* mask = hits.data() + std::size_t(j - j0) * stride;
       for (int i = 0; i < padded; i += int(hn::Lanes(d))) {
         const VF pixel = hn::Iota(d, float(i));
-        const auto inside = hn::And(Project(eye, row, pixel, s.n_s, s.n_t).inside,
+        const auto inside = hn::And(Project(eye, row, pixel, s.domain).inside,
                                     hn::Lt(pixel, hn::Set(d, float(f.width))));
         hn::StoreU(hn::IfThenElseZero(inside, hn::Set(d, 1.0f)), d, mask + i);
       }

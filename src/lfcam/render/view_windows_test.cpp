@@ -102,7 +102,7 @@ TEST(ViewWindows, EveryCpuPathReadsEachViewInItsOwnWindow) {
   const LightField& shared = render_test::SmallPaperLightField();
   const LightField& windowed = WindowedPaperLightField();
   ASSERT_TRUE(windowed.has_view_windows());
-  int compared = 0;
+  int compared = 0, separable = 0;
   for (const render_test::Case& c : render_test::Cases()) {
     if (c.turned) continue;
     const VirtualCamera camera(c.camera);
@@ -114,12 +114,12 @@ TEST(ViewWindows, EveryCpuPathReadsEachViewInItsOwnWindow) {
       const RenderResult a = Cpu(shared, c, reference), b = Cpu(windowed, c, reference);
       const std::string where = c.name + (reference ? " (reference)" : " (" + b.path + ")");
       EXPECT_LT(MaxDifference(a.image, b.image, held), 2e-4) << where;
-      if (!reference) {
-        EXPECT_EQ(b.path.rfind("rows", 0), 0u) << where;  // per-pixel reads
-      }
+      if (!reference && b.path.rfind("separable", 0) == 0) ++separable;
     }
   }
   EXPECT_GE(compared, 8);
+  // Frames whose reads all stay inside their views' windows keep the separable path.
+  EXPECT_GT(separable, 0);
 }
 
 // Near the union's edge only some views hold a point: their blend, renormalised, is close to the

@@ -5,7 +5,9 @@
 // hardware decodes to linear light and filters bilinearly within a view; the blend across
 // cameras is taken here.
 //
-// The C++ side prepends "#version 430 core" and defines WORKGROUP_X, WORKGROUP_Y and MODE:
+// The C++ side prepends "#version 430 core" and defines WORKGROUP_X, WORKGROUP_Y, VIEW_WINDOWS
+// (1 when the views have their own st windows: a compile-time switch, so that a shared grid pays
+// nothing for it) and MODE:
 //   MODE 0  lens samples, the paper's quadrilinear lookup
 //   MODE 1  lens samples, the focal-plane lookup
 //   MODE 2  the cameras integrator, one weight list for every pixel
@@ -37,10 +39,10 @@ uniform ivec2 frame_size;  // width, height
 uniform ivec2 grid;        // camera columns, rows
 uniform ivec2 st_size;     // n_s, n_t
 // The sampled st domain in reference samples (lo k, lo l, hi k, hi l: the union of the views'
-// windows), and whether the views have their own windows: a read outside a view's window then
-// adds nothing and the blend renormalises over the views that hold the point (RaySetup).
+// windows). With VIEW_WINDOWS a read outside a view's window adds nothing and the blend
+// renormalises over the views that hold the point (RaySetup).
 uniform vec4 st_domain;
-uniform bool view_windows;
+const bool view_windows = VIEW_WINDOWS != 0;
 // p_o against the uv- and st-planes: (n.p_o, a_x.p_o, a_y.p_o) = at00 + di * i + dj * j.
 uniform vec3 uv_at00, uv_di, uv_dj, st_at00, st_di, st_dj;
 uniform Origin eye_st;  // the central lines
@@ -205,8 +207,12 @@ void main() {
     AxisLerp(at_uv.at.x, grid.x, c[0], c[1], wc);
     AxisLerp(at_uv.at.y, grid.y, r[0], r[1], wr);
     const float row_w[2] = float[2](1.0 - wr, wr), col_w[2] = float[2](1.0 - wc, wc);
+#if VIEW_WINDOWS
     vec3 one = vec3(0.0);
     float held = 0.0;
+#else
+    ++count;
+#endif
     for (int a = 0; a < 2; ++a)
       for (int b = 0; b < 2; ++b) {
         const float w = row_w[a] * col_w[b];
@@ -217,18 +223,21 @@ void main() {
 #else
         const vec4 read = ReadFocused(index, p_st);
 #endif
+#if VIEW_WINDOWS
         one += w * read.rgb;
         held += w * read.a;
+#else
+        sum += w * read.rgb;
+#endif
       }
-    // With views' own windows the lens sample's blend is renormalised over the cameras that hold
-    // its point, and a sample none holds misses.
-    if (!view_windows) {
-      sum += one;
-      ++count;
-    } else if (held > 0.0) {
+#if VIEW_WINDOWS
+    // The lens sample's blend renormalised over the cameras that hold its point; a sample none
+    // holds misses.
+    if (held > 0.0) {
       sum += one / held;
       ++count;
     }
+#endif
   }
   if (count > 0) sum /= float(count);
 #else
