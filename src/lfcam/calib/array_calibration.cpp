@@ -1,6 +1,7 @@
 #include "lfcam/calib/array_calibration.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <tbb/parallel_for.h>
 
 #include <Eigen/SVD>
@@ -8,6 +9,7 @@
 
 #include "lfcam/calib/intrinsics_calibration.h"
 #include "lfcam/calib/session_detection.h"
+#include "lfcam/capture/session.h"
 #include "lfcam/core/error.h"
 
 namespace lfcam {
@@ -123,9 +125,11 @@ ArrayCalibration CalibrateArray(const std::filesystem::path& dir, const CaptureM
     CameraCalibration& c = out.cameras[i];
     const CameraDetections& d = found.cameras[i];
     if (int(d.intrinsics.size()) < options.min_views) {
-      c.reason =
-          fmt::format("the intrinsics board {} was found in {} of {} shots; at least {} are needed",
-                      out.intrinsics_board.spec(), d.intrinsics.size(), shots, options.min_views);
+      c.reason = fmt::format(
+          "the intrinsics board {} was found in {} of {} intrinsics shots; at least {} are "
+          "needed (retake them with the whole board in this camera's view, or give the board "
+          "used with --intrinsics-board)",
+          out.intrinsics_board.spec(), d.intrinsics.size(), shots, options.min_views);
       return;
     }
     std::vector<std::vector<cv::Point2f>> views;
@@ -189,8 +193,9 @@ ArrayCalibration CalibrateArray(const std::filesystem::path& dir, const CaptureM
               out.world_from_board[std::size_t(d.intrinsics[v].shot)].inverse());
       if (through_boards.empty()) {
         c.reason =
-            "it shares no board view with the cameras that found the world board, and did not "
-            "find the world board itself";
+            "it did not find the world board in the world shot, and shares no intrinsics shot "
+            "with a camera that did (hold the intrinsics board once where this camera and a "
+            "camera that sees the world board both see it whole)";
         continue;
       }
       r.camera_from_world = MeanRigid(through_boards);
@@ -198,11 +203,17 @@ ArrayCalibration CalibrateArray(const std::filesystem::path& dir, const CaptureM
     rig.push_back(r);
     rig_index.push_back(i);
   }
-  if (rig.size() < 3)
+  if (rig.size() < 3) {
+    // Each camera that failed, with its reason (the first few).
+    std::vector<std::string> reasons;
+    for (const CameraCalibration& c : out.cameras)
+      if (!c.reason.empty() && reasons.size() < 5)
+        reasons.push_back(fmt::format("{}: {}", CameraLabel(c.row, c.col), c.reason));
     throw Error(
-        fmt::format("only {} of {} cameras could be calibrated; the array needs at least 3 "
-                    "(see each camera's reason with --json)",
-                    rig.size(), out.cameras.size()));
+        fmt::format("{}: only {} of {} cameras could be calibrated; the array needs at least 3{}{}",
+                    dir.string(), rig.size(), out.cameras.size(), reasons.empty() ? "" : ":\n  ",
+                    fmt::join(reasons, "\n  ")));
+  }
 
   // 3. Joint.
   out.bundle_adjustment = BundleAdjustArray(rig, out.world_from_board, shot_known,

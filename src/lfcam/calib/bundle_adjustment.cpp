@@ -157,7 +157,11 @@ BundleAdjustmentReport BundleAdjustArray(std::vector<RigCamera>& cameras,
       world_used = true;
     }
   }
-  if (!world_used) throw Error("no camera found the world board: the array cannot be placed");
+  if (!world_used)
+    throw Error(
+        "no camera found the world board in the world shot: the array cannot be placed (hang "
+        "the board flat where the cameras see all of it, evenly lit, and give its size with "
+        "--world-board)");
   problem.SetParameterBlockConstant(world_block.data());
   // Keep the principal points and focal lengths physical.
   for (auto& b : camera_blocks) {
