@@ -158,6 +158,12 @@ TEST(GridImport, EveryParallelViewKeepsItsPixelsAtAWholeSampleDistance) {
   ASSERT_EQ(run.status, 0) << run.output;
   EXPECT_NEAR(nlohmann::json::parse(run.output)["st_distance_mm"].get<double>(), kPlaneMm, 1e-6);
   EXPECT_EQ(ReadLightFieldHeader(lf).version, 4u);  // each view in its own window
+  run = testing::Lfcam("info " + lf);
+  EXPECT_NE(run.output.find("view windows  each view its own"), std::string::npos) << run.output;
+  run = testing::Lfcam("import " + dir.string() + " --out " + lf + ".x --st-windows some");
+  EXPECT_EQ(run.status, 2) << run.output;
+  EXPECT_NE(run.output.find("--st-windows: 'some' is not shared or views"), std::string::npos)
+      << run.output;
   for (const auto& [r, c] : {std::pair{0, 0}, {3, 3}, {1, 2}, {0, 3}}) {
     const std::string as = dir.string() + "_as.png";
     run = testing::Lfcam(fmt::format("render {} --as-camera {},{} --out {} --quiet", lf, r, c, as));
