@@ -28,7 +28,9 @@ bool SliderLog(const char* label, double& value, double lo, double hi, const cha
 
 }  // namespace
 
-bool DrawCameraWindow(ViewSettings& view, const Slab& slab, bool* open) {
+bool DrawCameraWindow(ViewSettings& view, const LightField& lf, double rig_position[2],
+                      bool* open) {
+  const Slab& slab = lf.slab();
   const ArrayPlane& array = slab.uv;
   // The sliders span the light field's own scale (an imported one may be in assumed units).
   const double separation = std::max(std::abs(slab.separation_mm()), 1e-3);
@@ -58,6 +60,19 @@ bool DrawCameraWindow(ViewSettings& view, const Slab& slab, bool* open) {
     if (ImGui::Button("reset to the array's centre view (R)")) {
       p = ResetToArrayCentre(p, array);
       changed = true;
+    }
+    if (lf.has_view_cameras()) {
+      // The rig's own cameras (render --as-camera): the photograph a camera took, or the image
+      // a camera between them would.
+      float at[2] = {float(rig_position[0]), float(rig_position[1])};
+      ImGui::DragFloat2("rig camera (row, col)", at, 0.02f, 0.0f,
+                        float(std::max(lf.dims().rows, lf.dims().cols) - 1), "%.2f");
+      rig_position[0] = std::clamp(double(at[0]), 0.0, double(lf.dims().rows - 1));
+      rig_position[1] = std::clamp(double(at[1]), 0.0, double(lf.dims().cols - 1));
+      if (ImGui::Button("stand as the rig's camera")) {
+        p = AsRigCamera(p, lf, rig_position[0], rig_position[1]);
+        changed = true;
+      }
     }
     p.focus_distance_mm = std::max(p.focus_distance_mm, MinFocusDistance(p));
     p.aperture_mm = std::max(p.aperture_mm, 0.0);

@@ -6,6 +6,7 @@
 // place.
 #include <string>
 
+#include "lfcam/core/lightfield.h"
 #include "lfcam/core/slab.h"
 #include "lfcam/render/view_file.h"
 
@@ -32,7 +33,9 @@ struct FrameStats {
 
 // Each returns true when it changed the view. `render_scale` is the render resolution over the
 // window's framebuffer.
-bool DrawCameraWindow(ViewSettings& view, const Slab& slab, bool* open);
+// With a light field that records its cameras, the Camera window also stands the view as the
+// rig's camera at `rig_position` (row, col; fractional between cameras).
+bool DrawCameraWindow(ViewSettings& view, const LightField& lf, double rig_position[2], bool* open);
 // `has_depth`: the depth lookup is offered (the viewer has the views' depth maps).
 bool DrawRenderingWindow(ViewSettings& view, double& render_scale, const FrameStats& stats,
                          bool has_depth, bool* open);

@@ -1,9 +1,12 @@
 #include "lfcam/viewer/view_navigation.h"
 
+#include <fmt/format.h>
+
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 
+#include "lfcam/core/error.h"
 #include "lfcam/render/rig_camera.h"
 
 namespace lfcam {
@@ -61,6 +64,18 @@ VirtualCameraParams ResetToArrayCentre(const VirtualCameraParams& p, const Array
   q.eye = array.center();
   q.look_at = q.eye - 1000.0 * array.n_ca;
   q.up = array.v_ca;
+  return q;
+}
+
+VirtualCameraParams AsRigCamera(const VirtualCameraParams& p, const LightField& lf, double row,
+                                double col) {
+  if (!lf.has_view_cameras())
+    throw Error("this light field does not record the cameras that took its views");
+  const auto& d = lf.dims();
+  if (!(row >= 0 && row <= d.rows - 1 && col >= 0 && col <= d.cols - 1))
+    throw Error(fmt::format("camera ({}, {}) is outside the {}x{} grid", row, col, d.rows, d.cols));
+  VirtualCameraParams q = WithFrameSize(RigCameraParams(lf, row, col), p.width, p.height);
+  q.lens_rate = p.lens_rate;
   return q;
 }
 

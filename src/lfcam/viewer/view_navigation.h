@@ -27,6 +27,11 @@ double MmPerPixelAtFocus(const VirtualCameraParams& p);
 // The view from the array's centre along -n_ca, as `lfcam render` sets it with no flags, keeping
 // the frame size and the lens settings.
 VirtualCameraParams ResetToArrayCentre(const VirtualCameraParams& p, const ArrayPlane& array);
+// The view as the rig's camera at grid position (row, col) (fractional between cameras), in the
+// window's frame size: its position, orientation, field of view and principal point, a pinhole
+// focused where `p` is (render --as-camera). The light field must record its cameras.
+VirtualCameraParams AsRigCamera(const VirtualCameraParams& p, const LightField& lf, double row,
+                                double col);
 
 // The view the viewer opens on, framed width x height: the rig's central camera (its centre,
 // field of view and principal point: render/rig_camera.h) when the light field records its

@@ -61,6 +61,8 @@ class Viewer {
       view_ = ReadViewFile(options.view_file);
     } else {
       view_.camera = StartingView(lf_, view_.camera.width, view_.camera.height);
+      rig_position_[0] = 0.5 * (lf_.dims().rows - 1);  // where StartingView stands
+      rig_position_[1] = 0.5 * (lf_.dims().cols - 1);
       view_.integrator = Integrator::kCameras;
     }
     view_.light_field = options.light_field;
@@ -318,6 +320,10 @@ class Viewer {
         RequireImageOutput(c.args[0], "capture");
         capture_path_ = c.args[0];
         frames_left_ = 1;  // taken as the next frame is drawn
+      } else if (c.name == "camera") {
+        rig_position_[0] = number(0);
+        rig_position_[1] = number(1);
+        SetView(AsRigCamera(view_.camera, lf_, number(0), number(1)));
       } else if (c.name == "print") {
         std::printf("%s\n", ViewToJson(view_).dump().c_str());
         std::fflush(stdout);
@@ -404,7 +410,7 @@ class Viewer {
                                  : (view_.integrator != Integrator::kLensSamples ? 1.0 : 4.0) *
                                        double(shown.rays_hit) / pixels;
     bool changed = false;
-    if (panels_.camera) changed |= DrawCameraWindow(view_, lf_.slab(), &panels_.camera);
+    if (panels_.camera) changed |= DrawCameraWindow(view_, lf_, rig_position_, &panels_.camera);
     if (panels_.rendering)
       changed |=
           DrawRenderingWindow(view_, render_scale_, stats_, depth_.count() > 0, &panels_.rendering);
@@ -447,6 +453,7 @@ class Viewer {
   ViewSettings view_;
   double render_scale_ = 1;
   PanelVisibility panels_;
+  double rig_position_[2] = {0, 0};  // the Camera window's rig camera (row, col)
   FrameStats stats_;
   int fb_width_ = 1, fb_height_ = 1;
   Clock::time_point last_change_ = Clock::now();

@@ -25,7 +25,7 @@ const std::map<std::string, Arity>& Commands() {
       {"window", {2, 2, 2}}, {"set", {2, 2, 0}},        {"click", {2, 2, 2}},
       {"drag", {4, 5, 4}},   {"key", {1, 1, 0}},        {"wait", {0, 0, 0}},
       {"frames", {1, 1, 1}}, {"screenshot", {1, 1, 0}}, {"capture", {1, 1, 0}},
-      {"print", {0, 0, 0}},  {"quit", {0, 0, 0}}};
+      {"print", {0, 0, 0}},  {"quit", {0, 0, 0}},       {"camera", {2, 2, 2}}};
   return commands;
 }
 

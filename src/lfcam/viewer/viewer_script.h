@@ -7,6 +7,8 @@
 //                              (numbers, mm), breathing (on|off), integrator (lens-samples|
 //                              cameras), interpolation (quadrilinear|focal-plane), scale
 //                              (render scale, 0.05..2), eye|look-at|up (X,Y,Z)
+//   camera R C                 stand as the rig's camera at grid row R, column C (fractional
+//                              between cameras; a light field that records its cameras)
 //   click X Y                  click to focus at window pixel (X, Y), top-left origin
 //   drag X0 Y0 X1 Y1 [BUTTON]  drag with left (orbit), middle (pan) or right; shift-left pans
 //   key NAME                   press a key (F1, F2, F3, F12, W, A, S, D, Q, E, R, ...)

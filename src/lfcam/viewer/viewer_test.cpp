@@ -241,7 +241,8 @@ TEST_F(Viewer, OpensAnImportedRigAsItsCentralCamera) {
         "wait\n"
         "print\n"
         "screenshot " +
-            Path("rig_shot.png") + "\nquit\n");
+            Path("rig_shot.png") + "\ncamera 0 2\nwait\nscreenshot " + Path("rig_corner.png") +
+            "\ncamera 0.5 2\nwait\nscreenshot " + Path("rig_between.png") + "\nquit\n");
   run = View(Path("rig.lf") + " --script " + Path("rig.script") + " --window 128x96");
   ASSERT_EQ(run.status, 0) << run.output;
   const auto line = run.output.find("{\"camera\"");
@@ -252,6 +253,20 @@ TEST_F(Viewer, OpensAnImportedRigAsItsCentralCamera) {
   const auto photo = cv::imread(Path("rig/v_02_02.png")), shot = cv::imread(Path("rig_shot.png"));
   ASSERT_EQ(shot.size(), photo.size());
   EXPECT_LE(cv::norm(shot, photo, cv::NORM_INF), 1) << view.dump();
+  // Stood as the rig's corner camera (lfcam's row 0 is the names' last row): its photograph;
+  // halfway to the next camera, between the two.
+  const auto corner = cv::imread(Path("rig/v_03_03.png"));
+  EXPECT_LE(cv::norm(cv::imread(Path("rig_corner.png")), corner, cv::NORM_INF), 1);
+  const auto above = cv::imread(Path("rig/v_02_03.png"));
+  cv::Mat between;
+  cv::addWeighted(corner, 0.5, above, 0.5, 0, between);
+  EXPECT_LE(cv::norm(cv::imread(Path("rig_between.png")), between, cv::NORM_INF), 2);
+  // A light field without its cameras, or a camera off the grid, is refused naming the line.
+  Write("off.script", "camera 5 0\nquit\n");
+  run = View(Path("rig.lf") + " --script " + Path("off.script") + " --window 128x96");
+  EXPECT_EQ(run.status, 1) << run.output;
+  EXPECT_NE(run.output.find("off.script:1"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("outside the 3x3 grid"), std::string::npos) << run.output;
 }
 
 TEST_F(Viewer, RefusesMissingOrCorruptFilesBeforeAnyWindow) {
