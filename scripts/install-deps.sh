@@ -22,6 +22,8 @@ packages=(
   # The capture system: the node agent's HTTP API (cpp-httplib) and its signatures (OpenSSL).
   libcpp-httplib-dev libssl-dev
   libgtest-dev libgmock-dev
+  # bench/hci_score.py (the depth benchmark's metrics), run by a test.
+  python3-numpy
 )
 # bench/peer.sh: the NumPy + OpenCV peer renderer.
 if [ "${LFCAM_PEER_DEPS:-0}" = 1 ]; then

@@ -32,10 +32,13 @@ class DepthCli : public ::testing::Test {
 };
 
 TEST_F(DepthCli, WritesAMapItsConfidenceAndPreviewAndAFolderForRendering) {
-  auto run = Lfcam("depth " + P("p.lf") + " --out " + P("d.png") + " --json");
+  auto run = Lfcam("depth " + P("p.lf") + " --out " + P("d.png") + " --json --disparity-pfm " +
+                   P("d.pfm"));
   ASSERT_EQ(run.status, 0) << run.output;
   const auto j = nlohmann::json::parse(run.output);
   EXPECT_EQ(j["map"]["view"], nlohmann::json({1, 1}));
+  EXPECT_EQ(j["disparity_pfm"], P("d.pfm"));
+  EXPECT_TRUE(fs::exists(P("d.pfm")));
   EXPECT_EQ(j["map"]["n_s"], 64);
   EXPECT_TRUE(fs::exists(P("d.png")) && fs::exists(P("d.confidence.png")) &&
               fs::exists(P("d.preview.png")));
@@ -96,6 +99,10 @@ TEST_F(DepthCli, RefusesBadFlagsAndBadMapsWritingNothing) {
   refused("depth " + P("p.lf") + " --out " + P("x.jpg"), 2, "--out");
   refused("depth " + P("p.lf") + " --out " + P("x.png") + " --all --view 1,1", 2, "--view");
   refused("depth " + P("p.lf") + " --all --out " + P("truth"), 2, "not an empty folder");
+  refused("depth " + P("p.lf") + " --out " + P("x.png") + " --disparity-pfm " + P("x.png"), 2,
+          "--disparity-pfm");
+  refused("depth " + P("p.lf") + " --all --out " + P("set2") + " --disparity-pfm " + P("x.pfm"), 2,
+          "not with --all");
   refused("render " + P("p.lf") + " --out " + P("r.png") + " --depth " + P("truth"), 2, "--depth");
   refused("render " + P("p.lf") + " --out " + P("r.png") +
               " --interpolation depth "
@@ -111,6 +118,7 @@ TEST_F(DepthCli, RefusesBadFlagsAndBadMapsWritingNothing) {
           1, "depth_01_01.png");
   EXPECT_FALSE(fs::exists(P("r.png")));
   EXPECT_FALSE(fs::exists(P("x.png")));
+  EXPECT_FALSE(fs::exists(P("x.pfm")));
 }
 
 }  // namespace

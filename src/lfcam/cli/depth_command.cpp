@@ -15,6 +15,7 @@
 #include "lfcam/core/lightfield_file.h"
 #include "lfcam/core/progress.h"
 #include "lfcam/depth/depth_set.h"
+#include "lfcam/depth/disparity_map.h"
 #include "lfcam/depth/plane_sweep.h"
 
 namespace lfcam::cli {
@@ -49,7 +50,7 @@ void AddDepthCommand(CLI::App& app) {
   auto* command = app.add_subcommand(
       "depth", "Estimate depth maps from the light field itself (plane sweep), with confidence");
   struct Flags {
-    std::string input, out, view, range;
+    std::string input, out, view, range, disparity_pfm;
     bool all = false, json = false, quiet = false;
     int reach = 4;
   };
@@ -70,6 +71,11 @@ void AddDepthCommand(CLI::App& app) {
       ->add_option("--reach", f->reach, "Cameras compared each way along the view's row and column")
       ->capture_default_str()
       ->check(CLI::Range(1, 64));
+  command->add_option(
+      "--disparity-pfm", f->disparity_pfm,
+      "Also write the view's disparity as the light field depth benchmarks count it (the HCI "
+      "benchmark's PFM: st samples, a rectified rig's pixels, between neighbouring views, "
+      "positive nearer than the st-plane; docs/depth.md)");
   command->add_flag("--json", f->json, "Print what was estimated as JSON");
   command->add_flag("--quiet", f->quiet, "No progress bar (it is drawn only on a terminal)");
   command->callback([f] {
@@ -81,6 +87,13 @@ void AddDepthCommand(CLI::App& app) {
       options.range = DepthRange{v[0], v[1]};
       if (!options.range->valid())
         throw UsageError(fmt::format("--depth-range {}: needs 0 < NEAR < FAR (mm)", f->range));
+    }
+    if (f->all && !f->disparity_pfm.empty())
+      throw UsageError("--disparity-pfm is one view's: not with --all");
+    if (!f->disparity_pfm.empty()) {
+      if (std::filesystem::path(f->disparity_pfm).extension() != ".pfm")
+        throw UsageError(fmt::format("--disparity-pfm {}: a .pfm file", f->disparity_pfm));
+      RequireWritableOutput(f->disparity_pfm, "--disparity-pfm");
     }
     if (f->all) {
       RequireNewOrEmptyFolder("--out", f->out);
@@ -140,6 +153,11 @@ void AddDepthCommand(CLI::App& app) {
         f->out, map,
         JsonToText({{"lightfield", std::filesystem::path(f->input).filename().string()}}));
     report["map"] = Summary(map);
+    if (!f->disparity_pfm.empty()) {
+      const int unknown = WriteDisparityPfm(f->disparity_pfm, DisparityOf(lf, map));
+      report["disparity_pfm"] = f->disparity_pfm;
+      report["disparity_unknown"] = unknown;
+    }
     report["confidence"] = ConfidencePathFor(f->out).string();
     report["preview"] = PreviewPathFor(f->out).string();
     report["seconds"] = seconds();
@@ -154,6 +172,11 @@ void AddDepthCommand(CLI::App& app) {
         f->out, row, col, map.n_s(), map.n_t(), s["min_mm"].get<double>(),
         s["max_mm"].get<double>(), 100.0 * s["confident_share"].get<double>(),
         report["confidence"].get<std::string>(), report["preview"].get<std::string>(), seconds());
+    if (!f->disparity_pfm.empty())
+      fmt::print(
+          "wrote {} (disparity between neighbouring views, st samples; {} unknown written "
+          "as 0)\n",
+          f->disparity_pfm, report["disparity_unknown"].get<int>());
   });
 }
 

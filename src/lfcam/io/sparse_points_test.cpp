@@ -14,6 +14,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
 
+#include "lfcam/core/error.h"
 #include "lfcam/io/colmap_text_test_support.h"
 #include "lfcam/io/lightfield_export.h"
 #include "lfcam/render/render_test_cases.h"

@@ -1,0 +1,83 @@
+#!/usr/bin/env python3
+"""Scores a disparity map the way the HCI 4D Light Field Benchmark's evaluation toolkit does.
+
+    bench/hci_score.py ESTIMATE.pfm GT.pfm [--border 15] [--json]
+
+Both are PFM files of the centre view's disparity (float32, one channel, rows stored from the
+bottom up as PFM does; the benchmark's gt_disp_lowres.pfm, and `lfcam depth --disparity-pfm`).
+Over the view less a border of 15 pixels (the toolkit's), it prints BadPix(0.07), BadPix(0.03),
+BadPix(0.01) (the percentage of pixels whose |estimate - truth| exceeds the threshold) and
+MSE x 100 (the mean squared error times 100). A file that is not such a PFM, or maps of
+different sizes, are refused with the reason; the PFM is read here, not by lfcam.
+"""
+import argparse
+import json
+import sys
+
+import numpy as np
+
+
+def read_pfm(path):
+    with open(path, "rb") as f:
+        kind = f.readline().strip()
+        if kind not in (b"Pf", b"PF"):
+            raise ValueError(f"{path}: not a PFM (first line {kind[:16]!r})")
+        channels = 1 if kind == b"Pf" else 3
+        try:
+            width, height = (int(v) for v in f.readline().split())
+            scale = float(f.readline().strip())
+        except ValueError as e:
+            raise ValueError(f"{path}: a PFM header needs 'width height' and a scale ({e})")
+        if width <= 0 or height <= 0 or width * height > 1 << 28:
+            raise ValueError(f"{path}: {width}x{height} is not a size")
+        dtype = "<f4" if scale < 0 else ">f4"
+        data = np.frombuffer(f.read(), dtype=dtype)
+    if data.size != width * height * channels:
+        raise ValueError(f"{path}: {data.size} values for {width}x{height}x{channels}")
+    if channels != 1:
+        raise ValueError(f"{path}: a disparity map has one channel, this PFM has three")
+    # PFM rows run from the bottom of the image up.
+    return np.flipud(data.reshape(height, width)).astype(np.float64)
+
+
+def score(estimate, truth, border=15):
+    if estimate.shape != truth.shape:
+        raise ValueError(f"the maps differ in size: {estimate.shape[1]}x{estimate.shape[0]} "
+                         f"against the truth's {truth.shape[1]}x{truth.shape[0]}")
+    if min(truth.shape) <= 2 * border:
+        raise ValueError(f"a {truth.shape[1]}x{truth.shape[0]} map has nothing inside a "
+                         f"{border}-pixel border")
+    inner = (slice(border, -border), slice(border, -border)) if border > 0 else np.s_[:, :]
+    error = estimate[inner] - truth[inner]
+    error = np.where(np.isfinite(error), error, np.inf)  # an unknown pixel is a bad one
+    out = {f"badpix_{t:.2f}": float(100.0 * np.mean(np.abs(error) > t)) for t in (0.07, 0.03, 0.01)}
+    finite = np.isfinite(error)
+    out["mse_x100"] = float(100.0 * np.mean(np.where(finite, error, 0.0) ** 2)) if finite.all() \
+        else float("inf")
+    out["pixels"] = int(error.size)
+    return out
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("estimate")
+    parser.add_argument("truth")
+    parser.add_argument("--border", type=int, default=15)
+    parser.add_argument("--json", action="store_true")
+    args = parser.parse_args()
+    try:
+        result = score(read_pfm(args.estimate), read_pfm(args.truth), args.border)
+    except (OSError, ValueError) as e:
+        print(f"hci_score: {e}", file=sys.stderr)
+        return 1
+    if args.json:
+        print(json.dumps(result, indent=2))
+    else:
+        print(f"BadPix0.07 {result['badpix_0.07']:.2f}%  BadPix0.03 {result['badpix_0.03']:.2f}%  "
+              f"BadPix0.01 {result['badpix_0.01']:.2f}%  MSEx100 {result['mse_x100']:.3f}  "
+              f"({result['pixels']} pixels, {args.border}-pixel border left out)")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

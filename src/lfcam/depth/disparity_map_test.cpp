@@ -1,0 +1,155 @@
+// Disparity in the benchmarks' convention: the law on a rig whose geometry is known, the PFM read
+// back by another reader (OpenCV's), the HCI scene's true disparity through its imported
+// geometry and the benchmark's own depth formula, and bench/hci_score.py's metrics.
+#include "lfcam/depth/disparity_map.h"
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <string>
+
+#include "lfcam/cli/cli_test_support.h"
+#include "lfcam/core/error.h"
+#include "lfcam/io/grid_import.h"
+#include "lfcam/io/rectified_import.h"
+
+namespace lfcam::disparity_map_test {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path Scratch(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / fmt::format("lfcam_disparity_{}", ::getpid());
+  fs::create_directories(dir);
+  return dir / name;
+}
+
+// A 3 x 3 array 10 mm apart, 2000 mm in front of an st-plane sampled 2 mm apart.
+LightField Rig() {
+  Slab slab;
+  slab.uv.rows = slab.uv.cols = 3;
+  slab.uv.pitch_mm = 10;
+  slab.uv.p_ca = Vec3(49, 33, 2000);
+  slab.st.width_mm = 128;
+  slab.st.height_mm = 96;
+  return LightField({3, 3, 64, 48}, SampleType::kSrgb8, slab);
+}
+
+TEST(DisparityMap, FollowsTheBenchmarksLawAndReadsBackAsAPfm) {
+  const LightField lf = Rig();
+  DepthMap map;
+  map.row = map.col = 1;
+  map.depth.create(48, 64, CV_32FC1);
+  for (int l = 0; l < 48; ++l)
+    for (int k = 0; k < 64; ++k) map.depth.at<float>(l, k) = float(1500 + 10 * k + 3 * l);
+  map.depth.at<float>(5, 7) = NAN;
+  const cv::Mat d = DisparityOf(lf, map);
+  for (int l = 0; l < 48; l += 7)
+    for (int k = 0; k < 64; k += 9) {
+      if (l == 5 && k == 7) continue;
+      const double z = 1500 + 10 * k + 3 * l;
+      EXPECT_NEAR(d.at<float>(l, k), 10.0 / 2.0 * (2000.0 / z - 1.0), 1e-5) << k << "," << l;
+    }
+  EXPECT_GT(d.at<float>(0, 0), 0);  // nearer than the st-plane: positive
+  EXPECT_TRUE(std::isnan(d.at<float>(5, 7)));
+
+  const fs::path pfm = Scratch("law.pfm");
+  EXPECT_EQ(WriteDisparityPfm(pfm, d), 1);  // the unknown sample, written as 0
+  std::ifstream in(pfm, std::ios::binary);
+  std::string header(14, '\0');
+  in.read(header.data(), 14);
+  EXPECT_EQ(header, "Pf\n64 48\n-1.0\n");
+  // OpenCV's reader gives the image upright: its top row is the highest st row.
+  const cv::Mat back = cv::imread(pfm.string(), cv::IMREAD_UNCHANGED);
+  ASSERT_EQ(back.type(), CV_32FC1);
+  ASSERT_EQ(back.size(), cv::Size(64, 48));
+  for (int l = 0; l < 48; l += 5)
+    for (int k = 0; k < 64; k += 5)
+      if (!(l == 5 && k == 7)) {
+        EXPECT_EQ(back.at<float>(47 - l, k), d.at<float>(l, k));
+      }
+  EXPECT_EQ(back.at<float>(42, 7), 0.0f);
+  EXPECT_THROW(WriteDisparityPfm(Scratch("none.pfm"), cv::Mat()), Error);
+  fs::remove_all(pfm.parent_path());
+}
+
+// The HCI scene's true disparity, turned into depth by the benchmark's own formula with the
+// geometry the import assumed (f 512 px, baseline 1 unit, focus 64 units), comes back as itself.
+TEST(DisparityMap, TheHciSceneGivesBackItsTrueDisparity) {
+  const fs::path hci = fs::path(LFCAM_SOURCE_DIR) / "../shared/data/hci-antinous";
+  if (!fs::is_directory(hci)) GTEST_SKIP() << hci << " is not here (../shared/data)";
+  const ImportedGrid grid = ScanGridFolder(hci, false);
+  const RectifiedGeometry geo = ResolveRectifiedGeometry(grid, {});
+  const LightField lf = ImportRectifiedViews(hci, grid, geo);
+  const cv::Mat truth = cv::imread((hci / "gt_disp_lowres.pfm").string(), cv::IMREAD_UNCHANGED);
+  ASSERT_EQ(truth.size(), cv::Size(512, 512));
+  const double f = 512, b = 1, focus = 64;  // as the import says it assumed
+  DepthMap map;
+  map.row = map.col = 4;
+  map.depth.create(512, 512, CV_32FC1);
+  for (int y = 0; y < 512; ++y)
+    for (int x = 0; x < 512; ++x) {
+      const double d = truth.at<float>(y, x);
+      map.depth.at<float>(511 - y, x) = float(b * f * focus / (d * focus + b * f));
+    }
+  const cv::Mat d = DisparityOf(lf, map);
+  double worst = 0;
+  for (int y = 0; y < 512; y += 3)
+    for (int x = 0; x < 512; x += 3)
+      worst = std::max(worst, double(std::abs(d.at<float>(511 - y, x) - truth.at<float>(y, x))));
+  EXPECT_LT(worst, 1e-3);
+}
+
+// bench/hci_score.py against errors whose metrics are known.
+TEST(DisparityMap, TheScoringScriptCountsAsTheBenchmarkDoes) {
+  // Debian's Python (scripts/install-deps.sh installs python3-numpy for it).
+  const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+  if (testing::RunOnce(python + " -c 'import numpy' 2>&1").status != 0)
+    GTEST_SKIP() << python << " with numpy is not here (scripts/install-deps.sh installs it)";
+  cv::Mat truth(100, 120, CV_32FC1), estimate;
+  cv::randu(truth, -2.0, 2.0);
+  estimate = truth.clone();
+  // Inside the 15-pixel border (90 x 70 = 6300 pixels): 315 off by 0.05, 315 off by 0.1; the
+  // border's pixels, all off by 5, do not count.
+  int n = 0;
+  for (int y = 15; y < 85; ++y)
+    for (int x = 15; x < 105; ++x, ++n)
+      estimate.at<float>(y, x) += n % 20 == 0 ? 0.1f : n % 10 == 0 ? 0.05f : 0.0f;
+  for (int x = 0; x < 120; ++x) estimate.at<float>(0, x) += 5.0f;
+  // WriteDisparityPfm takes bottom-up rows: flip the upright images.
+  cv::Mat up_truth, up_estimate;
+  cv::flip(truth, up_truth, 0);
+  cv::flip(estimate, up_estimate, 0);
+  const fs::path t = Scratch("truth.pfm"), e = Scratch("estimate.pfm");
+  WriteDisparityPfm(t, up_truth);
+  WriteDisparityPfm(e, up_estimate);
+  const std::string script = (fs::path(LFCAM_SOURCE_DIR) / "bench/hci_score.py").string();
+  auto run = testing::RunOnce(python + " " + script + " " + e.string() + " " + t.string() +
+                              " --json 2>&1");
+  ASSERT_EQ(run.status, 0) << run.output;
+  const auto j = nlohmann::json::parse(run.output);
+  EXPECT_EQ(j["pixels"], 6300);
+  EXPECT_NEAR(j["badpix_0.07"].get<double>(), 5.0, 1e-9);
+  EXPECT_NEAR(j["badpix_0.03"].get<double>(), 10.0, 1e-9);
+  EXPECT_NEAR(j["badpix_0.01"].get<double>(), 10.0, 1e-9);
+  EXPECT_NEAR(j["mse_x100"].get<double>(), 100.0 * (315 * 0.01 + 315 * 0.0025) / 6300, 1e-6);
+  // Maps of different sizes, or a file that is not a PFM: refused with the reason.
+  WriteDisparityPfm(e, up_estimate(cv::Rect(0, 0, 100, 100)).clone());
+  run = testing::RunOnce(python + " " + script + " " + e.string() + " " + t.string() + " 2>&1");
+  EXPECT_EQ(run.status, 1) << run.output;
+  EXPECT_NE(run.output.find("differ in size"), std::string::npos) << run.output;
+  std::ofstream(e) << "P6\n1 1\n255\nabc";
+  run = testing::RunOnce(python + " " + script + " " + e.string() + " " + t.string() + " 2>&1");
+  EXPECT_EQ(run.status, 1) << run.output;
+  EXPECT_NE(run.output.find("not a PFM"), std::string::npos) << run.output;
+  fs::remove_all(t.parent_path());
+}
+
+}  // namespace
+}  // namespace lfcam::disparity_map_test
