@@ -279,10 +279,12 @@ void RenderRowCamerasT(const RaySetup& s, const GridCameraWeight* uniform, int u
       const auto read_camera = [&](int index, const VF& w) {
         const VF h = AddFocused(s, p_st, hn::Set(di, index),
                                 OriginLanes::Broadcast(s.camera_st(index)), w, sum);
-        weight = hn::Add(weight, w);
-        held = hn::Add(held, h);
         reads = hn::Add(
             reads, hn::IfThenElseZero(hn::RebindMask(di, hn::Gt(h, hn::Zero(d))), hn::Set(di, 1)));
+        if (s.view_windows) {  // the renormalisation's sums
+          weight = hn::Add(weight, w);
+          held = hn::Add(held, h);
+        }
       };
       if (uniform_count > 0) {
         for (int n = 0; n < uniform_count; ++n)
