@@ -126,6 +126,12 @@ class LightField {
   };
   SampleRange st_union_samples() const;
   StDomain st_union() const;
+  // The slab with st_union() as its st domain: what Slab::contains must test a line against.
+  Slab sampled_slab() const {
+    Slab s = slab_;
+    s.st_domain = st_union();
+    return s;
+  }
   // The st-plane position of reference sample (k, l), in view-window units (a view's own samples:
   // st_sampling(row, col).s_of, t_of).
   double s_of(double k) const { return st_sampling().s_of(k); }

@@ -12,12 +12,11 @@ namespace lfcam {
 DepthAwareSampler::DepthAwareSampler(const LightField& lf, const DepthSet& depth,
                                      const LightFieldSampler& colour)
     : colour_(colour),
-      slab_(lf.slab()),
+      slab_(lf.sampled_slab()),
       rows_(lf.dims().rows),
       cols_(lf.dims().cols),
       n_s_(lf.dims().n_s),
       n_t_(lf.dims().n_t) {
-  slab_.st_domain = lf.st_union();
   if (!(depth.dims() == lf.dims()))
     throw Error("the depth maps were made for another light field (grid or st resolution differ)");
   for (int r = 0; r < rows_; ++r)
@@ -161,8 +160,7 @@ bool DepthAwareSampler::Sample(const Vec3& origin, const Vec3& direction, float 
 std::vector<bool> DepthViewsNeeded(const LightField& lf, const VirtualCamera& camera) {
   const auto& d = lf.dims();
   std::vector<bool> needed(d.view_count(), false);
-  Slab slab = lf.slab();
-  slab.st_domain = lf.st_union();
+  const Slab slab = lf.sampled_slab();
   const auto mark = [&](const Vec3& origin, const Vec3& direction) {
     const auto c = slab.intersect({origin, direction});
     if (!c || !slab.contains(*c)) return;

@@ -61,7 +61,7 @@ class DepthAwareSampler {
   double March(int c, const Vec3& origin, const Vec3& direction) const;
 
   const LightFieldSampler& colour_;
-  Slab slab_;  // the light field's, its st domain the union of the views' windows
+  Slab slab_;  // LightField::sampled_slab(): its st domain the union of the views' windows
   int rows_, cols_, n_s_, n_t_;
   std::vector<Camera> cameras_;  // row-major
   double q_near_, q_far_;        // the depth range's ends, widened a little
