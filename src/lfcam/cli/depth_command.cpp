@@ -52,7 +52,7 @@ void AddDepthCommand(CLI::App& app) {
   struct Flags {
     std::string input, out, view, range, disparity_pfm;
     bool all = false, json = false, quiet = false;
-    int reach = 4;
+    int reach = 0;
   };
   auto f = std::make_shared<Flags>();
   command->add_option("lightfield", f->input, "Light field file (.lf)")->required();
@@ -68,8 +68,9 @@ void AddDepthCommand(CLI::App& app) {
   command->add_option("--depth-range", f->range,
                       "NEAR,FAR in mm from the array's plane (default: found by a coarse sweep)");
   command
-      ->add_option("--reach", f->reach, "Cameras compared each way along the view's row and column")
-      ->capture_default_str()
+      ->add_option("--reach", f->reach,
+                   "Views compared: those up to N grid steps away in rows and columns (default: "
+                   "4 for one view, 2 with --all)")
       ->check(CLI::Range(1, 64));
   command->add_option(
       "--disparity-pfm", f->disparity_pfm,

@@ -61,10 +61,13 @@ void EstimateDepthSet(const LightField& lf, DepthSet& set,
       if (!set.has(r, c) && needed(r, c)) todo.emplace_back(r, c);
   if (todo.empty()) return;
   PlaneSweepOptions o = options;
+  // The range from the central view with the options as given (a single view's reach), then
+  // every view with the set's.
   if (!o.range) {
     o.range = set.count() > 0 ? set.range()
                               : EstimateDepthRange(lf, (d.rows - 1) / 2, (d.cols - 1) / 2, o);
   }
+  if (o.reach <= 0) o.reach = 2;
   std::mutex mutex;
   std::atomic<int> done{0};
   tbb::parallel_for(std::size_t(0), todo.size(), [&](std::size_t i) {

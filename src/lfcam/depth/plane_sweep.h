@@ -1,22 +1,19 @@
 #pragma once
-// Depth from the light field itself: a plane sweep (docs/depth.md says why this method).
+// Depth from the light field itself: a plane sweep (docs/depth.md says why this method and what
+// decided each step).
 //
 // For one view (the reference), planes parallel to the array's plane are swept at depths D,
-// uniformly in 1/D (the parameter a light field's disparity is linear in). For each plane,
-// every other view on the reference's row and column (up to `reach` cameras each way) is
-// warped onto the reference's st samples through that plane (a homography: exact for any
-// slab, whatever the st-plane's tilt) and compared with it: absolute colour difference,
-// truncated. Occlusion: a point hidden from the cameras on one side of the reference is seen
-// from the other, so the cost keeps the better side along each axis (left or right, below or
-// above) and averages the two axes. Each plane's cost is filtered edge-aware (a guided filter
-// led by the reference view: cost-volume filtering, Rhemann et al. 2011), the best plane per
-// sample is refined to a fraction of a step (a parabola through three costs), and the map is
-// cleaned at depth edges by a weighted median led by the reference view that fills
-// low-confidence samples from confident neighbours of the same colour.
+// uniformly in 1/D (the parameter a light field's disparity is linear in), finely: a quarter of
+// a sample of the farthest view's shift a step. Each plane's matching cost against every view
+// within `reach` grid steps, occlusion-aware (depth/cost_volume.h), is aggregated by semi-global
+// matching (depth/semi_global.h), the cheapest plane per sample is refined to a fraction of a
+// step (a parabola through three aggregated costs), and outliers (a sample far from the
+// weighted median of its neighbours of the same colour) take that median.
 //
-// Confidence: how far the best cost lies below the sample's mean cost over all planes
-// (1 - best / mean): near 1 for a clear minimum, 0 where the views agree at every depth
-// (no texture).
+// Confidence: how far the chosen plane's own matching cost lies below the sample's mean cost
+// over all planes (1 - best / mean, against a floor): near 1 for a clear minimum, 0 where the
+// views agree at every depth (no texture: there the depth is semi-global matching's fill from
+// the surroundings) or where the minimum is on the first or last plane.
 #include <optional>
 
 #include "lfcam/core/lightfield.h"
@@ -26,12 +23,14 @@ namespace lfcam {
 
 struct PlaneSweepOptions {
   std::optional<DepthRange> range;  // the depths swept; default: EstimateDepthRange
-  int reach = 4;                    // cameras used each way along the view's row and column
-  double step_samples = 1.0;  // plane spacing: the farthest camera's shift per step, in samples
-  double truncation = 0.1;    // the per-view cost's cap (sRGB units, 0 .. 1)
-  int filter_radius = 0;      // guided filter radius in samples; 0: from the view's size
-  bool refine_edges = true;   // the weighted-median clean-up
-  int refine_radius = 0;      // its radius in samples; 0: from the view's size
+  int reach = 4;                    // views up to this many grid steps away in rows and in columns
+  double step_samples = 0.25;       // plane spacing: the farthest view's shift per step, in samples
+  double truncation = 0.1;          // the colour and the gradient terms' caps (sRGB units, 0 .. 1)
+  int window_radius = 1;            // the matching window's radius in samples (a box)
+  int smoothness_p1 = 16;           // semi-global matching's penalties (depth/semi_global.h)
+  int smoothness_p2 = 160;
+  bool refine_edges = true;  // the weighted-median outlier clean-up
+  int refine_radius = 0;     // its radius in samples; 0: from the view's size
 };
 
 // The depth map of view (row, col). Throws lfcam::Error when the light field has a single view

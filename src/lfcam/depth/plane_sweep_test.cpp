@@ -6,6 +6,7 @@
 
 #include "lfcam/core/error.h"
 #include "lfcam/depth/depth_test_scene.h"
+#include "lfcam/depth/disparity_map.h"
 #include "lfcam/sim/depth_truth.h"
 
 namespace lfcam {
@@ -53,11 +54,47 @@ TEST_P(PlaneSweep, FindsTheDepthOfBothPlanesWhateverTheStPlanesTurn) {
   EXPECT_EQ(map.col, 3);
   EXPECT_GE(ShareWithin(truth, map, 0, 0.01), 0.9);  // the wall (behind the st-plane)
   EXPECT_GE(ShareWithin(truth, map, 1, 0.01), 0.9);  // the plate (in front of it)
-  // Confidence is high on the textured planes.
-  EXPECT_GT(cv::mean(map.confidence)[0], 0.35);
+  // Confidence is high on the textured planes (uniqueness included: measured 0.31).
+  EXPECT_GT(cv::mean(map.confidence)[0], 0.25);
 }
 
 INSTANTIATE_TEST_SUITE_P(StPlane, PlaneSweep, ::testing::Values(0.0, 12.0));
+
+// A narrow baseline (cameras 3.5 mm apart: an eighth of the paper's): the two planes lie about
+// half a sample apart between neighbouring views, as in a plenoptic camera's views;
+// the disparity is found to a few hundredths of a sample, as the benchmark counts it.
+TEST(PlaneSweepNarrowBaseline, FindsSubSampleDisparities) {
+  Scene scene = testing::TwoPlaneScene();
+  scene.rig.array.pitch_mm = 3.5;
+  const LightField lf = testing::TwoPlaneLightField(scene);
+  const DepthTruth truth = GroundTruthDepth(scene, lf, 3, 3);
+  const DepthMap map = EstimateDepth(lf, 3, 3, {});
+  const cv::Mat d_true = DisparityOf(lf, truth.map), d = DisparityOf(lf, map);
+  int total[2] = {0, 0}, good[2] = {0, 0};
+  double lo = 1e9, hi = -1e9;
+  const int margin = 4;
+  for (int l = margin; l < d.rows - margin; ++l)
+    for (int k = margin; k < d.cols - margin; ++k) {
+      const int object = truth.object.at<int>(l, k);
+      bool interior = object >= 0;
+      for (int dl = -margin; dl <= margin && interior; ++dl)
+        for (int dk = -margin; dk <= margin && interior; ++dk)
+          interior = truth.object.at<int>(l + dl, k + dk) == object;
+      if (!interior) continue;
+      const double t = d_true.at<float>(l, k);
+      lo = std::min(lo, t);
+      hi = std::max(hi, t);
+      ++total[object];
+      good[object] += std::abs(d.at<float>(l, k) - t) <= 0.03;
+    }
+  // The planes really are sub-sample apart (about 0.57 samples between the wall and the plate).
+  EXPECT_LT(hi - lo, 0.8);
+  EXPECT_GT(hi - lo, 0.3);
+  for (int object : {0, 1}) {
+    ASSERT_GT(total[object], 1000) << object;
+    EXPECT_GE(double(good[object]) / total[object], 0.9) << "object " << object;
+  }
+}
 
 TEST(PlaneSweepConfidence, IsLowWhereThereIsNoTexture) {
   Scene scene = testing::TwoPlaneScene();

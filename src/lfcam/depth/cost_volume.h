@@ -1,0 +1,86 @@
+#pragma once
+// The matching cost of one view (the reference) against the views around it, plane by plane: the
+// plane sweep's cost volume (docs/depth.md, "The estimate").
+//
+// Planes parallel to the array's plane at inverse depths q_i. For each plane every view within
+// `reach` grid steps of the reference (rows and columns: a square of up to (2 reach + 1)^2 - 1
+// views) is warped onto the reference's st samples through that plane (a homography, exact for
+// any slab; where the st-plane is parallel to the array's plane it is a shift, and the shift is
+// done separably with a cubic kernel: bilinear interpolation smooths by an amount that depends
+// on the shift's fraction and biases sub-sample matching) and compared with the reference: the
+// mean absolute difference of the sRGB channels and the absolute difference of the grey
+// gradients, each truncated. Occlusion: an occluder's edge splits the views around the
+// reference into those that see past it and those that do not, along a line through the
+// reference. So the views' costs are averaged over each of 8 half-arrays (the views whose grid
+// offset lies within 90 degrees of one of 8 directions a 45 degrees apart), each half-array's
+// cost is averaged over a small window, and the cheapest half-array counts.
+#include <cstdint>
+#include <opencv2/core.hpp>
+#include <vector>
+
+#include "lfcam/core/lightfield.h"
+
+namespace lfcam {
+
+struct CostVolumeOptions {
+  int reach = 4;              // views up to this many grid steps away in rows and in columns
+  double color_cap = 0.1;     // the colour term's truncation (sRGB, 0 .. 1)
+  double gradient_cap = 0.1;  // the gradient term's truncation
+  int window_radius = 1;      // the half-arrays' averaging window (box) radius in samples
+  double scale = 1.0;         // > 1: match at 1/scale of the views' resolution (coarse sweeps)
+};
+
+// The cost of every plane at every sample, as 16-bit integers (kCostUnit a unit of cost; at
+// most (color_cap + gradient_cap) * kCostUnit), stored label-fastest: cost(x, y)[i].
+struct CostVolume {
+  static constexpr double kCostUnit = 4000.0;
+  int width = 0, height = 0, labels = 0;
+  std::vector<std::uint16_t> cost;
+  std::uint16_t* at(int x, int y) { return cost.data() + (std::size_t(y) * width + x) * labels; }
+  const std::uint16_t* at(int x, int y) const {
+    return cost.data() + (std::size_t(y) * width + x) * labels;
+  }
+};
+
+// The reference view and its neighbours, prepared for sweeping.
+class SweepViews {
+ public:
+  // Throws lfcam::Error when the light field has no other view within reach.
+  SweepViews(const LightField& lf, int row, int col, const CostVolumeOptions& options);
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+  // The reference view at the matching resolution, 8-bit RGB (a guide for edge-aware filters).
+  const cv::Mat& reference_rgb8() const { return reference_rgb8_; }
+  // D of the st-plane at the reference's centre, seen from the reference camera (mm).
+  double st_depth() const { return st_depth_; }
+  // How far, in matching samples, a point moves between the reference and its farthest view
+  // (and its nearest) per unit of inverse depth (1/mm).
+  double farthest_shift_per_q() const { return farthest_mm_ * st_depth_ / sample_mm_; }
+  double nearest_shift_per_q() const { return nearest_mm_ * st_depth_ / sample_mm_; }
+
+  // The cost volume over the planes of inverse depth q[i] (1/mm).
+  CostVolume Sweep(const std::vector<double>& q) const;
+
+ private:
+  struct View {
+    std::vector<float> channels;  // kChannels planes of width x height, sRGB and gradients
+    Vec3 center;
+    StSampling sampling;
+    unsigned halves = 0;  // bit g: in the half-array of direction g * 45 degrees
+    int view_class = 0;   // index in class_halves_
+  };
+  cv::Matx33d Homography(const View& view, double depth) const;
+
+  const LightField& lf_;
+  CostVolumeOptions options_;
+  int width_ = 0, height_ = 0;
+  double scale_x_ = 1, scale_y_ = 1;
+  View reference_;
+  std::vector<View> views_;
+  std::vector<unsigned> class_halves_;  // the distinct half-array memberships of the views
+  cv::Mat reference_rgb8_;
+  double st_depth_ = 0, farthest_mm_ = 0, nearest_mm_ = 0, sample_mm_ = 0;
+};
+
+}  // namespace lfcam
