@@ -70,7 +70,7 @@ void AddDepthCommand(CLI::App& app) {
   command
       ->add_option("--reach", f->reach,
                    "Views compared: those up to N grid steps away in rows and columns (default: "
-                   "4 for one view, 2 with --all)")
+                   "4 for one view, 1 with --all)")
       ->check(CLI::Range(1, 64));
   command->add_option(
       "--disparity-pfm", f->disparity_pfm,

@@ -67,7 +67,7 @@ void EstimateDepthSet(const LightField& lf, DepthSet& set,
     o.range = set.count() > 0 ? set.range()
                               : EstimateDepthRange(lf, (d.rows - 1) / 2, (d.cols - 1) / 2, o);
   }
-  if (o.reach <= 0) o.reach = 2;
+  if (o.reach <= 0) o.reach = 1;
   std::mutex mutex;
   std::atomic<int> done{0};
   tbb::parallel_for(std::size_t(0), todo.size(), [&](std::size_t i) {
