@@ -23,11 +23,13 @@ namespace lfcam {
 
 struct PlaneSweepOptions {
   std::optional<DepthRange> range;  // the depths swept; default: EstimateDepthRange
-  int reach = 4;                    // views up to this many grid steps away in rows and in columns
-  double step_samples = 0.25;       // plane spacing: the farthest view's shift per step, in samples
-  double truncation = 0.1;          // the colour and the gradient terms' caps (sRGB units, 0 .. 1)
-  int window_radius = 1;            // the matching window's radius in samples (a box)
-  int smoothness_p1 = 16;           // semi-global matching's penalties (depth/semi_global.h)
+  // Views up to this many grid steps away in rows and in columns; 0: 4 for one view, 1 for
+  // every view of a set (EstimateDepthSet: a hundred views' maps in about a minute, not ten).
+  int reach = 0;
+  double step_samples = 0.25;  // plane spacing: the farthest view's shift per step, in samples
+  double truncation = 0.1;     // the colour and the gradient terms' caps (sRGB units, 0 .. 1)
+  int window_radius = 1;       // the matching window's radius in samples (a box)
+  int smoothness_p1 = 16;      // semi-global matching's penalties (depth/semi_global.h)
   int smoothness_p2 = 160;
   bool refine_edges = true;  // the weighted-median outlier clean-up
   int refine_radius = 0;     // its radius in samples; 0: from the view's size
