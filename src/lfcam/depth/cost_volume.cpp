@@ -187,6 +187,7 @@ SweepViews::SweepViews(const LightField& lf, int row, int col, const CostVolumeO
   st_depth_ = DepthOf(lf.slab(), reference_.sampling.Point((d.n_s - 1) / 2.0, (d.n_t - 1) / 2.0)) -
               DepthOf(lf.slab(), reference_.center);
   sample_mm_ = std::min(lf.st_sampling().ds_mm() * scale_x_, lf.st_sampling().dt_mm() * scale_y_);
+  full_sample_mm_ = std::min(lf.st_sampling().ds_mm(), lf.st_sampling().dt_mm());
 }
 
 cv::Matx33d SweepViews::Homography(const View& view, double depth) const {

@@ -58,6 +58,8 @@ class SweepViews {
   // (and its nearest) per unit of inverse depth (1/mm).
   double farthest_shift_per_q() const { return farthest_mm_ * st_depth_ / sample_mm_; }
   double nearest_shift_per_q() const { return nearest_mm_ * st_depth_ / sample_mm_; }
+  // The farthest view's shift per unit of inverse depth in full-resolution samples.
+  double full_resolution_shift_per_q() const { return farthest_mm_ * st_depth_ / full_sample_mm_; }
 
   // The cost volume over the planes of inverse depth q[i] (1/mm).
   CostVolume Sweep(const std::vector<double>& q) const;
@@ -80,7 +82,7 @@ class SweepViews {
   std::vector<View> views_;
   std::vector<unsigned> class_halves_;  // the distinct half-array memberships of the views
   cv::Mat reference_rgb8_;
-  double st_depth_ = 0, farthest_mm_ = 0, nearest_mm_ = 0, sample_mm_ = 0;
+  double st_depth_ = 0, farthest_mm_ = 0, nearest_mm_ = 0, sample_mm_ = 0, full_sample_mm_ = 0;
 };
 
 }  // namespace lfcam

@@ -9,6 +9,7 @@
 #include <mutex>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/ximgproc/weighted_median_filter.hpp>
+#include <optional>
 #include <vector>
 
 #include "lfcam/core/error.h"
@@ -113,10 +114,13 @@ DepthRange EstimateDepthRange(const LightField& lf, int row, int col,
   const auto& d = lf.dims();
   // A quarter of the resolution, unless the swept depths would then move the farthest view by
   // fewer than 16 coarse samples (small baselines, wide views: an imported data set).
-  const SweepViews full(lf, row, col, VolumeOptions(options, 1.0));
-  const double shift_samples = 1.95 / full.st_depth() * full.farthest_shift_per_q();
+  std::optional<SweepViews> views;
+  views.emplace(lf, row, col, VolumeOptions(options, kCoarseFactor));
+  const double shift_samples = 1.95 / views->st_depth() * views->full_resolution_shift_per_q();
   const double factor = std::min({kCoarseFactor, shift_samples / 16.0, d.n_s / 16.0, d.n_t / 16.0});
-  const SweepViews coarse(lf, row, col, VolumeOptions(options, std::max(1.0, factor)));
+  if (factor < kCoarseFactor)
+    views.emplace(lf, row, col, VolumeOptions(options, std::max(1.0, factor)));
+  const SweepViews& coarse = *views;
   const double q_near = 2.0 / coarse.st_depth(), q_far = 0.05 / coarse.st_depth();
   const std::vector<double> q =
       Planes(q_near, q_far, 1.0 / coarse.farthest_shift_per_q(), coarse.width() * coarse.height());
