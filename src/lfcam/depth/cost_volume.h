@@ -6,14 +6,14 @@
 // `reach` grid steps of the reference (rows and columns: a square of up to (2 reach + 1)^2 - 1
 // views) is warped onto the reference's st samples through that plane (a homography, exact for
 // any slab; where the st-plane is parallel to the array's plane it is a shift, and the shift is
-// done separably with a cubic kernel: bilinear interpolation smooths by an amount that depends
-// on the shift's fraction and biases sub-sample matching) and compared with the reference: the
-// mean absolute difference of the sRGB channels and the absolute difference of the grey
-// gradients, each truncated. Occlusion: an occluder's edge splits the views around the
-// reference into those that see past it and those that do not, along a line through the
-// reference. So the views' costs are averaged over each of 8 half-arrays (the views whose grid
-// offset lies within 90 degrees of one of 8 directions a 45 degrees apart), each half-array's
-// cost is averaged over a small window, and the cheapest half-array counts.
+// done separably with Keys' cubic kernel, fused with the comparison row by row: bilinear
+// interpolation smooths by an amount that depends on the shift's fraction and biases sub-sample
+// matching) and compared with the reference: the mean absolute difference of the sRGB channels
+// and the absolute difference of the grey gradients, each truncated. Occlusion: an occluder's edge
+// splits the views around the reference into those that see past it and those that do not, along a
+// line through the reference. So the views' costs are averaged over each of 8 half-arrays (the
+// views whose grid offset lies within 90 degrees of one of 8 directions a 45 degrees apart), each
+// half-array's cost is averaged over a small window, and the cheapest half-array counts.
 #include <cstdint>
 #include <opencv2/core.hpp>
 #include <vector>
@@ -66,7 +66,11 @@ class SweepViews {
 
  private:
   struct View {
-    std::vector<float> channels;  // kChannels planes of width x height, sRGB and gradients
+    // kChannels planes of width x height, sRGB and gradients: as floats for the reference, as
+    // 16-bit fixed point (kPacked) for the others (the sweep reads every view at every plane:
+    // half the bytes, and the sweep is bound by reading them).
+    std::vector<float> channels;
+    std::vector<std::int16_t> packed;
     Vec3 center;
     StSampling sampling;
     unsigned halves = 0;  // bit g: in the half-array of direction g * 45 degrees
