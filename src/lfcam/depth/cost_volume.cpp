@@ -82,6 +82,26 @@ Shift MakeShift(double tx, double ty, int w, int h) {
   return s;
 }
 
+// One row's comparison: the shifted view's channels s0 .. s4 against the reference's f0 .. f4,
+// each term truncated, added to `sum`, and 1 to `count`.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+__attribute__((target_clones("arch=x86-64-v3", "default")))
+#endif
+void CompareRow(const float* __restrict s0, const float* __restrict s1, const float* __restrict s2,
+                const float* __restrict s3, const float* __restrict s4, const float* __restrict f0,
+                const float* __restrict f1, const float* __restrict f2, const float* __restrict f3,
+                const float* __restrict f4, float color_cap, float gradient_cap, std::size_t n,
+                float* __restrict sum, float* __restrict count) {
+  for (std::size_t x = 0; x < n; ++x) {
+    const float color =
+        (std::abs(s0[x] - f0[x]) + std::abs(s1[x] - f1[x]) + std::abs(s2[x] - f2[x])) *
+        (1.0f / 3.0f);
+    const float gradient = std::abs(s3[x] - f3[x]) + std::abs(s4[x] - f4[x]);
+    sum[x] += std::min(color, color_cap) + std::min(gradient, gradient_cap);
+    count[x] += 1.0f;
+  }
+}
+
 // Row y of one view's truncated cost against the reference, the view shifted: added to `sum`
 // and 1 to `count` where the shifted view has a sample. The shift (vertical taps into one row,
 // then horizontal taps) and the comparison are fused, and the sweep runs row by row through all
@@ -124,27 +144,12 @@ void AccumulateShiftedRow(const std::vector<std::int16_t>& src, const float* ref
     }
     for (int x = std::max({x_lo, shift.inner_hi + 1, shift.inner_lo}); x <= x_hi; ++x) edge(x);
   }
-  const std::size_t at = std::size_t(y) * w;
-  const float* __restrict s0 = shifted;
-  const float* __restrict s1 = shifted + std::size_t(w);
-  const float* __restrict s2 = shifted + 2 * std::size_t(w);
-  const float* __restrict s3 = shifted + 3 * std::size_t(w);
-  const float* __restrict s4 = shifted + 4 * std::size_t(w);
-  const float* __restrict f0 = ref + at;
-  const float* __restrict f1 = ref + plane + at;
-  const float* __restrict f2 = ref + 2 * plane + at;
-  const float* __restrict f3 = ref + 3 * plane + at;
-  const float* __restrict f4 = ref + 4 * plane + at;
-  float* __restrict sum_row = sum + at;
-  float* __restrict count_row = count + at;
-  for (int x = x_lo; x <= x_hi; ++x) {
-    const float color =
-        (std::abs(s0[x] - f0[x]) + std::abs(s1[x] - f1[x]) + std::abs(s2[x] - f2[x])) *
-        (1.0f / 3.0f);
-    const float gradient = std::abs(s3[x] - f3[x]) + std::abs(s4[x] - f4[x]);
-    sum_row[x] += std::min(color, color_cap) + std::min(gradient, gradient_cap);
-    count_row[x] += 1.0f;
-  }
+  const std::size_t at = std::size_t(y) * w + std::size_t(x_lo);
+  const std::size_t sw = std::size_t(w);
+  CompareRow(shifted + x_lo, shifted + sw + x_lo, shifted + 2 * sw + x_lo, shifted + 3 * sw + x_lo,
+             shifted + 4 * sw + x_lo, ref + at, ref + plane + at, ref + 2 * plane + at,
+             ref + 3 * plane + at, ref + 4 * plane + at, color_cap, gradient_cap,
+             std::size_t(x_hi - x_lo + 1), sum + at, count + at);
 }
 
 // The same through a general homography m (reference coordinates -> the view's).
