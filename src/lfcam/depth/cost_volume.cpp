@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdlib>
 #include <numbers>
 #include <opencv2/imgproc.hpp>
 #include <utility>
@@ -65,7 +66,8 @@ struct Shift {
   int inner_lo = 0, inner_hi = -1;  // the samples whose four horizontal taps lie inside the row
 };
 
-Shift MakeShift(double tx, double ty, int w, int h) {
+// `within`: also keep to these samples (x_lo .. y_hi), where given.
+Shift MakeShift(double tx, double ty, int w, int h, const Shift* within = nullptr) {
   Shift s;
   s.x0 = int(std::floor(tx));
   s.y0 = int(std::floor(ty));
@@ -75,6 +77,12 @@ Shift MakeShift(double tx, double ty, int w, int h) {
   s.x_hi = std::min(w - 1, int(std::floor(w - 1 - tx + 1e-6)));
   s.y_lo = std::max(0, int(std::ceil(-ty - 1e-6)));
   s.y_hi = std::min(h - 1, int(std::floor(h - 1 - ty + 1e-6)));
+  if (within != nullptr) {
+    s.x_lo = std::max(s.x_lo, within->x_lo);
+    s.x_hi = std::min(s.x_hi, within->x_hi);
+    s.y_lo = std::max(s.y_lo, within->y_lo);
+    s.y_hi = std::min(s.y_hi, within->y_hi);
+  }
   s.c_lo = std::clamp(s.x_lo + s.x0 - 1, 0, w - 1);
   s.c_hi = std::clamp(s.x_hi + s.x0 + 2, 0, w - 1);
   s.inner_lo = std::max(s.x_lo, 1 - s.x0);
@@ -314,6 +322,15 @@ CostVolume SweepViews::Sweep(const std::vector<double>& q) const {
   }
   const float min_count =
       float(std::min(2, largest_half) * (2 * radius + 1) * (2 * radius + 1)) - 0.01f;
+  std::vector<Shift> stable(views_.size());
+  if (options_.same_views_at_every_plane)
+    for (std::size_t v = 0; v < views_.size(); ++v) {
+      const cv::Matx33d a = Homography(views_[v], 1.0 / q.front());
+      const cv::Matx33d b = Homography(views_[v], 1.0 / q.back());
+      if (!IsShift(a) || !IsShift(b)) continue;
+      const Shift sa = MakeShift(a(0, 2), a(1, 2), w, h);
+      stable[v] = MakeShift(b(0, 2), b(1, 2), w, h, &sa);
+    }
   tbb::parallel_for(0, n, [&](int i) {
     Scratch& s = scratches.local();
     // Sums per class of views (the views in the same half-arrays), then per half-array.
@@ -332,7 +349,9 @@ CostVolume SweepViews::Sweep(const std::vector<double>& q) const {
       float* sum = s.sum.data() + std::size_t(view.view_class) * plane;
       float* count = s.count.data() + std::size_t(view.view_class) * plane;
       if (IsShift(m)) {
-        shifted.emplace_back(v, MakeShift(m(0, 2), m(1, 2), w, h));
+        shifted.emplace_back(v,
+                             MakeShift(m(0, 2), m(1, 2), w, h,
+                                       options_.same_views_at_every_plane ? &stable[v] : nullptr));
         continue;
       }
       s.unpacked.resize(plane * kChannels);

@@ -28,6 +28,10 @@ struct CostVolumeOptions {
   double gradient_cap = 0.1;  // the gradient term's truncation
   int window_radius = 1;      // the half-arrays' averaging window (box) radius in samples
   double scale = 1.0;         // > 1: match at 1/scale of the views' resolution (coarse sweeps)
+  // A view counts at a sample only if it sees the sample at every plane swept, so that every
+  // plane's cost there is over the same views (docs/depth.md, "The frame's edges"). Off for
+  // sweeps over a wide bracket of depths (EstimateDepthRange), where no view would remain.
+  bool same_views_at_every_plane = false;
 };
 
 // The cost of every plane at every sample, as 16-bit integers (kCostUnit a unit of cost; at

@@ -155,7 +155,9 @@ DepthMap EstimateDepth(const LightField& lf, int row, int col, const PlaneSweepO
       options.range ? *options.range : EstimateDepthRange(lf, row, col, options);
   if (!range.valid())
     throw Error(fmt::format("invalid depth range {} .. {} mm", range.near_mm, range.far_mm));
-  const SweepViews views(lf, row, col, VolumeOptions(options, 1.0));
+  CostVolumeOptions volume_options = VolumeOptions(options, 1.0);
+  volume_options.same_views_at_every_plane = true;
+  const SweepViews views(lf, row, col, volume_options);
   const double q_near = 1.0 / range.near_mm, q_far = 1.0 / range.far_mm;
   const std::vector<double> q =
       Planes(q_near, q_far, options.step_samples / views.farthest_shift_per_q(),
