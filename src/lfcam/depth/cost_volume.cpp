@@ -160,6 +160,19 @@ void AccumulateShiftedRow(const std::vector<std::int16_t>& src, const float* ref
              std::size_t(x_hi - x_lo + 1), sum + at, count + at);
 }
 
+// Where the homography m (reference coordinates -> the view's) lands inside the view: 1, else 0.
+void ValidUnder(const cv::Matx33d& m, int w, int h, std::vector<float>& valid) {
+  valid.resize(std::size_t(w) * h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const cv::Vec3d p = m * cv::Vec3d(x, y, 1);
+      const double u = p[0] / p[2], v = p[1] / p[2];
+      valid[std::size_t(y) * w + x] =
+          p[2] > 0 && u >= -1e-6 && u <= w - 1 + 1e-6 && v >= -1e-6 && v <= h - 1 + 1e-6 ? 1.0f
+                                                                                         : 0.0f;
+    }
+}
+
 // The same through a general homography m (reference coordinates -> the view's).
 void WarpCubic(const std::vector<float>& src, int w, int h, const cv::Matx33d& m,
                std::vector<float>& dst, std::vector<float>& valid) {
@@ -171,15 +184,7 @@ void WarpCubic(const std::vector<float>& src, int w, int h, const cv::Matx33d& m
     cv::warpPerspective(in, out, m, {w, h}, cv::INTER_CUBIC | cv::WARP_INVERSE_MAP,
                         cv::BORDER_REPLICATE);
   }
-  valid.resize(plane);
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      const cv::Vec3d p = m * cv::Vec3d(x, y, 1);
-      const double u = p[0] / p[2], v = p[1] / p[2];
-      valid[std::size_t(y) * w + x] =
-          p[2] > 0 && u >= -1e-6 && u <= w - 1 + 1e-6 && v >= -1e-6 && v <= h - 1 + 1e-6 ? 1.0f
-                                                                                         : 0.0f;
-    }
+  ValidUnder(m, w, h, valid);
 }
 
 bool IsShift(const cv::Matx33d& m) {
@@ -322,14 +327,24 @@ CostVolume SweepViews::Sweep(const std::vector<double>& q) const {
   }
   const float min_count =
       float(std::min(2, largest_half) * (2 * radius + 1) * (2 * radius + 1)) - 0.01f;
+  // Where each view sees the reference's samples at both ends of the planes (and so at every
+  // plane between: a sample's image moves along a line as the plane moves): a shift's rectangle,
+  // or a homography's mask.
   std::vector<Shift> stable(views_.size());
+  std::vector<std::vector<float>> stable_mask(views_.size());
   if (options_.same_views_at_every_plane)
     for (std::size_t v = 0; v < views_.size(); ++v) {
       const cv::Matx33d a = Homography(views_[v], 1.0 / q.front());
       const cv::Matx33d b = Homography(views_[v], 1.0 / q.back());
-      if (!IsShift(a) || !IsShift(b)) continue;
-      const Shift sa = MakeShift(a(0, 2), a(1, 2), w, h);
-      stable[v] = MakeShift(b(0, 2), b(1, 2), w, h, &sa);
+      if (IsShift(a) && IsShift(b)) {
+        const Shift sa = MakeShift(a(0, 2), a(1, 2), w, h);
+        stable[v] = MakeShift(b(0, 2), b(1, 2), w, h, &sa);
+        continue;
+      }
+      std::vector<float> at_b;
+      ValidUnder(a, w, h, stable_mask[v]);
+      ValidUnder(b, w, h, at_b);
+      for (std::size_t p = 0; p < plane; ++p) stable_mask[v][p] *= at_b[p];
     }
   tbb::parallel_for(0, n, [&](int i) {
     Scratch& s = scratches.local();
@@ -359,6 +374,8 @@ CostVolume SweepViews::Sweep(const std::vector<double>& q) const {
         for (std::size_t p = 0; p < plane; ++p)
           s.unpacked[c * plane + p] = float(view.packed[c * plane + p]) / kPacked[std::size_t(c)];
       WarpCubic(s.unpacked, w, h, m, s.warped, s.valid);
+      if (!stable_mask[v].empty())
+        for (std::size_t p = 0; p < plane; ++p) s.valid[p] *= stable_mask[v][p];
       const float* war = s.warped.data();
       const float* valid = s.valid.data();
       for (std::size_t p = 0; p < plane; ++p) {
