@@ -114,12 +114,17 @@ DepthRange EstimateDepthRange(const LightField& lf, int row, int col,
   const auto& d = lf.dims();
   // A quarter of the resolution, unless the swept depths would then move the farthest view by
   // fewer than 16 coarse samples (small baselines, wide views: an imported data set).
+  // At least reach 4 whatever the map's own reach: with fewer views a repeating texture matches
+  // at a false depth too (the `paper` scene's checkerboard at 1.85 m with reach 2 or 3; the
+  // range then spans planes no map needs, and reach 2's `--all` lost 9 points within 1%).
+  PlaneSweepOptions wide = options;
+  wide.reach = std::max(4, options.reach);
   std::optional<SweepViews> views;
-  views.emplace(lf, row, col, VolumeOptions(options, kCoarseFactor));
+  views.emplace(lf, row, col, VolumeOptions(wide, kCoarseFactor));
   const double shift_samples = 1.95 / views->st_depth() * views->full_resolution_shift_per_q();
   const double factor = std::min({kCoarseFactor, shift_samples / 16.0, d.n_s / 16.0, d.n_t / 16.0});
   if (factor < kCoarseFactor)
-    views.emplace(lf, row, col, VolumeOptions(options, std::max(1.0, factor)));
+    views.emplace(lf, row, col, VolumeOptions(wide, std::max(1.0, factor)));
   const SweepViews& coarse = *views;
   const double q_near = 2.0 / coarse.st_depth(), q_far = 0.05 / coarse.st_depth();
   const std::vector<double> q =
@@ -156,7 +161,11 @@ DepthMap EstimateDepth(const LightField& lf, int row, int col, const PlaneSweepO
   if (!range.valid())
     throw Error(fmt::format("invalid depth range {} .. {} mm", range.near_mm, range.far_mm));
   CostVolumeOptions volume_options = VolumeOptions(options, 1.0);
-  volume_options.same_views_at_every_plane = true;
+  // Every plane over the same views where a half-array keeps enough of them near the frame's
+  // edges: reach 2 or more (a half-array of 10 or more views). At reach 1 (3 views a half-array,
+  // `--all`) the rule leaves the edges' samples without views and costs more than it gains
+  // (docs/depth.md, "The frame's edges").
+  volume_options.same_views_at_every_plane = volume_options.reach >= 2;
   const SweepViews views(lf, row, col, volume_options);
   const double q_near = 1.0 / range.near_mm, q_far = 1.0 / range.far_mm;
   const std::vector<double> q =
