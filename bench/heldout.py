@@ -13,6 +13,7 @@ photograph, and the mean (in linear light) of the nearest kept photographs (2 or
 G, B of the 8-bit sRGB images.
 
     bench/heldout.py DATA_DIR WORK_DIR [--lfcam PATH] [--limit N] [--import-args "..."]
+                     [--depth-args "..."]
 """
 import argparse
 import json
@@ -58,6 +59,7 @@ def main():
     ap.add_argument("--lfcam", default="build/release/lfcam")
     ap.add_argument("--limit", type=int, default=0, help="only the first N left-out cameras")
     ap.add_argument("--import-args", default="", help="more flags for `lfcam import`")
+    ap.add_argument("--depth-args", default="", help="more flags for `lfcam depth --all`")
     args = ap.parse_args()
     data = os.path.abspath(args.data)
     os.makedirs(args.work, exist_ok=True)
@@ -97,7 +99,8 @@ def main():
     t0 = time.time()
     run([args.lfcam, "import", sub, "--out", lf, "--quiet"])
     if not os.path.exists(os.path.join(depth, "depth.json")):
-        run([args.lfcam, "depth", lf, "--all", "--out", depth, "--quiet"])
+        run([args.lfcam, "depth", lf, "--all", "--out", depth, "--quiet"]
+            + shlex.split(args.depth_args))
     print(f"{data}: {rows}x{cols} views ({full['naming']}, {full['rig']} rig); {len(kept)} kept, "
           f"{len(out)} left out; kept imported and their depth estimated in "
           f"{time.time() - t0:.0f} s", flush=True)
