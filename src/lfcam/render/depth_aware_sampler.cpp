@@ -63,7 +63,12 @@ bool DepthAwareSampler::Read(int c, const Vec3& p, double q, float w, float acc[
   // Camera c sees p when the sample nearest to p's projection has p's depth.
   const float d = DepthAt(c, k, l);
   if (!(std::isfinite(d) && d > 0.0f && std::abs(1.0 / d - q) <= tolerance(q))) return false;
-  if (acc) colour_.AccumulateAt(c / cols_, c % cols_, k, l, w, acc);
+  if (acc) {
+    if (cubic_reads_)
+      colour_.AccumulateAtCubic(c / cols_, c % cols_, k, l, w, acc);
+    else
+      colour_.AccumulateAt(c / cols_, c % cols_, k, l, w, acc);
+  }
   return true;
 }
 

@@ -12,8 +12,9 @@
 // in front of the surface it sees to behind it without a jump in that surface's depth (a jump
 // means the ray passed behind an occluding edge). Each camera's hit is then put to the others:
 // the hit most of the cameras' weight agrees with wins (the nearest on a tie), and the cameras
-// that agree are blended with their bilinear weights renormalised. A ray no camera finds a hit
-// for falls back to the paper's lookup.
+// that agree, each read at the hit's projection (bilinearly, or with a cubic kernel for frames at
+// the views' resolution or finer), are blended with their bilinear weights renormalised. A ray
+// no camera finds a hit for falls back to the paper's lookup.
 #include <vector>
 
 #include "lfcam/core/lightfield.h"
@@ -36,6 +37,9 @@ class DepthAwareSampler {
 
   // Radiance along the line (origin, direction); false when it misses the slab.
   bool Sample(const Vec3& origin, const Vec3& direction, float rgb[3]) const;
+  // Read the views with a cubic kernel instead of bilinearly (for frames at the views' own
+  // resolution or finer; CpuRenderer decides).
+  void set_cubic_reads(bool cubic) { cubic_reads_ = cubic; }
 
   // The inverse-depth tolerance of the occlusion test (1/mm) at inverse depth q.
   double tolerance(double q) const;
@@ -54,13 +58,14 @@ class DepthAwareSampler {
   float DepthAt(int c, double k, double l) const;
   // Whether camera c sees point p (inverse depth q), not something in front of or behind it (the
   // depth of the sample nearest to p's projection). If so, and `acc` is given, acc += w times
-  // the view read there bilinearly.
+  // the view read there (bilinearly, or with Keys' cubic when set_cubic_reads).
   bool Read(int c, const Vec3& p, double q, float w, float acc[3]) const;
   // The inverse depth where the ray (origin, direction) hits the surface camera c sees, or a
   // negative number when it hits none.
   double March(int c, const Vec3& origin, const Vec3& direction) const;
 
   const LightFieldSampler& colour_;
+  bool cubic_reads_ = false;
   Slab slab_;  // LightField::sampled_slab(): its st domain the union of the views' windows
   int rows_, cols_, n_s_, n_t_;
   std::vector<Camera> cameras_;  // row-major

@@ -80,7 +80,9 @@ TEST(DepthHeldOut, TheShopsLeftOutViewsRenderFromTheRest) {
         "paper's lookup {:.2f} dB, depth lookup {:.2f} dB\n",
         c.row, c.col, baseline, psnr[0], psnr[1]);
     EXPECT_GE(psnr[1], baseline + 6.0);
-    EXPECT_GT(psnr[1], psnr[0]);
+    // 3 dB over the paper's lookup (measured: 3.3 and 3.5 dB; 2.5 and 2.2 before the lookup read
+    // its views with a cubic kernel at the views' own resolution).
+    EXPECT_GE(psnr[1], psnr[0] + 3.0);
   }
   fs::remove_all(dir);
 }

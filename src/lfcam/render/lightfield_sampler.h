@@ -119,6 +119,23 @@ class LightFieldSampler {
     return w;
   }
 
+  // As AccumulateAt, read with Keys' cubic convolution (a = -0.5) over 4 x 4 samples, the
+  // view's edge repeated: between samples bilinear reads blur by up to half a sample, which a
+  // blend of a few views read at fractional positions (the depth lookup) shows as softness.
+  float AccumulateAtCubic(int row, int col, double k, double l, float w, float acc[3]) const {
+    if (!offsets_.empty()) {
+      const StOffset& o = offsets_[std::size_t(row) * cols_ + col];
+      k -= o.k;
+      l -= o.l;
+      if (!(k >= -0.5 && k <= n_s_ - 0.5 && l >= -0.5 && l <= n_t_ - 0.5)) return 0.0f;
+    }
+    if (srgb8_)
+      AccumulateCubicTyped<std::uint8_t>(row, col, k, l, w, acc);
+    else
+      AccumulateCubicTyped<Eigen::half>(row, col, k, l, w, acc);
+    return w;
+  }
+
   // Where the line from `from` through `to` meets the st-plane, in continuous reference sample
   // coordinates (k, l) (sample centres at integers, not clamped); false when it runs parallel to
   // the plane.
@@ -189,6 +206,34 @@ class LightFieldSampler {
     for (int ch = 0; ch < 3; ++ch)
       acc[ch] += w00 * Decode(view[o00 + ch], lut_) + w10 * Decode(view[o10 + ch], lut_) +
                  w01 * Decode(view[o01 + ch], lut_) + w11 * Decode(view[o11 + ch], lut_);
+  }
+
+  // Keys' cubic weights (a = -0.5) of the samples at -1, 0, 1, 2 from fraction t.
+  static void KeysWeights(float t, float w[4]) {
+    w[0] = ((-0.5f * t + 1.0f) * t - 0.5f) * t;
+    w[1] = (1.5f * t - 2.5f) * t * t + 1.0f;
+    w[2] = ((-1.5f * t + 2.0f) * t + 0.5f) * t;
+    w[3] = (0.5f * t - 0.5f) * t * t;
+  }
+
+  template <typename T>
+  void AccumulateCubicTyped(int row, int col, double k, double l, float w, float acc[3]) const {
+    const T* view = reinterpret_cast<const T*>(data_) +
+                    (std::size_t(row) * cols_ + std::size_t(col)) * view_samples_;
+    k = std::clamp(k, 0.0, double(n_s_ - 1));
+    l = std::clamp(l, 0.0, double(n_t_ - 1));
+    const int k0 = int(std::floor(k)), l0 = int(std::floor(l));
+    float wk[4], wl[4];
+    KeysWeights(float(k - k0), wk);
+    KeysWeights(float(l - l0), wl);
+    for (int j = 0; j < 4; ++j) {
+      const std::size_t lj = std::size_t(std::clamp(l0 - 1 + j, 0, n_t_ - 1));
+      for (int i = 0; i < 4; ++i) {
+        const std::size_t o = (lj * n_s_ + std::size_t(std::clamp(k0 - 1 + i, 0, n_s_ - 1))) * 3;
+        const float ww = w * wk[i] * wl[j];
+        for (int ch = 0; ch < 3; ++ch) acc[ch] += ww * Decode(view[o + ch], lut_);
+      }
+    }
   }
 
   const std::uint8_t* data_;
