@@ -14,6 +14,7 @@
 
 #include "lfcam/core/color.h"
 #include "lfcam/core/error.h"
+#include "lfcam/core/keys_cubic.h"
 #include "lfcam/depth/plane_sweep.h"
 
 namespace lfcam {
@@ -45,17 +46,6 @@ cv::Mat ViewSrgb8(const LightField& lf, int row, int col) {
 double ToFull(double x, double scale) { return (x + 0.5) * scale - 0.5; }
 double ToScaled(double x, double scale) { return (x + 0.5) / scale - 0.5; }
 
-// Keys' cubic convolution kernel's four weights for taps -1, 0, 1, 2 at fraction f, with
-// a = -0.5: the one cubic that reproduces a quadratic exactly, and passes more of the band than
-// OpenCV's a = -0.75, whose extra smoothing at half-sample shifts pulls matches towards whole-
-// and half-sample shifts (on hci-antinous BadPix0.07 6.79% with OpenCV's a, 6.45% with Keys').
-std::array<float, 4> CubicWeights(double f) {
-  constexpr double a = -0.5;
-  const auto near = [](double x) { return ((a + 2) * x - (a + 3)) * x * x + 1; };
-  const auto far = [](double x) { return ((a * x - 5 * a) * x + 8 * a) * x - 4 * a; };
-  return {float(far(1 + f)), float(near(f)), float(near(1 - f)), float(far(2 - f))};
-}
-
 // A view read shifted by (tx, ty): at (x + tx, y + ty), cubic, its edge repeated; the samples
 // [x_lo, x_hi] x [y_lo, y_hi] read inside it.
 struct Shift {
@@ -71,8 +61,8 @@ Shift MakeShift(double tx, double ty, int w, int h, const Shift* within = nullpt
   Shift s;
   s.x0 = int(std::floor(tx));
   s.y0 = int(std::floor(ty));
-  s.wx = CubicWeights(tx - s.x0);
-  s.wy = CubicWeights(ty - s.y0);
+  s.wx = KeysCubicWeights(tx - s.x0);
+  s.wy = KeysCubicWeights(ty - s.y0);
   s.x_lo = std::max(0, int(std::ceil(-tx - 1e-6)));
   s.x_hi = std::min(w - 1, int(std::floor(w - 1 - tx + 1e-6)));
   s.y_lo = std::max(0, int(std::ceil(-ty - 1e-6)));

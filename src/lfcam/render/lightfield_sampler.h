@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "lfcam/core/color.h"
+#include "lfcam/core/keys_cubic.h"
 #include "lfcam/core/lightfield.h"
 
 namespace lfcam {
@@ -109,12 +110,7 @@ class LightFieldSampler {
   // renormalises over the views that hold the point); with shared windows it clamps to the
   // sampled domain and always reads.
   float AccumulateAt(int row, int col, double k, double l, float w, float acc[3]) const {
-    if (!offsets_.empty()) {
-      const StOffset& o = offsets_[std::size_t(row) * cols_ + col];
-      k -= o.k;
-      l -= o.l;
-      if (!(k >= -0.5 && k <= n_s_ - 0.5 && l >= -0.5 && l <= n_t_ - 0.5)) return 0.0f;
-    }
+    if (!InOwnWindow(row, col, k, l)) return 0.0f;
     AccumulateView(row, col, AxisLerp::At(k, n_s_), AxisLerp::At(l, n_t_), w, acc);
     return w;
   }
@@ -123,12 +119,7 @@ class LightFieldSampler {
   // view's edge repeated: between samples bilinear reads blur by up to half a sample, which a
   // blend of a few views read at fractional positions (the depth lookup) shows as softness.
   float AccumulateAtCubic(int row, int col, double k, double l, float w, float acc[3]) const {
-    if (!offsets_.empty()) {
-      const StOffset& o = offsets_[std::size_t(row) * cols_ + col];
-      k -= o.k;
-      l -= o.l;
-      if (!(k >= -0.5 && k <= n_s_ - 0.5 && l >= -0.5 && l <= n_t_ - 0.5)) return 0.0f;
-    }
+    if (!InOwnWindow(row, col, k, l)) return 0.0f;
     if (srgb8_)
       AccumulateCubicTyped<std::uint8_t>(row, col, k, l, w, acc);
     else
@@ -169,6 +160,16 @@ class LightFieldSampler {
   }
 
  private:
+  // With views in their own windows: (k, l) moved into view (row, col)'s window, and whether it
+  // lies there; with shared windows always true, (k, l) unchanged.
+  bool InOwnWindow(int row, int col, double& k, double& l) const {
+    if (offsets_.empty()) return true;
+    const StOffset& o = offsets_[std::size_t(row) * cols_ + col];
+    k -= o.k;
+    l -= o.l;
+    return k >= -0.5 && k <= n_s_ - 0.5 && l >= -0.5 && l <= n_t_ - 0.5;
+  }
+
   template <typename F>
   static void ForNearestCameras(const AxisLerp& c, const AxisLerp& r, F&& visit) {
     const int view_r[2] = {r.i0, r.i1}, view_c[2] = {c.i0, c.i1};
@@ -208,14 +209,6 @@ class LightFieldSampler {
                  w01 * Decode(view[o01 + ch], lut_) + w11 * Decode(view[o11 + ch], lut_);
   }
 
-  // Keys' cubic weights (a = -0.5) of the samples at -1, 0, 1, 2 from fraction t.
-  static void KeysWeights(float t, float w[4]) {
-    w[0] = ((-0.5f * t + 1.0f) * t - 0.5f) * t;
-    w[1] = (1.5f * t - 2.5f) * t * t + 1.0f;
-    w[2] = ((-1.5f * t + 2.0f) * t + 0.5f) * t;
-    w[3] = (0.5f * t - 0.5f) * t * t;
-  }
-
   template <typename T>
   void AccumulateCubicTyped(int row, int col, double k, double l, float w, float acc[3]) const {
     const T* view = reinterpret_cast<const T*>(data_) +
@@ -223,9 +216,7 @@ class LightFieldSampler {
     k = std::clamp(k, 0.0, double(n_s_ - 1));
     l = std::clamp(l, 0.0, double(n_t_ - 1));
     const int k0 = int(std::floor(k)), l0 = int(std::floor(l));
-    float wk[4], wl[4];
-    KeysWeights(float(k - k0), wk);
-    KeysWeights(float(l - l0), wl);
+    const auto wk = KeysCubicWeights(k - k0), wl = KeysCubicWeights(l - l0);
     for (int j = 0; j < 4; ++j) {
       const std::size_t lj = std::size_t(std::clamp(l0 - 1 + j, 0, n_t_ - 1));
       for (int i = 0; i < 4; ++i) {
