@@ -52,12 +52,7 @@ TEST(LightFieldSampler, QuadrilinearIsExactOnMultilinearData) {
 // second difference between samples: the sharper read the depth lookup uses at the views' own
 // resolution.
 TEST(LightFieldSampler, CubicReadsAreExactOnAQuadratic) {
-  Slab slab;
-  slab.uv.rows = 1;
-  slab.uv.cols = 2;
-  slab.uv.p_ca = Vec3(0, 0, 1000);
-  slab.st = ViewWindow{Vec3::Zero(), Vec3::UnitX(), Vec3::UnitY(), 200, 100};
-  LightField lf({1, 2, 40, 30}, SampleType::kLinearF16, slab);
+  LightField lf = MakeMultilinearLightField();  // view (0, 1) made a quadratic below
   // 0.1 .. 0.32 over the samples read: f16 holds it to 1.2e-4.
   const auto quadratic = [](double k, double l) {
     return 0.1 + 0.002 * (k - 20) * (k - 20) + 0.001 * l;
