@@ -366,16 +366,25 @@ CostVolume SweepViews::Sweep(const std::vector<double>& q) const {
       WarpCubic(s.unpacked, w, h, m, s.warped, s.valid);
       if (!stable_mask[v].empty())
         for (std::size_t p = 0; p < plane; ++p) s.valid[p] *= stable_mask[v][p];
+      // The same comparison as a shifted view's, over each run of samples the view sees.
       const float* war = s.warped.data();
-      const float* valid = s.valid.data();
-      for (std::size_t p = 0; p < plane; ++p) {
-        const float color = (std::abs(war[p] - ref[p]) + std::abs(war[plane + p] - ref[plane + p]) +
-                             std::abs(war[2 * plane + p] - ref[2 * plane + p])) *
-                            (1.0f / 3.0f);
-        const float gradient = std::abs(war[3 * plane + p] - ref[3 * plane + p]) +
-                               std::abs(war[4 * plane + p] - ref[4 * plane + p]);
-        sum[p] += valid[p] * (std::min(color, color_cap) + std::min(gradient, gradient_cap));
-        count[p] += valid[p];
+      const std::size_t sw = std::size_t(w);
+      for (int y = 0; y < h; ++y) {
+        const float* valid = s.valid.data() + std::size_t(y) * sw;
+        for (int x = 0; x < w;) {
+          if (valid[x] == 0.0f) {
+            ++x;
+            continue;
+          }
+          int end = x;
+          while (end < w && valid[end] != 0.0f) ++end;
+          const std::size_t at = std::size_t(y) * sw + std::size_t(x);
+          CompareRow(war + at, war + plane + at, war + 2 * plane + at, war + 3 * plane + at,
+                     war + 4 * plane + at, ref + at, ref + plane + at, ref + 2 * plane + at,
+                     ref + 3 * plane + at, ref + 4 * plane + at, color_cap, gradient_cap,
+                     std::size_t(end - x), sum + at, count + at);
+          x = end;
+        }
       }
     }
     for (const auto& [v, shift] : shifted)
