@@ -2,6 +2,7 @@
 """Scores a disparity map the way the HCI 4D Light Field Benchmark's evaluation toolkit does.
 
     bench/hci_score.py ESTIMATE.pfm GT.pfm [--border 15] [--json]
+    bench/hci_score.py --registration-cost GT.pfm [--border 15] [--json]
 
 Both are PFM files of the centre view's disparity (float32, one channel, rows stored from the
 bottom up as PFM does; the benchmark's gt_disp_lowres.pfm, and `lfcam depth --disparity-pfm`).
@@ -9,6 +10,11 @@ Over the view less a border of 15 pixels (the toolkit's), it prints BadPix(0.07)
 BadPix(0.01) (the percentage of pixels whose |estimate - truth| exceeds the threshold) and
 MSE x 100 (the mean squared error times 100). A file that is not such a PFM, or maps of
 different sizes, are refused with the reason; the PFM is read here, not by lfcam.
+
+--registration-cost scores the truth against itself moved by one whole row and by one whole
+column: what a map registered to a pixel grid one sample away from the truth's would lose, all of
+it at the truth's depth edges and slopes. An estimate that follows the photographs pays a share of
+it in proportion to how far the truth's grid lies from theirs (docs/depth.md).
 """
 import argparse
 import json
@@ -58,24 +64,49 @@ def score(estimate, truth, border=15):
     return out
 
 
+def moved(truth, rows, cols):
+    """The map moved by whole rows (down) and columns (right), its edge repeated."""
+    h, w = truth.shape
+    y = np.clip(np.arange(h) - rows, 0, h - 1)
+    x = np.clip(np.arange(w) - cols, 0, w - 1)
+    return truth[np.ix_(y, x)]
+
+
+def line(result):
+    return (f"BadPix0.07 {result['badpix_0.07']:.2f}%  BadPix0.03 {result['badpix_0.03']:.2f}%  "
+            f"BadPix0.01 {result['badpix_0.01']:.2f}%  MSEx100 {result['mse_x100']:.3f}")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("estimate")
-    parser.add_argument("truth")
+    parser.add_argument("maps", nargs="+", metavar="PFM",
+                        help="ESTIMATE.pfm GT.pfm, or GT.pfm with --registration-cost")
+    parser.add_argument("--registration-cost", action="store_true",
+                        help="score the truth against itself moved one row and one column")
     parser.add_argument("--border", type=int, default=15)
     parser.add_argument("--json", action="store_true")
     args = parser.parse_args()
+    wanted = 1 if args.registration_cost else 2
+    if len(args.maps) != wanted:
+        parser.error(f"expected {'GT.pfm' if wanted == 1 else 'ESTIMATE.pfm GT.pfm'}, "
+                     f"got {len(args.maps)} files")
     try:
-        result = score(read_pfm(args.estimate), read_pfm(args.truth), args.border)
+        if args.registration_cost:
+            truth = read_pfm(args.maps[0])
+            result = {"one_row": score(moved(truth, 1, 0), truth, args.border),
+                      "one_column": score(moved(truth, 0, 1), truth, args.border)}
+        else:
+            result = score(read_pfm(args.maps[0]), read_pfm(args.maps[1]), args.border)
     except (OSError, ValueError) as e:
         print(f"hci_score: {e}", file=sys.stderr)
         return 1
     if args.json:
         print(json.dumps(result, indent=2))
+    elif args.registration_cost:
+        for name, label in (("one_row", "moved one row:   "), ("one_column", "moved one column:")):
+            print(f"{label} {line(result[name])}")
     else:
-        print(f"BadPix0.07 {result['badpix_0.07']:.2f}%  BadPix0.03 {result['badpix_0.03']:.2f}%  "
-              f"BadPix0.01 {result['badpix_0.01']:.2f}%  MSEx100 {result['mse_x100']:.3f}  "
-              f"({result['pixels']} pixels, {args.border}-pixel border left out)")
+        print(f"{line(result)}  ({result['pixels']} pixels, {args.border}-pixel border left out)")
     return 0
 
 

@@ -151,5 +151,33 @@ TEST(DisparityMap, TheScoringScriptCountsAsTheBenchmarkDoes) {
   fs::remove_all(t.parent_path());
 }
 
+// --registration-cost: the truth moved one row and one column against itself. A vertical step of
+// 1 px (columns 60 and on) costs nothing moved down a row and one column of 70 pixels (of the 90 x
+// 70 inside the border) moved right.
+TEST(DisparityMap, TheScoringScriptSaysWhatOneSampleOfRegistrationCosts) {
+  const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+  if (testing::RunOnce(python + " -c 'import numpy' 2>&1").status != 0)
+    GTEST_SKIP() << python << " with numpy is not here (scripts/install-deps.sh installs it)";
+  cv::Mat truth(100, 120, CV_32FC1, cv::Scalar(0.5f));
+  truth(cv::Rect(60, 0, 60, 100)) = 1.5f;
+  const fs::path t = Scratch("step.pfm");
+  WriteDisparityPfm(t, truth);
+  const std::string script = (fs::path(LFCAM_SOURCE_DIR) / "bench/hci_score.py").string();
+  auto run = testing::RunOnce(python + " " + script + " --registration-cost " + t.string() +
+                              " --json 2>&1");
+  ASSERT_EQ(run.status, 0) << run.output;
+  const auto j = nlohmann::json::parse(run.output);
+  EXPECT_EQ(j["one_row"]["badpix_0.07"].get<double>(), 0.0);
+  EXPECT_EQ(j["one_row"]["mse_x100"].get<double>(), 0.0);
+  EXPECT_NEAR(j["one_column"]["badpix_0.07"].get<double>(), 100.0 * 70 / 6300, 1e-9);
+  EXPECT_NEAR(j["one_column"]["mse_x100"].get<double>(), 100.0 * 70 / 6300, 1e-6);
+  // One file is what it takes; two are refused.
+  run = testing::RunOnce(python + " " + script + " --registration-cost " + t.string() + " " +
+                         t.string() + " 2>&1");
+  EXPECT_NE(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("expected GT.pfm"), std::string::npos) << run.output;
+  fs::remove_all(t.parent_path());
+}
+
 }  // namespace
 }  // namespace lfcam::disparity_map_test
