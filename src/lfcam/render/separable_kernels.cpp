@@ -65,10 +65,14 @@ void AddTerm(const SeparableFrame& f, const RaySetup& s, const SeparableTerm& t,
     const int k_count = k_map.hi - k_map.lo + 1;
     decoded.Resize(1, std::size_t(k_count + lanes));
     const std::uint8_t* row = view + (std::size_t(l) * s.n_s + std::size_t(k_map.lo)) * 3;
-    DecodeRow(s, row, k_count, decoded.channel(0, 0), decoded.channel(0, 1), decoded.channel(0, 2));
-    for (int c = 0; c < 3; ++c)
-      ResampleRow(k_map, decoded.channel(0, c), resampled.channel(std::size_t(l - l_lo), c),
-                  padded);
+    DecodeRow(row, k_count, decoded.channel(0, 0), decoded.channel(0, 1), decoded.channel(0, 2),
+              l < l_hi ? row + std::size_t(s.n_s) * 3 : nullptr);
+    const float* const in[3] = {decoded.channel(0, 0), decoded.channel(0, 1),
+                                decoded.channel(0, 2)};
+    const std::size_t at = std::size_t(l - l_lo);
+    float* const out[3] = {resampled.channel(at, 0), resampled.channel(at, 1),
+                           resampled.channel(at, 2)};
+    ResampleRow(k_map, in, out, padded);
   }
   // Each pixel blends the resampled rows around its own l.
   const VF one = hn::Set(d, 1.0f), zero = hn::Zero(d), l_top = hn::Set(d, float(top));
