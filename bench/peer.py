@@ -7,8 +7,11 @@ averaged into the frame. It reads every one of the views once per frame. The geo
 lfcam's (docs/conventions.md): the virtual camera at the array's centre looking along -n_ca,
 f and d_o with focus breathing, each camera read along its own ray through the point in focus.
 
+With --pinhole it renders the pinhole at the eye instead: the four views around the eye, weighted
+by the eye's bilinear share of each camera (the paper's focal-plane lookup, as lfcam's pinhole).
+
 Usage: bench/peer.py LIGHTFIELD.lf [--size 1024] [--focal-length 444] [--focus-distance 4000]
-                     [--runs 5] [--out peer.png]
+                     [--pinhole] [--runs 5] [--out peer.png]
 Prints the median milliseconds per frame (after one warm-up frame). Needs Debian's python3-numpy
 and python3-opencv; reads uncompressed srgb8 light fields (`lfcam simulate lightfield`'s
 default).
@@ -100,6 +103,8 @@ def main():
     ap.add_argument("--size", type=int, default=1024)
     ap.add_argument("--focal-length", type=float, default=444.0)
     ap.add_argument("--focus-distance", type=float, default=4000.0)
+    ap.add_argument("--pinhole", action="store_true",
+                    help="the four views around the eye, bilinear (a pinhole), not all of them")
     ap.add_argument("--runs", type=int, default=5)
     ap.add_argument("--out", default="")
     args = ap.parse_args()
@@ -107,21 +112,30 @@ def main():
     header, data, data_offset = read_lightfield(args.lightfield)
     dims = header["dims"]
     table = srgb_to_linear_table()
-    views = []  # (matrix, linear view)
+    views = []  # (matrix, weight, linear view)
     matrices = warp_matrices(header, args.size, args.focal_length, args.focus_distance)
+    slab = header["slab"]
+    # The eye (the array's centre) in grid units, camera (col, row) at (col, row): a pinhole
+    # reads the four cameras around it, each by its bilinear share.
+    ex, ey = 0.5 * slab["cols"] - 0.5, 0.5 * slab["rows"] - 0.5
     for v in header["views"]:
+        if args.pinhole:
+            share = max(0.0, 1 - abs(v["col"] - ex)) * max(0.0, 1 - abs(v["row"] - ey))
+            if share == 0:
+                continue
+        else:
+            share = 1.0 / len(header["views"])
         raw = np.frombuffer(data, dtype=np.uint8, count=dims["n_t"] * dims["n_s"] * 3,
                             offset=data_offset + v["offset"]).reshape(dims["n_t"], dims["n_s"], 3)
-        views.append((matrices[(v["row"], v["col"])], table[raw]))
-    weight = np.float32(1.0 / len(views))
+        views.append((matrices[(v["row"], v["col"])], np.float32(share), table[raw]))
 
     def frame():
         acc = np.zeros((args.size, args.size, 3), dtype=np.float32)
-        for m, view in views:
-            acc += cv2.warpAffine(view, m, (args.size, args.size),
-                                  flags=cv2.INTER_LINEAR | cv2.WARP_INVERSE_MAP,
-                                  borderMode=cv2.BORDER_REPLICATE)
-        return acc * weight
+        for m, weight, view in views:
+            acc += weight * cv2.warpAffine(view, m, (args.size, args.size),
+                                           flags=cv2.INTER_LINEAR | cv2.WARP_INVERSE_MAP,
+                                           borderMode=cv2.BORDER_REPLICATE)
+        return acc
 
     image = frame()  # warm-up
     times = []

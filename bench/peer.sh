@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Times the NumPy + OpenCV peer (bench/peer.py: shift-and-add of every view with cv2.warpAffine)
 # and `lfcam render --integrator cameras` on the same light field, the same 1024^2 frame and a
-# full aperture (d_l = 256 mm, f = 444 mm, d_o = 4000 mm), one after the other in one run, and
-# prints both medians and the ratio (docs/benchmarks.md).
+# full aperture (d_l = 256 mm, f = 444 mm, d_o = 4000 mm), then the peer's pinhole (the four
+# views around the eye) and lfcam's (--aperture 0), one after the other in one run, and prints
+# the medians and the ratios (docs/benchmarks.md).
 # Usage: bench/peer.sh [LIGHTFIELD.lf] [--runs N]
 #   default light field: the paper's 10x10x1248x1152, simulated once into out/bench/paper.lf
 set -euo pipefail
@@ -34,14 +35,26 @@ out=out/bench
 mkdir -p "$out"
 frame=(--size 1024 --focal-length 444 --focus-distance 4000)
 
-peer_line=$(/usr/bin/python3 bench/peer.py "$lf" "${frame[@]}" --runs "$runs" --out "$out/peer.png")
-echo "$peer_line"
-lfcam_line=$($lfcam render "$lf" "${frame[@]}" --aperture 256 --integrator cameras \
-  --repeat "$runs" --quiet --out "$out/lfcam_cameras.png")
-echo "lfcam: $lfcam_line"
+# One comparison: the peer with its flags, lfcam with its flags, both medians and the ratio.
+compare() {
+  local name=$1 peer_flags=$2 lfcam_flags=$3 tag=$4
+  local peer_line lfcam_line peer_ms lfcam_ms
+  # shellcheck disable=SC2086  # the flags are words
+  peer_line=$(/usr/bin/python3 bench/peer.py "$lf" "${frame[@]}" $peer_flags --runs "$runs" \
+    --out "$out/peer_$tag.png")
+  echo "$peer_line"
+  # shellcheck disable=SC2086
+  lfcam_line=$($lfcam render "$lf" "${frame[@]}" $lfcam_flags --repeat "$runs" --quiet \
+    --out "$out/lfcam_$tag.png")
+  echo "lfcam: $lfcam_line"
+  peer_ms=$(sed -n 's/.*median \([0-9.]*\) ms.*/\1/p' <<<"$peer_line")
+  lfcam_ms=$(sed -n 's/.*; \([0-9.]*\) ms (median.*/\1/p' <<<"$lfcam_line")
+  awk -v n="$name" -v p="$peer_ms" -v l="$lfcam_ms" 'BEGIN {
+    printf "%s: peer %.1f ms, lfcam %.2f ms: lfcam is %.1fx faster\n", n, p, l, p / l }'
+  echo "frames: $out/peer_$tag.png, $out/lfcam_$tag.png"
+}
 
-peer_ms=$(sed -n 's/.*median \([0-9.]*\) ms.*/\1/p' <<<"$peer_line")
-lfcam_ms=$(sed -n 's/.*; \([0-9.]*\) ms (median.*/\1/p' <<<"$lfcam_line")
-awk -v p="$peer_ms" -v l="$lfcam_ms" 'BEGIN {
-  printf "peer %.1f ms, lfcam --integrator cameras %.1f ms: lfcam is %.1fx faster\n", p, l, p / l }'
-echo "frames: $out/peer.png, $out/lfcam_cameras.png"
+compare "d_l 256 (every view: lfcam --integrator cameras)" "" \
+  "--aperture 256 --integrator cameras" cameras
+compare "pinhole (the four views around the eye, the focal-plane lookup)" "--pinhole" \
+  "--aperture 0 --interpolation focal-plane" pinhole

@@ -126,6 +126,26 @@ TEST_F(Cli, BenchTimesThePapersTablesBesideItsFigures) {
   EXPECT_TRUE(t2["cells"][3]["lens_rate"].is_null());
   EXPECT_DOUBLE_EQ(t2["cells"][3]["paper_ms"].get<double>(), 87.38);
   EXPECT_EQ(t2["cells"][3]["integrator"], "cameras");
+  EXPECT_FALSE(t2["cells"][3].contains("users_case_ms"));
+
+  // The user's case beside: every cell timed on both, the ratio printed, no file left behind.
+  const auto leftovers = [] {
+    int n = 0;
+    for (const auto& e : fs::directory_iterator(fs::temp_directory_path()))
+      n += e.path().filename().string().rfind("lfcam-bench-users-case-", 0) == 0;
+    return n;
+  };
+  const int before = leftovers();
+  run = Lfcam("bench table2 --integrator cameras --users-case" + fast + " --json " +
+              Path("t2u.json"));
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("user's ms"), std::string::npos) << run.output;
+  std::ifstream t2u_file(Path("t2u.json"));
+  const auto t2u = nlohmann::json::parse(t2u_file);
+  ASSERT_EQ(t2u["cells"].size(), 4u);
+  for (const auto& cell : t2u["cells"]) EXPECT_GT(cell["users_case_ms"].get<double>(), 0.0);
+  EXPECT_TRUE(t2u.contains("users_case"));
+  EXPECT_EQ(leftovers(), before);
 
   // Bad flags are refused before any work.
   EXPECT_EQ(Lfcam("bench table3" + fast).status, 2);

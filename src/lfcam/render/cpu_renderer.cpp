@@ -244,13 +244,13 @@ long long StoreRow(const VirtualCamera& camera, int j, const float* r, const flo
   auto* out = result.image.ptr<cv::Vec3f>(row);
   auto* mask = result.hit_mask.ptr<std::uint8_t>(row);
   auto* counts = result.counts.ptr<std::int32_t>(row);
-  long long hits = 0;
-  for (int i = 0; i < camera.width(); ++i) {
-    out[i] = {r[i], g[i], b[i]};
-    mask[i] = count[i] > 0 ? 255 : 0;
-    counts[i] = count[i];
-    hits += count[i];
-  }
+  InterleaveRow(r, g, b, camera.width(), &out[0][0]);
+  const int width = camera.width();
+  std::copy_n(count, width, counts);
+  // Separate loops, each of which the compiler vectorises.
+  for (int i = 0; i < width; ++i) mask[i] = count[i] > 0 ? 255 : 0;
+  std::int64_t hits = 0;
+  for (int i = 0; i < width; ++i) hits += count[i];
   return hits;
 }
 

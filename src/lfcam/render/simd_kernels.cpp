@@ -414,6 +414,20 @@ bool RenderRowCamerasResampledT(const RaySetup& s, const GridCameraWeight* unifo
   return true;
 }
 
+void InterleaveRowT(const float* r, const float* g, const float* b, int width, float* rgb) {
+  const hn::ScalableTag<float> d;
+  const int lanes = int(hn::Lanes(d));
+  int i = 0;
+  for (; i + lanes <= width; i += lanes)
+    hn::StoreInterleaved3(hn::LoadU(d, r + i), hn::LoadU(d, g + i), hn::LoadU(d, b + i), d,
+                          rgb + 3 * std::size_t(i));
+  for (; i < width; ++i) {
+    rgb[3 * std::size_t(i)] = r[i];
+    rgb[3 * std::size_t(i) + 1] = g[i];
+    rgb[3 * std::size_t(i) + 2] = b[i];
+  }
+}
+
 const char* TargetNameT() { return hwy::TargetName(HWY_TARGET); }
 
 }  // namespace HWY_NAMESPACE
@@ -427,6 +441,11 @@ HWY_EXPORT(RenderRowLensSamplesT);
 HWY_EXPORT(RenderRowCamerasT);
 HWY_EXPORT(RenderRowCamerasResampledT);
 HWY_EXPORT(TargetNameT);
+HWY_EXPORT(InterleaveRowT);
+
+void InterleaveRow(const float* r, const float* g, const float* b, int width, float* rgb) {
+  HWY_DYNAMIC_DISPATCH(InterleaveRowT)(r, g, b, width, rgb);
+}
 
 void RenderRowLensSamples(const RaySetup& setup, bool focal_plane, int j, const RowOutput& out) {
   HWY_DYNAMIC_DISPATCH(RenderRowLensSamplesT)(setup, focal_plane, j, out);

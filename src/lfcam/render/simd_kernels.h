@@ -51,6 +51,9 @@ bool RenderRowCamerasResampled(const RaySetup& setup, const GridCameraWeight* un
                                int uniform_count, const float* pixel_weights, const int* cameras,
                                int camera_count, int j, const RowOutput& out);
 
+// rgb[3 i .. 3 i + 2] = r[i], g[i], b[i] for i < width: a planar row interleaved.
+void InterleaveRow(const float* r, const float* g, const float* b, int width, float* rgb);
+
 // The instruction set the kernels dispatch to on this machine (for example "AVX3").
 std::string KernelTargetName();
 
