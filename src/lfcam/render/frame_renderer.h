@@ -29,11 +29,9 @@ struct FrameRenderOptions {
 // The GL renderer's share of the options.
 GlRenderOptions GlOptions(const FrameRenderOptions& options);
 
-// What only the CPU renders, whatever the backend: the depth lookup and the quadrilinear limit
-// (no shaders for them yet).
+// What only the CPU renders, whatever the backend: the depth lookup (no shader for it yet).
 inline bool RendersOnCpuOnly(const FrameRenderOptions& options) {
-  return options.interpolation == Interpolation::kDepth ||
-         options.integrator == Integrator::kCamerasQuadrilinear;
+  return options.interpolation == Interpolation::kDepth;
 }
 
 class FrameRenderer {

@@ -2,6 +2,7 @@
 
 #include <epoxy/gl.h>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <chrono>
 #include <optional>
@@ -9,7 +10,9 @@
 
 #include "lfcam/core/error.h"
 #include "lfcam/render/camera_integrator.h"
+#include "lfcam/render/quadrilinear_limit.h"
 #include "lfcam/render/ray_setup.h"
+#include "lfcam/render/shaders/prefilter_views.comp.h"
 #include "lfcam/render/shaders/render_frame.comp.h"
 
 namespace lfcam {
@@ -57,8 +60,8 @@ void CheckGl(const std::string& what) {
     throw Error(fmt::format("OpenGL: {} failed: {}", what, GlErrorName(error)));
 }
 
-GLuint CompileProgram(const std::string& defines) {
-  const std::string source = "#version 430 core\n" + defines + "#line 1\n" + kRenderFrameShader;
+GLuint CompileProgram(const char* shader_text, const std::string& defines) {
+  const std::string source = "#version 430 core\n" + defines + "#line 1\n" + shader_text;
   const GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
   const char* text = source.c_str();
   glShaderSource(shader, 1, &text, nullptr);
@@ -81,7 +84,7 @@ GLuint CompileProgram(const std::string& defines) {
   if (!ok) {
     const std::string message = log(shader, false);
     glDeleteShader(shader);
-    throw Error("OpenGL: the renderer's compute shader did not compile:\n" + message);
+    throw Error("OpenGL: a compute shader of the renderer did not compile:\n" + message);
   }
   const GLuint program = glCreateProgram();
   glAttachShader(program, shader);
@@ -91,7 +94,7 @@ GLuint CompileProgram(const std::string& defines) {
   if (!ok) {
     const std::string message = log(program, true);
     glDeleteProgram(program);
-    throw Error("OpenGL: the renderer's compute shader did not link:\n" + message);
+    throw Error("OpenGL: a compute shader of the renderer did not link:\n" + message);
   }
   return program;
 }
@@ -161,6 +164,7 @@ GlRenderer::GlRenderer(std::unique_ptr<GlContext> context) : context_(std::move(
     limits_.dedicated_memory_kb = v;
   }
   glGenBuffers(kBindings, buffers_);
+  glGenBuffers(2, prefilter_buffers_);
   glGenQueries(1, &timer_);
   CheckGl("setting up the renderer");
 }
@@ -173,6 +177,8 @@ GlRenderer::~GlRenderer() {
   }
   for (const auto& [key, program] : programs_) glDeleteProgram(program);
   glDeleteBuffers(kBindings, buffers_);
+  glDeleteBuffers(2, prefilter_buffers_);
+  glDeleteTextures(2, filtered_);
   glDeleteQueries(1, &timer_);
   if (views_) glDeleteTextures(1, &views_);
   if (output_) glDeleteTextures(1, &output_);
@@ -228,7 +234,7 @@ unsigned GlRenderer::Program(int mode, bool view_windows, const GlRenderOptions&
       "#define WORKGROUP_X {}\n#define WORKGROUP_Y {}\n#define MODE {}\n#define VIEW_WINDOWS {}\n",
       options.workgroup_x, options.workgroup_y, mode, view_windows ? 1 : 0);
   auto& program = programs_[defines];
-  if (!program) program = CompileProgram(defines);
+  if (!program) program = CompileProgram(kRenderFrameShader, defines);
   return program;
 }
 
@@ -262,23 +268,39 @@ double GlRenderer::RenderToTexture(const LightField& lf, const VirtualCamera& ca
         fmt::format("the GL renderer needs at least 2x2 samples a view (this light field "
                     "has {}x{})",
                     d.n_s, d.n_t));
-  if (options.integrator == Integrator::kCamerasQuadrilinear)
+  if (options.integrator == Integrator::kCamerasQuadrilinear &&
+      options.interpolation == Interpolation::kDepth)
     throw Error(
-        "the GL renderer has no quadrilinear limit of the cameras integrator (the CPU "
-        "renders it)");
+        "the depth lookup reads each lens sample's own scene point: it goes with the "
+        "lens-samples integrator, not the cameras integrators");
   Upload(lf);
   EnsureOutput(camera.width(), camera.height());
 
   const bool lens_samples = options.integrator == Integrator::kLensSamples || camera.is_pinhole();
-  const bool focal_plane = options.integrator == Integrator::kCameras ||
+  // The cameras integrators read along the cameras' own lines (the focal-plane lookup); a
+  // pinhole's limit under them is that lookup itself.
+  const bool focal_plane = options.integrator != Integrator::kLensSamples ||
                            options.interpolation == Interpolation::kFocalPlane;
   const RaySetup setup(lf, camera, lens_samples);
   std::optional<CameraIntegratorFrame> cameras;
   int mode = lens_samples ? (focal_plane ? kLensFocalPlane : kLensQuadrilinear) : kCamerasUniform;
   std::vector<ShaderCameraWeight> weights;
   std::vector<float> table;
+  GLuint sampled = views_;  // the views the frame reads: as uploaded, or prefiltered
+  double prefilter_ms = 0;
+  last_note_.clear();
   if (!lens_samples) {
     cameras.emplace(lf, camera);
+    // The quadrilinear limit: the cameras integrator over views prefiltered by the hat scaled by
+    // k (render/quadrilinear_limit.h), the filter a GPU pass.
+    if (options.integrator == Integrator::kCamerasQuadrilinear) {
+      const StPrefilter prefilter = QuadrilinearLimitPrefilter(lf, camera);
+      if (prefilter.h_s >= 1e-3 || prefilter.h_t >= 1e-3) {
+        sampled = Prefilter(lf, prefilter, cameras->CamerasRead(), &prefilter_ms);
+        last_note_ = fmt::format(", views prefiltered ({:.2f} x {:.2f} samples)", prefilter.h_s,
+                                 prefilter.h_t);
+      }
+    }
     for (const GridCameraWeight& w : cameras->uniform_weights())
       weights.push_back({w.row * d.cols + w.col, float(w.weight)});
     if (weights.empty() && !cameras->levels().empty()) {
@@ -344,7 +366,7 @@ double GlRenderer::RenderToTexture(const LightField& lf, const VirtualCamera& ca
     u.Float("radius_step", levels.size() > 1 ? levels[1].radius - levels[0].radius : 1.0);
   }
   glActiveTexture(GL_TEXTURE0);
-  glBindTexture(GL_TEXTURE_2D_ARRAY, views_);
+  glBindTexture(GL_TEXTURE_2D_ARRAY, sampled);
   glBindImageTexture(0, output_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
   CheckGl("setting the frame's parameters");
 
@@ -365,7 +387,87 @@ double GlRenderer::RenderToTexture(const LightField& lf, const VirtualCamera& ca
   // A software GL (llvmpipe) runs compute work outside its timer queries (they read 0): there
   // the pass's wall-clock time, from the dispatch to glFinish, stands in.
   const double gpu_ms = double(nanoseconds) * 1e-6;
-  return device().software || gpu_ms <= 0 ? wall_ms : gpu_ms;
+  return prefilter_ms + (device().software || gpu_ms <= 0 ? wall_ms : gpu_ms);
+}
+
+unsigned GlRenderer::Prefilter(const LightField& lf, const StPrefilter& prefilter,
+                               const std::vector<bool>& read, double* ms) {
+  const LightFieldDims& d = lf.dims();
+  const std::vector<float> taps_s = PrefilterTaps(prefilter.h_s);
+  const std::vector<float> taps_t = PrefilterTaps(prefilter.h_t);
+  std::vector<std::int32_t> layers;
+  for (std::size_t v = 0; v < read.size(); ++v)
+    if (read[v]) layers.push_back(std::int32_t(v));
+  // The same filter over the same views of the same light field: still in place.
+  const std::string key = fmt::format("{}|{}|{}|{}", fmt::ptr(uploaded_), fmt::join(taps_s, ","),
+                                      fmt::join(taps_t, ","), fmt::join(layers, ","));
+  if (key == filtered_key_) return filtered_[1];
+  filtered_key_.clear();
+  if (!(filtered_dims_ == d) || !filtered_[0]) {
+    // Two RGBA16F arrays as large as the light field: the first pass's output and the second's.
+    const double bytes = 2.0 * 8.0 * double(d.samples_per_view()) * double(d.view_count());
+    if (limits_.dedicated_memory_kb > 0 && bytes > 1024.0 * double(limits_.dedicated_memory_kb))
+      throw Error(fmt::format(
+          "the quadrilinear limit's prefiltered views need about {} on the GPU; {} has {}",
+          Mib(bytes), device().renderer, Mib(1024.0 * double(limits_.dedicated_memory_kb))));
+    glDeleteTextures(2, filtered_);
+    filtered_[0] = filtered_[1] = 0;
+    while (glGetError() != GL_NO_ERROR) {
+    }
+    glGenTextures(2, filtered_);
+    for (const GLuint texture : filtered_) {
+      glBindTexture(GL_TEXTURE_2D_ARRAY, texture);
+      glTexStorage3D(GL_TEXTURE_2D_ARRAY, 1, GL_RGBA16F, d.n_s, d.n_t, GLsizei(d.view_count()));
+      glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+      glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+      glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+      glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    }
+    if (glGetError() == GL_OUT_OF_MEMORY) {
+      glDeleteTextures(2, filtered_);
+      filtered_[0] = filtered_[1] = 0;
+      throw Error(
+          fmt::format("the quadrilinear limit's prefiltered views ({}) do not fit in the "
+                      "memory of {}",
+                      Mib(bytes), device().renderer));
+    }
+    filtered_dims_ = d;
+  }
+  auto& program = programs_["prefilter"];
+  if (!program) program = CompileProgram(kPrefilterViewsShader, "");
+  glUseProgram(program);
+  const Uniforms u{program};
+  u.Int2("size", d.n_s, d.n_t);
+  u.Int("source", 0);
+  FillBuffer(prefilter_buffers_[1], layers);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, prefilter_buffers_[1]);
+  const auto start = std::chrono::steady_clock::now();
+  glBeginQuery(GL_TIME_ELAPSED, timer_);
+  const std::pair<GLuint, GLuint> passes[2] = {{views_, filtered_[0]},
+                                               {filtered_[0], filtered_[1]}};
+  for (int pass = 0; pass < 2; ++pass) {
+    const std::vector<float>& taps = pass == 0 ? taps_s : taps_t;
+    FillBuffer(prefilter_buffers_[0], taps);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, prefilter_buffers_[0]);
+    u.Int2("axis", pass == 0 ? 1 : 0, pass == 0 ? 0 : 1);
+    u.Int("tap_count", int(taps.size()));
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, passes[pass].first);
+    glBindImageTexture(0, passes[pass].second, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glDispatchCompute(GLuint((d.n_s + 15) / 16), GLuint((d.n_t + 15) / 16), GLuint(layers.size()));
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+  }
+  glEndQuery(GL_TIME_ELAPSED);
+  glFinish();
+  const double wall_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  CheckGl("prefiltering the views");
+  GLuint64 nanoseconds = 0;
+  glGetQueryObjectui64v(timer_, GL_QUERY_RESULT, &nanoseconds);
+  const double gpu_ms = double(nanoseconds) * 1e-6;
+  *ms = device().software || gpu_ms <= 0 ? wall_ms : gpu_ms;
+  filtered_key_ = key;
+  return filtered_[1];
 }
 
 RenderResult GlRenderer::Render(const LightField& lf, const VirtualCamera& camera,
@@ -396,7 +498,7 @@ RenderResult GlRenderer::Render(const LightField& lf, const VirtualCamera& camer
   }
   result.rays = last_lens_count_ > 0 ? static_cast<long long>(width) * height * last_lens_count_
                                      : result.rays_hit;
-  result.path = "gl (" + device().renderer + ")";
+  result.path = "gl (" + device().renderer + ")" + last_note_;
   return result;
 }
 

@@ -14,10 +14,12 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "lfcam/core/lightfield.h"
 #include "lfcam/render/cpu_renderer.h"
 #include "lfcam/render/gl_context.h"
+#include "lfcam/render/quadrilinear_limit.h"
 #include "lfcam/render/virtual_camera.h"
 
 namespace lfcam {
@@ -66,6 +68,11 @@ class GlRenderer {
   void Upload(const LightField& lf);
   unsigned Program(int mode, bool view_windows, const GlRenderOptions& options);
   void EnsureOutput(int width, int height);
+  // The quadrilinear limit's views: the views `read` of the uploaded light field filtered by the
+  // prefilter's taps on the GPU (render/shaders/prefilter_views.comp), kept while the same
+  // filter serves the next frame; the texture, and the pass's time in `ms` (0 when kept).
+  unsigned Prefilter(const LightField& lf, const StPrefilter& prefilter,
+                     const std::vector<bool>& read, double* ms);
 
   std::unique_ptr<GlContext> context_;
   GlLimits limits_;
@@ -78,6 +85,11 @@ class GlRenderer {
   unsigned timer_ = 0;
   std::map<std::string, unsigned> programs_;  // by mode, view windows and work group size
   long long last_lens_count_ = 0;
+  std::string last_note_;          // what the last frame's path adds ("views prefiltered ...")
+  unsigned filtered_[2] = {0, 0};  // the prefilter's passes: along s, then along t
+  LightFieldDims filtered_dims_{};
+  std::string filtered_key_;                // the light field, taps and views the second holds
+  unsigned prefilter_buffers_[2] = {0, 0};  // taps, views
 };
 
 }  // namespace lfcam

@@ -117,8 +117,24 @@ Agreement Compare(const RenderResult& gl, const RenderResult& cpu) {
   return a;
 }
 
-void ExpectAgreement(GlRenderer& gl, const std::vector<Case>& cases, Agreement& worst) {
+// The cases, and for each of the cameras integrator's also its quadrilinear limit (the views
+// prefiltered on the GPU).
+std::vector<Case> WithQuadrilinearLimits(const std::vector<Case>& cases) {
+  std::vector<Case> out;
   for (const Case& c : cases) {
+    out.push_back(c);
+    if (c.integrator != Integrator::kCameras) continue;
+    Case limit = c;
+    limit.integrator = Integrator::kCamerasQuadrilinear;
+    limit.interpolation = Interpolation::kQuadrilinear;
+    limit.name += " (its quadrilinear limit)";
+    out.push_back(limit);
+  }
+  return out;
+}
+
+void ExpectAgreement(GlRenderer& gl, const std::vector<Case>& all_cases, Agreement& worst) {
+  for (const Case& c : WithQuadrilinearLimits(all_cases)) {
     const LightField& lf = c.turned ? TurnedStPlaneLightField() : SmallPaperLightField();
     const VirtualCamera camera(c.camera);
     CpuRenderOptions cpu_options;
@@ -130,6 +146,10 @@ void ExpectAgreement(GlRenderer& gl, const std::vector<Case>& cases, Agreement& 
     gl_options.interpolation = c.interpolation;
     const RenderResult frame = gl.Render(lf, camera, gl_options);
     ASSERT_GT(cpu.rays_hit, 0) << c.name;
+    // Both say when they prefiltered the views.
+    EXPECT_EQ(frame.path.find("views prefiltered") != std::string::npos,
+              cpu.path.find("views prefiltered") != std::string::npos)
+        << c.name << ": " << frame.path << " against " << cpu.path;
     const Agreement a = Compare(frame, cpu);
     EXPECT_LT(a.mean_abs, 1.0 / 255) << c.name;
     EXPECT_GT(a.psnr, 45.0) << c.name;

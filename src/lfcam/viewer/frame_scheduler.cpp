@@ -76,8 +76,7 @@ void FrameScheduler::Start(const Job& job) {
     camera = camera.WithLensSampleRange(n * job.part / job.parts, n * (job.part + 1) / job.parts);
   }
   const FrameRenderOptions o = OptionsFor(job.view);
-  // The depth lookup and the quadrilinear limit render on the CPU (FrameRenderer hands them
-  // over), on the worker.
+  // The depth lookup renders on the CPU (FrameRenderer hands it over), on the worker.
   if (renderer_.uses_gl() && !RendersOnCpuOnly(o)) {
     RenderResult result;
     if (job.parts > 1) {
