@@ -43,7 +43,7 @@ void AddViewCommand(CLI::App& app) {
       ->capture_default_str();
   view->add_option("--depth", flags->depth,
                    "The views' depth maps (a folder from `lfcam depth --all`): offers the depth "
-                   "lookup (no ghosts between cameras; rendered on the CPU)");
+                   "lookup (no ghosts between cameras)");
   view->add_option("--script", flags->script,
                    "Run the commands in FILE (docs/viewer.md), then quit: for tests and demos");
   view->callback([flags] {

@@ -153,26 +153,6 @@ RenderResult NewResult(const VirtualCamera& camera) {
   return result;
 }
 
-// How many st samples one pixel spans at the frame's centre: where the central ray and the ray
-// one pixel across, both from the eye, meet the st-plane (infinity when they do not).
-double PixelFootprintSamples(const VirtualCamera& camera, const LightFieldSampler& sampler) {
-  const int i = camera.width() / 2, j = camera.height() / 2;
-  const Vec3& eye = camera.e_c();
-  double k0, l0, k1, l1;
-  if (!sampler.StSampleAt(eye, eye + camera.pixel_direction(i, j), k0, l0) ||
-      !sampler.StSampleAt(eye, eye + camera.pixel_direction(i + 1, j), k1, l1))
-    return std::numeric_limits<double>::infinity();
-  return std::hypot(k1 - k0, l1 - l0);
-}
-
-// The depth lookup reads its views with a cubic kernel where a pixel spans no more than this
-// many samples (a frame at the views' own resolution or finer: bilinear reads would blur it by
-// up to half a sample; the held-out photographs of docs/fidelity.md +0.36 dB), and bilinearly
-// where pixels are coarser (there the views' detail beyond the frame's sampling aliases, and a
-// sharper kernel keeps more of it: the paper scene's 128 x 128 frames of its 416 x 384 views
-// 3 dB worse with cubic reads).
-constexpr double kCubicFootprint = 1.25;
-
 RenderResult RenderReference(const LightField& lf, const VirtualCamera& camera,
                              const CpuRenderOptions& options) {
   const LightFieldSampler sampler(lf);
@@ -188,7 +168,7 @@ RenderResult RenderReference(const LightField& lf, const VirtualCamera& camera,
           "lens-samples integrator, not the cameras integrator");
     if (!options.depth) throw Error("the depth lookup needs the views' depth maps");
     depth.emplace(lf, *options.depth, sampler);
-    depth->set_cubic_reads(PixelFootprintSamples(camera, sampler) <= kCubicFootprint);
+    depth->set_cubic_reads(DepthLookupReadsCubic(camera, sampler));
     frame.depth = &*depth;
     frame.antialias = options.antialias;
   }

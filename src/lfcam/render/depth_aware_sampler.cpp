@@ -162,6 +162,18 @@ bool DepthAwareSampler::Sample(const Vec3& origin, const Vec3& direction, float 
   return colour_.Fetch(c->u, c->v, c->s, c->t, rgb);  // no depth found: the paper's lookup
 }
 
+bool DepthLookupReadsCubic(const VirtualCamera& camera, const LightFieldSampler& sampler) {
+  // How many st samples one pixel spans at the frame's centre: where the central ray and the ray
+  // one pixel across, both from the eye, meet the st-plane.
+  const int i = camera.width() / 2, j = camera.height() / 2;
+  const Vec3& eye = camera.e_c();
+  double k0, l0, k1, l1;
+  if (!sampler.StSampleAt(eye, eye + camera.pixel_direction(i, j), k0, l0) ||
+      !sampler.StSampleAt(eye, eye + camera.pixel_direction(i + 1, j), k1, l1))
+    return false;
+  return std::hypot(k1 - k0, l1 - l0) <= kCubicFootprint;
+}
+
 std::vector<bool> DepthViewsNeeded(const LightField& lf, const VirtualCamera& camera) {
   const auto& d = lf.dims();
   std::vector<bool> needed(d.view_count(), false);

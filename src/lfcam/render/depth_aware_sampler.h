@@ -29,6 +29,15 @@ namespace lfcam {
 // and every lens sample, grown by one camera each way. The depth maps to make for it.
 std::vector<bool> DepthViewsNeeded(const LightField& lf, const VirtualCamera& camera);
 
+// Whether the depth lookup reads the views with Keys' cubic for this frame: where a pixel spans
+// no more than kCubicFootprint samples at the frame's centre (a frame at the views' own
+// resolution or finer: bilinear reads would blur it by up to half a sample; the held-out
+// photographs of docs/fidelity.md +0.36 dB), not where pixels are coarser (there the views'
+// detail beyond the frame's sampling aliases, and a sharper kernel keeps more of it: the paper
+// scene's 128 x 128 frames of its 416 x 384 views 3 dB worse with cubic reads).
+inline constexpr double kCubicFootprint = 1.25;
+bool DepthLookupReadsCubic(const VirtualCamera& camera, const LightFieldSampler& sampler);
+
 class DepthAwareSampler {
  public:
   // `lf`, `depth` and `colour` must outlive the sampler; `depth` must hold a map for every
@@ -43,6 +52,11 @@ class DepthAwareSampler {
 
   // The inverse-depth tolerance of the occlusion test (1/mm) at inverse depth q.
   double tolerance(double q) const;
+  // The march's ends (inverse depth, 1/mm: the depth range widened a little) and the inverse
+  // depth that moves a point one sample between neighbouring cameras (the GL renderer's too).
+  double q_near() const { return q_near_; }
+  double q_far() const { return q_far_; }
+  double unit_q() const { return unit_q_; }
 
  private:
   struct Camera {

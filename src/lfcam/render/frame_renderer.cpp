@@ -72,12 +72,14 @@ GlRenderOptions GlOptions(const FrameRenderOptions& options) {
   o.interpolation = options.interpolation;
   o.workgroup_x = options.workgroup_x;
   o.workgroup_y = options.workgroup_y;
+  o.depth = options.depth;
+  o.antialias = options.antialias;
   return o;
 }
 
 RenderResult FrameRenderer::Render(const LightField& lf, const VirtualCamera& camera,
                                    const FrameRenderOptions& options) const {
-  if (gl_ && !RendersOnCpuOnly(options)) return gl_->Render(lf, camera, GlOptions(options));
+  if (gl_) return gl_->Render(lf, camera, GlOptions(options));
   CpuRenderOptions o;
   o.integrator = options.integrator;
   o.interpolation = options.interpolation;

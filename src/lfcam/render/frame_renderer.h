@@ -22,17 +22,12 @@ struct FrameRenderOptions {
   bool reference = false;                 // CPU: the scalar reference
   int workgroup_x = 16, workgroup_y = 8;  // GL
   ProgressCallback progress;              // CPU only
-  const DepthSet* depth = nullptr;        // Interpolation::kDepth (CPU only: GL hands it over)
+  const DepthSet* depth = nullptr;        // Interpolation::kDepth
   bool antialias = false;                 // with it (CpuRenderOptions::antialias)
 };
 
 // The GL renderer's share of the options.
 GlRenderOptions GlOptions(const FrameRenderOptions& options);
-
-// What only the CPU renders, whatever the backend: the depth lookup (no shader for it yet).
-inline bool RendersOnCpuOnly(const FrameRenderOptions& options) {
-  return options.interpolation == Interpolation::kDepth;
-}
 
 class FrameRenderer {
  public:

@@ -10,9 +10,11 @@
 
 #include "lfcam/core/error.h"
 #include "lfcam/render/camera_integrator.h"
+#include "lfcam/render/depth_aware_sampler.h"
 #include "lfcam/render/quadrilinear_limit.h"
 #include "lfcam/render/ray_setup.h"
 #include "lfcam/render/shaders/prefilter_views.comp.h"
+#include "lfcam/render/shaders/render_depth.comp.h"
 #include "lfcam/render/shaders/render_frame.comp.h"
 
 namespace lfcam {
@@ -182,6 +184,7 @@ GlRenderer::~GlRenderer() {
   glDeleteQueries(1, &timer_);
   if (views_) glDeleteTextures(1, &views_);
   if (output_) glDeleteTextures(1, &output_);
+  if (depth_maps_) glDeleteTextures(1, &depth_maps_);
 }
 
 void GlRenderer::Upload(const LightField& lf) {
@@ -275,6 +278,7 @@ double GlRenderer::RenderToTexture(const LightField& lf, const VirtualCamera& ca
         "lens-samples integrator, not the cameras integrators");
   Upload(lf);
   EnsureOutput(camera.width(), camera.height());
+  if (options.interpolation == Interpolation::kDepth) return RenderDepth(lf, camera, options);
 
   const bool lens_samples = options.integrator == Integrator::kLensSamples || camera.is_pinhole();
   // The cameras integrators read along the cameras' own lines (the focal-plane lookup); a
@@ -370,6 +374,11 @@ double GlRenderer::RenderToTexture(const LightField& lf, const VirtualCamera& ca
   glBindImageTexture(0, output_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
   CheckGl("setting the frame's parameters");
 
+  last_lens_count_ = lens_samples ? static_cast<long long>(setup.lens_uv.size()) : 0;
+  return prefilter_ms + Dispatch(camera, options);
+}
+
+double GlRenderer::Dispatch(const VirtualCamera& camera, const GlRenderOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   glBeginQuery(GL_TIME_ELAPSED, timer_);
   glDispatchCompute(GLuint((camera.width() + options.workgroup_x - 1) / options.workgroup_x),
@@ -383,11 +392,140 @@ double GlRenderer::RenderToTexture(const LightField& lf, const VirtualCamera& ca
   CheckGl("rendering the frame");
   GLuint64 nanoseconds = 0;
   glGetQueryObjectui64v(timer_, GL_QUERY_RESULT, &nanoseconds);
-  last_lens_count_ = lens_samples ? static_cast<long long>(setup.lens_uv.size()) : 0;
   // A software GL (llvmpipe) runs compute work outside its timer queries (they read 0): there
   // the pass's wall-clock time, from the dispatch to glFinish, stands in.
   const double gpu_ms = double(nanoseconds) * 1e-6;
-  return prefilter_ms + (device().software || gpu_ms <= 0 ? wall_ms : gpu_ms);
+  return device().software || gpu_ms <= 0 ? wall_ms : gpu_ms;
+}
+
+void GlRenderer::UploadDepth(const DepthSet& depth) {
+  const LightFieldDims& d = depth.dims();
+  if (depth_maps_ && uploaded_depth_ == &depth && depth_dims_ == d) return;
+  const double bytes = 4.0 * double(d.samples_per_view()) * double(d.view_count());
+  if (limits_.dedicated_memory_kb > 0 && bytes > 1024.0 * double(limits_.dedicated_memory_kb))
+    throw Error(fmt::format("the depth maps need about {} on the GPU; {} has {}", Mib(bytes),
+                            device().renderer, Mib(1024.0 * double(limits_.dedicated_memory_kb))));
+  if (depth_maps_) glDeleteTextures(1, &depth_maps_);
+  depth_maps_ = 0;
+  uploaded_depth_ = nullptr;
+  while (glGetError() != GL_NO_ERROR) {
+  }
+  glGenTextures(1, &depth_maps_);
+  glBindTexture(GL_TEXTURE_2D_ARRAY, depth_maps_);
+  glTexStorage3D(GL_TEXTURE_2D_ARRAY, 1, GL_R32F, d.n_s, d.n_t, GLsizei(d.view_count()));
+  if (glGetError() == GL_OUT_OF_MEMORY) {
+    glDeleteTextures(1, &depth_maps_);
+    depth_maps_ = 0;
+    throw Error(fmt::format("the depth maps ({}) do not fit in the memory of {}", Mib(bytes),
+                            device().renderer));
+  }
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  for (int r = 0; r < d.rows; ++r)
+    for (int c = 0; c < d.cols; ++c) {
+      if (!depth.has(r, c)) continue;  // never read: the shader knows which views have maps
+      const cv::Mat& m = depth.at(r, c).depth;
+      glPixelStorei(GL_UNPACK_ROW_LENGTH, GLint(m.step1()));
+      glTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, r * d.cols + c, d.n_s, d.n_t, 1, GL_RED,
+                      GL_FLOAT, m.ptr<float>(0));
+    }
+  glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
+  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  CheckGl("uploading the depth maps");
+  uploaded_depth_ = &depth;
+  depth_dims_ = d;
+}
+
+double GlRenderer::RenderDepth(const LightField& lf, const VirtualCamera& camera,
+                               const GlRenderOptions& options) {
+  if (options.integrator != Integrator::kLensSamples)
+    throw Error(
+        "the depth lookup reads each lens sample's own scene point: it goes with the "
+        "lens-samples integrator, not the cameras integrator");
+  if (!options.depth) throw Error("the depth lookup needs the views' depth maps");
+  const LightFieldSampler sampler(lf);
+  // The CPU's sampler checks the maps against the light field and gives the march's constants.
+  const DepthAwareSampler reference(lf, *options.depth, sampler);
+  UploadDepth(*options.depth);
+  const LightFieldDims& d = lf.dims();
+  const LookupPlanes planes = LookupPlanesOf(lf);
+  const Vec3& origin = planes.p_ca;  // positions go to the shader relative to p_ca
+  std::vector<float> lens;           // vec4 each
+  if (!camera.is_pinhole())
+    for (const Vec2& disk : camera.lens_samples()) {
+      const Vec3 x = camera.lens_point(disk) - origin;
+      lens.insert(lens.end(), {float(x.x()), float(x.y()), float(x.z()), 0.0f});
+    }
+  std::vector<float> centres, offsets;
+  std::vector<std::int32_t> has;
+  for (int r = 0; r < d.rows; ++r)
+    for (int c = 0; c < d.cols; ++c) {
+      const Vec3 x = lf.camera_center(r, c) - origin;
+      centres.insert(centres.end(), {float(x.x()), float(x.y()), float(x.z()), 0.0f});
+      const StOffset o = lf.st_offset(r, c);
+      offsets.insert(offsets.end(), {float(o.k), float(o.l)});
+      has.push_back(options.depth->has(r, c) ? 1 : 0);
+    }
+  FillBuffer(buffers_[0], lens);
+  FillBuffer(buffers_[1], centres);
+  FillBuffer(buffers_[2], offsets);
+  FillBuffer(buffers_[3], has);
+  for (int b = 0; b < 4; ++b) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GLuint(b), buffers_[b]);
+  CheckGl("uploading the frame's set-up");
+
+  const bool view_windows = !lf.st_offsets().empty();
+  const std::string defines =
+      fmt::format("#define WORKGROUP_X {}\n#define WORKGROUP_Y {}\n#define VIEW_WINDOWS {}\n",
+                  options.workgroup_x, options.workgroup_y, view_windows ? 1 : 0);
+  auto& program = programs_["depth|" + defines];
+  if (!program) program = CompileProgram(kRenderDepthShader, defines);
+  glUseProgram(program);
+  const Uniforms u{program};
+  u.Int2("frame_size", camera.width(), camera.height());
+  u.Int2("grid", d.cols, d.rows);
+  u.Int2("st_size", d.n_s, d.n_t);
+  u.Vec3f("n_ca", planes.n_ca);
+  u.Vec3f("u_scaled", planes.u_scaled);
+  u.Vec3f("v_scaled", planes.v_scaled);
+  u.Vec3f("st_origin", planes.st_origin - origin);
+  u.Vec3f("n_st", planes.n_st);
+  u.Vec3f("s_scaled", planes.s_scaled);
+  u.Vec3f("t_scaled", planes.t_scaled);
+  glUniform4f(u.At("grid_st"), float(planes.s0), float(planes.t0), float(planes.s_to_k),
+              float(planes.t_to_l));
+  glUniform4f(u.At("domain"), float(planes.u_s0), float(planes.u_t0), float(planes.u_s1),
+              float(planes.u_t1));
+  u.Vec3f("eye", camera.e_c() - origin);
+  u.Vec3f("cam_u", camera.u_c());
+  u.Vec3f("cam_v", camera.v_c());
+  u.Vec3f("cam_n", camera.n_c());
+  // direction_through's half-angles: how far the film's right and top edges lie along u_c and
+  // v_c from its centre's direction.
+  const Vec3 centre = camera.direction_through(0.5 * camera.width(), 0.5 * camera.height());
+  const Vec3 right = camera.direction_through(camera.width(), 0.5 * camera.height()) - centre;
+  const Vec3 top = camera.direction_through(0.5 * camera.width(), camera.height()) - centre;
+  glUniform2f(u.At("tan_half"), float(right.dot(camera.u_c())), float(top.dot(camera.v_c())));
+  glUniform2f(u.At("principal_offset"), float(camera.params().principal_offset_px.x()),
+              float(camera.params().principal_offset_px.y()));
+  u.Float("focus_distance", camera.params().focus_distance_mm);
+  u.Int("lens_count", int(lens.size() / 4));
+  u.Int("antialias", options.antialias ? 1 : 0);
+  u.Int("cubic_reads", DepthLookupReadsCubic(camera, sampler) ? 1 : 0);
+  u.Float("q_near", reference.q_near());
+  u.Float("q_far", reference.q_far());
+  u.Float("unit_q", reference.unit_q());
+  u.Int("views", 0);
+  u.Int("depth_maps", 1);
+  glActiveTexture(GL_TEXTURE1);
+  glBindTexture(GL_TEXTURE_2D_ARRAY, depth_maps_);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D_ARRAY, views_);
+  glBindImageTexture(0, output_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+  CheckGl("setting the frame's parameters");
+  // The rays a pixel casts, as the CPU counts them (its lens samples; a pinhole's one).
+  last_lens_count_ = static_cast<long long>(camera.lens_samples().size());
+  last_note_ = " (depth lookup)";
+  return Dispatch(camera, options);
 }
 
 unsigned GlRenderer::Prefilter(const LightField& lf, const StPrefilter& prefilter,

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "lfcam/core/lightfield.h"
+#include "lfcam/depth/depth_set.h"
 #include "lfcam/render/cpu_renderer.h"
 #include "lfcam/render/gl_context.h"
 #include "lfcam/render/quadrilinear_limit.h"
@@ -28,6 +29,8 @@ struct GlRenderOptions {
   Integrator integrator = Integrator::kLensSamples;
   Interpolation interpolation = Interpolation::kQuadrilinear;
   int workgroup_x = 16, workgroup_y = 8;  // the compute shader's local size
+  const DepthSet* depth = nullptr;        // Interpolation::kDepth: the views' depth maps
+  bool antialias = false;                 // with it: rays over each pixel's area (as the CPU's)
 };
 
 // The device's limits that decide what it can render.
@@ -68,6 +71,15 @@ class GlRenderer {
   void Upload(const LightField& lf);
   unsigned Program(int mode, bool view_windows, const GlRenderOptions& options);
   void EnsureOutput(int width, int height);
+  // The depth lookup's frame (render/shaders/render_depth.comp): the depth maps uploaded as a
+  // texture array (kept while the same set is rendered), then one invocation a pixel; the GPU
+  // time as RenderToTexture's.
+  double RenderDepth(const LightField& lf, const VirtualCamera& camera,
+                     const GlRenderOptions& options);
+  void UploadDepth(const DepthSet& depth);
+  // Runs the bound program over the frame and times it (a timer query, or on a software GL the
+  // wall-clock time to glFinish).
+  double Dispatch(const VirtualCamera& camera, const GlRenderOptions& options);
   // The quadrilinear limit's views: the views `read` of the uploaded light field filtered by the
   // prefilter's taps on the GPU (render/shaders/prefilter_views.comp), kept while the same
   // filter serves the next frame; the texture, and the pass's time in `ms` (0 when kept).
@@ -90,6 +102,9 @@ class GlRenderer {
   LightFieldDims filtered_dims_{};
   std::string filtered_key_;                // the light field, taps and views the second holds
   unsigned prefilter_buffers_[2] = {0, 0};  // taps, views
+  unsigned depth_maps_ = 0;                 // the depth lookup's maps, R32F, a layer a view
+  const DepthSet* uploaded_depth_ = nullptr;
+  LightFieldDims depth_dims_{};
 };
 
 }  // namespace lfcam

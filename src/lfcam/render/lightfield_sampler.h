@@ -44,6 +44,18 @@ struct AxisLerp {
   }
 };
 
+// The planes a lookup intersects lines with, in the form the samplers use: the uv-plane (p_ca,
+// its normal, its axes divided by the window's size), the st-plane (origin, normal, axes divided
+// by the window's size), the reference grid (s0, t0 and the scales to samples) and the sampled
+// domain (the union of the views' windows).
+struct LookupPlanes {
+  Vec3 p_ca, n_ca, u_scaled, v_scaled;
+  Vec3 st_origin, n_st, s_scaled, t_scaled;
+  double s0 = 0, t0 = 0, s_to_k = 0, t_to_l = 0;
+  double u_s0 = 0, u_s1 = 0, u_t0 = 0, u_t1 = 0;
+};
+LookupPlanes LookupPlanesOf(const LightField& lf);
+
 class LightFieldSampler {
  public:
   explicit LightFieldSampler(const LightField& lf);

@@ -16,6 +16,8 @@
 #include "lfcam/render/gl_renderer.h"
 #include "lfcam/render/lightfield_sampler.h"
 #include "lfcam/render/render_test_cases.h"
+#include "lfcam/sim/depth_truth.h"
+#include "lfcam/sim/scene.h"
 
 namespace lfcam::view_windows_test {
 namespace {
@@ -169,13 +171,39 @@ TEST(ViewWindows, TheGlRendererReadsEachViewInItsOwnWindow) {
     GTEST_SKIP() << "no GL 4.3 context could be made: " << e.what();
   }
   const LightField& windowed = WindowedPaperLightField();
+  // The views' true depth maps, each in its view's own window, for the depth lookup.
+  const Scene scene = MakePaperScene();
+  DepthSet truth(windowed.dims());
+  for (int r = 0; r < windowed.dims().rows; ++r)
+    for (int c = 0; c < windowed.dims().cols; ++c)
+      truth.set(GroundTruthDepth(scene, windowed, r, c).map);
+  // Every case; and the cameras integrator's also as its quadrilinear limit, the focal-plane
+  // lookup's also as the depth lookup.
+  std::vector<render_test::Case> cases;
   for (const render_test::Case& c : render_test::Cases()) {
     if (c.turned) continue;
+    cases.push_back(c);
+    render_test::Case other = c;
+    if (c.integrator == Integrator::kCameras) {
+      other.integrator = Integrator::kCamerasQuadrilinear;
+      other.interpolation = Interpolation::kQuadrilinear;
+      cases.push_back(other);
+    } else if (c.interpolation == Interpolation::kFocalPlane) {
+      other.interpolation = Interpolation::kDepth;
+      cases.push_back(other);
+    }
+  }
+  for (const render_test::Case& c : cases) {
     const VirtualCamera camera(c.camera);
-    const RenderResult cpu = Cpu(windowed, c, false);
+    CpuRenderOptions cpu_options;
+    cpu_options.integrator = c.integrator;
+    cpu_options.interpolation = c.interpolation;
+    if (c.interpolation == Interpolation::kDepth) cpu_options.depth = &truth;
+    const RenderResult cpu = RenderLightFieldCpu(windowed, camera, cpu_options);
     GlRenderOptions o;
     o.integrator = c.integrator;
     o.interpolation = c.interpolation;
+    o.depth = cpu_options.depth;
     const RenderResult frame = gl->Render(windowed, camera, o);
     const cv::Mat both = frame.hit_mask & cpu.hit_mask;
     ASSERT_GT(cv::countNonZero(both), 0) << c.name;

@@ -76,8 +76,7 @@ void FrameScheduler::Start(const Job& job) {
     camera = camera.WithLensSampleRange(n * job.part / job.parts, n * (job.part + 1) / job.parts);
   }
   const FrameRenderOptions o = OptionsFor(job.view);
-  // The depth lookup renders on the CPU (FrameRenderer hands it over), on the worker.
-  if (renderer_.uses_gl() && !RendersOnCpuOnly(o)) {
+  if (renderer_.uses_gl()) {
     RenderResult result;
     if (job.parts > 1) {
       result = renderer_.Render(lf_, camera, o);  // read back, to accumulate
