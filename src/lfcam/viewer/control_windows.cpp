@@ -82,6 +82,18 @@ bool DrawCameraWindow(ViewSettings& view, const LightField& lf, double rig_posit
   return changed;
 }
 
+std::string RenderModeName(const ViewSettings& view) {
+  switch (view.integrator) {
+    case Integrator::kCameras:
+      return "cameras (exact limit)";
+    case Integrator::kCamerasQuadrilinear:
+      return "quadrilinear limit";
+    case Integrator::kLensSamples:
+      break;
+  }
+  return "lens samples, " + ToString(view.interpolation) + " lookup";
+}
+
 bool DrawRenderingWindow(ViewSettings& view, double& render_scale, const FrameStats& stats,
                          bool has_depth, bool* open) {
   bool changed = false;
@@ -95,7 +107,7 @@ bool DrawRenderingWindow(ViewSettings& view, double& render_scale, const FrameSt
             std::begin(integrators));
     if (ImGui::Combo("integrator", &integrator,
                      "lens samples (paper)\0cameras (exact limit)\0cameras, quadrilinear limit "
-                     "(smooth, cpu)\0")) {
+                     "(smooth)\0")) {
       view.integrator = integrators[integrator];
       changed = true;
     }
@@ -105,7 +117,7 @@ bool DrawRenderingWindow(ViewSettings& view, double& render_scale, const FrameSt
                      std::begin(lookups));
     if (view.integrator == Integrator::kLensSamples &&
         ImGui::Combo("lookup", &lookup,
-                     has_depth ? "quadrilinear (paper)\0focal plane\0depth (no ghosts, cpu)\0"
+                     has_depth ? "quadrilinear (paper)\0focal plane\0depth (no ghosts)\0"
                                : "quadrilinear (paper)\0focal plane\0")) {
       view.interpolation = lookups[lookup];
       changed = true;
@@ -139,6 +151,12 @@ bool DrawRenderingWindow(ViewSettings& view, double& render_scale, const FrameSt
     else if (stats.reads_per_pixel > 0)
       ImGui::Text("%.1f rays, %.1f camera lookups a pixel", stats.rays_per_pixel,
                   stats.reads_per_pixel);
+    if (!stats.mode_ms.empty()) {
+      // What each mode costs, as measured here at full resolution: to choose by.
+      ImGui::Separator();
+      ImGui::Text("a full frame, as last rendered:");
+      for (const auto& [mode, ms] : stats.mode_ms) ImGui::Text("  %s: %.1f ms", mode.c_str(), ms);
+    }
     if (!stats.status.empty()) ImGui::Text("%s", stats.status.c_str());
     ImGui::PopItemWidth();
   }

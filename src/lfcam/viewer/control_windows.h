@@ -4,6 +4,7 @@
 // lookup, lens sampling rate, render scale, backend and device, milliseconds a frame, lookups a
 // pixel), and the help overlay with every key. Each draws with Dear ImGui and edits the view in
 // place.
+#include <map>
 #include <string>
 
 #include "lfcam/core/lightfield.h"
@@ -29,7 +30,13 @@ struct FrameStats {
   double rays_per_pixel = 0;   // lens samples cast (or cameras read) a pixel
   double reads_per_pixel = 0;  // camera views read a pixel (lens samples: 4 a ray); 0 unknown
   std::string status;          // the last click-to-focus, screenshot, ...
+  // What a full-resolution frame of each mode (RenderModeName) last cost here, wall-clock ms.
+  std::map<std::string, double> mode_ms;
 };
+
+// The integrator and lookup of a view, for people: "lens samples, focal-plane lookup",
+// "cameras (exact limit)", "quadrilinear limit".
+std::string RenderModeName(const ViewSettings& view);
 
 // Each returns true when it changed the view. `render_scale` is the render resolution over the
 // window's framebuffer.

@@ -43,6 +43,7 @@ class FrameScheduler {
   int parts_shown() const { return parts_shown_; }
   int parts() const { return parts_; }
   const RenderResult& shown() const { return shown_; }
+  const std::optional<ViewSettings>& shown_view() const { return shown_view_; }
   double shown_scale() const { return shown_scale_; }
   double shown_ms() const { return shown_ms_; }         // its render's wall-clock time
   double full_estimate_ms() const { return full_ms_; }  // the last full-resolution render's

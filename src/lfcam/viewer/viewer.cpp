@@ -63,7 +63,9 @@ class Viewer {
       view_.camera = StartingView(lf_, view_.camera.width, view_.camera.height);
       rig_position_[0] = 0.5 * (lf_.dims().rows - 1);  // where StartingView stands
       rig_position_[1] = 0.5 * (lf_.dims().cols - 1);
-      view_.integrator = Integrator::kCameras;
+      // The paper's smooth blur without its noise: out of focus, the focal-plane limit
+      // (Integrator::kCameras) shows a lattice of the cameras' copies.
+      view_.integrator = Integrator::kCamerasQuadrilinear;
     }
     view_.light_field = options.light_field;
     stats_.backend = renderer_->description();
@@ -403,6 +405,9 @@ class Viewer {
     stats_.width = view_.camera.width;
     stats_.height = view_.camera.height;
     const RenderResult& shown = scheduler_->shown();
+    if (scheduler_->shown_view() && stats_.scale >= 1 && stats_.parts_shown == stats_.parts &&
+        scheduler_->full_estimate_ms() > 0)
+      stats_.mode_ms[RenderModeName(*scheduler_->shown_view())] = scheduler_->full_estimate_ms();
     const double pixels = std::max(1.0, double(shown.image.total()));
     stats_.rays_per_pixel = shown.image.empty() ? 0 : double(shown.rays) / pixels;
     stats_.reads_per_pixel = shown.image.empty()
