@@ -15,7 +15,8 @@ constexpr double kParallelTolerance = 1e-9;
 
 }  // namespace
 
-CameraIntegratorFrame::CameraIntegratorFrame(const LightField& lf, const VirtualCamera& camera)
+CameraIntegratorFrame::CameraIntegratorFrame(const LightField& lf, const VirtualCamera& camera,
+                                             bool tabulate)
     : camera_(camera), rows_(lf.dims().rows), cols_(lf.dims().cols) {
   const ArrayPlane& uv = lf.slab().uv;
   pitch_ = uv.pitch_mm;
@@ -34,6 +35,7 @@ CameraIntegratorFrame::CameraIntegratorFrame(const LightField& lf, const Virtual
       if (!uniform_.empty()) return;
     }
   }
+  if (!tabulate) return;
   // Every pixel's footprint: the range of centres and radii the table must cover.
   struct Range {
     double r_lo = 1e300, r_hi = -1e300, x_lo = 1e300, x_hi = -1e300, y_lo = 1e300, y_hi = -1e300;
@@ -54,9 +56,7 @@ CameraIntegratorFrame::CameraIntegratorFrame(const LightField& lf, const Virtual
             const Footprint f = FootprintOf(i, j);
             if (!f.valid) continue;
             // Centres farther than the radius plus a pitch from the window have no weights.
-            if (f.cx < -1.5 - f.radius || f.cx > cols_ + 0.5 + f.radius || f.cy < -1.5 - f.radius ||
-                f.cy > rows_ + 0.5 + f.radius)
-              continue;
+            if (FarFromWindow(f.cx, f.cy, f.radius, cols_, rows_)) continue;
             r.Add({f.radius, f.radius, f.cx, f.cx, f.cy, f.cy});
           }
         return r;
@@ -72,6 +72,23 @@ CameraIntegratorFrame::CameraIntegratorFrame(const LightField& lf, const Virtual
     uniform_ = DiskCameraWeights(r_lo, x_lo, y_lo, cols_, rows_);
     if (!uniform_.empty()) return;
   }
+  const std::size_t cameras = std::size_t(rows_) * std::size_t(cols_);
+  levels_ = TableLayout(r_lo, r_hi, x_lo, x_hi, y_lo, y_hi);
+  for (Level& level : levels_)
+    level.weights.assign(std::size_t(level.nx) * std::size_t(level.ny) * cameras, 0.0f);
+  for (Level& level : levels_)
+    tbb::parallel_for(0, level.nx * level.ny, [&](int node) {
+      const int a = node % level.nx, b = node / level.nx;
+      const double cx = double(level.x0 + a) / kNodesPerPitch,
+                   cy = double(level.y0 + b) / kNodesPerPitch;
+      float* out = level.weights.data() + std::size_t(node) * cameras;
+      for (const GridCameraWeight& w : DiskCameraWeights(level.radius, cx, cy, cols_, rows_))
+        out[std::size_t(w.row * cols_ + w.col)] = float(w.weight);
+    });
+}
+
+std::vector<CameraIntegratorFrame::Level> CameraIntegratorFrame::TableLayout(
+    double r_lo, double r_hi, double x_lo, double x_hi, double y_lo, double y_hi) {
   std::vector<double> radii;
   if (r_hi - r_lo < 1e-9) {
     radii = {r_lo};
@@ -83,7 +100,7 @@ CameraIntegratorFrame::CameraIntegratorFrame(const LightField& lf, const Virtual
             x1 = int(std::ceil(x_hi * kNodesPerPitch)) + 1;
   const int y0 = int(std::floor(y_lo * kNodesPerPitch)) - 1,
             y1 = int(std::ceil(y_hi * kNodesPerPitch)) + 1;
-  const std::size_t cameras = std::size_t(rows_) * std::size_t(cols_);
+  std::vector<Level> levels;
   for (const double radius : radii) {
     Level level;
     level.radius = radius;
@@ -91,18 +108,9 @@ CameraIntegratorFrame::CameraIntegratorFrame(const LightField& lf, const Virtual
     level.y0 = y0;
     level.nx = x1 - x0 + 1;
     level.ny = y1 - y0 + 1;
-    level.weights.assign(std::size_t(level.nx) * std::size_t(level.ny) * cameras, 0.0f);
-    levels_.push_back(std::move(level));
+    levels.push_back(std::move(level));
   }
-  for (Level& level : levels_)
-    tbb::parallel_for(0, level.nx * level.ny, [&](int node) {
-      const int a = node % level.nx, b = node / level.nx;
-      const double cx = double(level.x0 + a) / kNodesPerPitch,
-                   cy = double(level.y0 + b) / kNodesPerPitch;
-      float* out = level.weights.data() + std::size_t(node) * cameras;
-      for (const GridCameraWeight& w : DiskCameraWeights(level.radius, cx, cy, cols_, rows_))
-        out[std::size_t(w.row * cols_ + w.col)] = float(w.weight);
-    });
+  return levels;
 }
 
 Footprint CameraIntegratorFrame::FootprintOf(int i, int j) const {

@@ -33,8 +33,10 @@ struct Footprint {
 class CameraIntegratorFrame {
  public:
   // Sets up the frame: every pixel's footprint, and the weights for all of them. `camera` must
-  // outlive the frame.
-  CameraIntegratorFrame(const LightField& lf, const VirtualCamera& camera);
+  // outlive the frame. With `tabulate` false only the uniform case is set up (the eye on the
+  // array's plane); a frame that needs the table then has none (the GL renderer builds it on the
+  // GPU: needs_table()).
+  CameraIntegratorFrame(const LightField& lf, const VirtualCamera& camera, bool tabulate = true);
 
   // Pixel (i, j)'s footprint (j bottom-up, as VirtualCamera counts).
   Footprint FootprintOf(int i, int j) const;
@@ -43,6 +45,9 @@ class CameraIntegratorFrame {
   void Weights(const Footprint& footprint, float* weights) const;
 
   bool exact() const { return exact_; }  // the lens is parallel to the array
+  // The frame's footprints differ from pixel to pixel, so its weights come from a table (built
+  // here unless the constructor was told not to).
+  bool needs_table() const { return uniform_.empty(); }
   // When every pixel has the same footprint (the eye on the array's plane, looking along its
   // normal: each footprint is the lens itself), its cameras and weights, else empty.
   const std::vector<GridCameraWeight>& uniform_weights() const { return uniform_; }
@@ -61,6 +66,17 @@ class CameraIntegratorFrame {
     std::vector<float> weights;          // [b][a][camera, row-major]: nx * ny * rows * cols
   };
   const std::vector<Level>& levels() const { return levels_; }
+  // The table's layout (levels without weights) for footprints whose radii span [r_lo, r_hi] and
+  // centres [x_lo, x_hi] x [y_lo, y_hi] (grid units): radius levels kRadiusStep apart or closer,
+  // a lattice kNodesPerPitch a pitch with a node of margin. The CPU's table and the GPU's share it.
+  static std::vector<Level> TableLayout(double r_lo, double r_hi, double x_lo, double x_hi,
+                                        double y_lo, double y_hi);
+  // Whether a footprint centred at (cx, cy) with `radius` is too far from a cols x rows window
+  // to have weights (farther than its radius and a pitch): the table leaves it out.
+  static bool FarFromWindow(double cx, double cy, double radius, int cols, int rows) {
+    return cx < -1.5 - radius || cx > cols + 0.5 + radius || cy < -1.5 - radius ||
+           cy > rows + 0.5 + radius;
+  }
 
  private:
   const VirtualCamera& camera_;

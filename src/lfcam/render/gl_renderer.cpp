@@ -5,6 +5,8 @@
 #include <fmt/ranges.h>
 
 #include <chrono>
+#include <cstring>
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -13,6 +15,8 @@
 #include "lfcam/render/depth_aware_sampler.h"
 #include "lfcam/render/quadrilinear_limit.h"
 #include "lfcam/render/ray_setup.h"
+#include "lfcam/render/shaders/camera_footprint.comp.h"
+#include "lfcam/render/shaders/camera_weight_table.comp.h"
 #include "lfcam/render/shaders/prefilter_views.comp.h"
 #include "lfcam/render/shaders/render_depth.comp.h"
 #include "lfcam/render/shaders/render_frame.comp.h"
@@ -146,6 +150,32 @@ void FillBuffer(GLuint buffer, const std::vector<T>& data) {
 
 std::string Mib(double bytes) { return fmt::format("{:.0f} MiB", bytes / (1024.0 * 1024.0)); }
 
+// The footprints' set-up (camera_footprint.comp).
+void FootprintUniforms(const Uniforms& u, const LightField& lf, const VirtualCamera& camera) {
+  const ArrayPlane& array = lf.slab().uv;
+  const Vec3 p00 = camera.focus_point(camera.pixel_direction(0, 0));
+  u.Vec3f("focus_at00", p00 - array.p_ca);
+  u.Vec3f("focus_di", camera.focus_point(camera.pixel_direction(1, 0)) - p00);
+  u.Vec3f("focus_dj", camera.focus_point(camera.pixel_direction(0, 1)) - p00);
+  u.Vec3f("eye_from_array", camera.e_c() - array.p_ca);
+  u.Vec3f("array_u", array.u_ca);
+  u.Vec3f("array_v", array.v_ca);
+  u.Vec3f("array_n", array.n_ca);
+  u.Vec3f("lens_u", camera.u_c());
+  u.Vec3f("lens_v", camera.v_c());
+  u.Float("pitch_mm", array.pitch_mm);
+  u.Float("lens_radius_mm", 0.5 * camera.params().aperture_mm);
+}
+
+// The weight table's layout (render_frame.comp's MODE 3, camera_weight_table.comp).
+void TableUniforms(const Uniforms& u, const std::vector<CameraIntegratorFrame::Level>& levels) {
+  u.Int("level_count", int(levels.size()));
+  u.Int("nodes_per_pitch", CameraIntegratorFrame::kNodesPerPitch);
+  u.Int4("lattice", levels[0].x0, levels[0].y0, levels[0].nx, levels[0].ny);
+  u.Float("radius0", levels[0].radius);
+  u.Float("radius_step", levels.size() > 1 ? levels[1].radius - levels[0].radius : 1.0);
+}
+
 }  // namespace
 
 GlRenderer::GlRenderer(bool prefer_hardware) : GlRenderer(GlContext::Create(prefer_hardware)) {}
@@ -167,6 +197,7 @@ GlRenderer::GlRenderer(std::unique_ptr<GlContext> context) : context_(std::move(
   }
   glGenBuffers(kBindings, buffers_);
   glGenBuffers(2, prefilter_buffers_);
+  glGenBuffers(1, &range_buffer_);
   glGenQueries(1, &timer_);
   CheckGl("setting up the renderer");
 }
@@ -180,6 +211,7 @@ GlRenderer::~GlRenderer() {
   for (const auto& [key, program] : programs_) glDeleteProgram(program);
   glDeleteBuffers(kBindings, buffers_);
   glDeleteBuffers(2, prefilter_buffers_);
+  glDeleteBuffers(1, &range_buffer_);
   glDeleteTextures(2, filtered_);
   glDeleteQueries(1, &timer_);
   if (views_) glDeleteTextures(1, &views_);
@@ -237,7 +269,10 @@ unsigned GlRenderer::Program(int mode, bool view_windows, const GlRenderOptions&
       "#define WORKGROUP_X {}\n#define WORKGROUP_Y {}\n#define MODE {}\n#define VIEW_WINDOWS {}\n",
       options.workgroup_x, options.workgroup_y, mode, view_windows ? 1 : 0);
   auto& program = programs_[defines];
-  if (!program) program = CompileProgram(kRenderFrameShader, defines);
+  // MODE 3 computes footprints: camera_footprint.comp goes before the shader.
+  if (!program)
+    program = CompileProgram(kRenderFrameShader,
+                             defines + static_cast<const char*>(kCameraFootprintShader));
   return program;
 }
 
@@ -289,34 +324,32 @@ double GlRenderer::RenderToTexture(const LightField& lf, const VirtualCamera& ca
   std::optional<CameraIntegratorFrame> cameras;
   int mode = lens_samples ? (focal_plane ? kLensFocalPlane : kLensQuadrilinear) : kCamerasUniform;
   std::vector<ShaderCameraWeight> weights;
-  std::vector<float> table;
   GLuint sampled = views_;  // the views the frame reads: as uploaded, or prefiltered
   double prefilter_ms = 0;
   last_note_.clear();
+  std::vector<CameraIntegratorFrame::Level> layout;  // the table's, built on the GPU
+  double table_ms = 0;
   if (!lens_samples) {
-    cameras.emplace(lf, camera);
+    // The uniform case here; a table, when the footprints differ, on the GPU.
+    cameras.emplace(lf, camera, /*tabulate=*/false);
+    for (const GridCameraWeight& w : cameras->uniform_weights())
+      weights.push_back({w.row * d.cols + w.col, float(w.weight)});
+    if (cameras->needs_table()) {
+      layout = BuildWeightTable(lf, camera, &table_ms);
+      if (!layout.empty()) mode = kCamerasTable;
+    }
     // The quadrilinear limit: the cameras integrator over views prefiltered by the hat scaled by
-    // k (render/quadrilinear_limit.h), the filter a GPU pass.
+    // k (render/quadrilinear_limit.h), the filter a GPU pass, over the views some pixel reads
+    // (every view when the weights come from the table).
     if (options.integrator == Integrator::kCamerasQuadrilinear) {
       const StPrefilter prefilter = QuadrilinearLimitPrefilter(lf, camera);
       if (prefilter.h_s >= 1e-3 || prefilter.h_t >= 1e-3) {
-        sampled = Prefilter(lf, prefilter, cameras->CamerasRead(), &prefilter_ms);
+        std::vector<bool> read(d.view_count(), mode == kCamerasTable);
+        for (const ShaderCameraWeight& w : weights) read[std::size_t(w.index)] = true;
+        sampled = Prefilter(lf, prefilter, read, &prefilter_ms);
         last_note_ = fmt::format(", views prefiltered ({:.2f} x {:.2f} samples)", prefilter.h_s,
                                  prefilter.h_t);
       }
-    }
-    for (const GridCameraWeight& w : cameras->uniform_weights())
-      weights.push_back({w.row * d.cols + w.col, float(w.weight)});
-    if (weights.empty() && !cameras->levels().empty()) {
-      mode = kCamerasTable;
-      for (const CameraIntegratorFrame::Level& level : cameras->levels())
-        table.insert(table.end(), level.weights.begin(), level.weights.end());
-      if (double(table.size()) * sizeof(float) > double(limits_.max_storage_block_bytes))
-        throw Error(fmt::format(
-            "the cameras integrator's weight table for this frame ({}) exceeds this GPU's "
-            "storage block limit ({} on {}); a smaller frame or aperture fits",
-            Mib(double(table.size()) * sizeof(float)), Mib(double(limits_.max_storage_block_bytes)),
-            device().renderer));
     }
   }
   std::vector<OriginConstants> camera_st(std::size_t(d.view_count()));
@@ -325,7 +358,7 @@ double GlRenderer::RenderToTexture(const LightField& lf, const VirtualCamera& ca
   FillBuffer(buffers_[kLensSt], setup.lens_st);
   FillBuffer(buffers_[kCameraSt], camera_st);
   FillBuffer(buffers_[kCameraWeights], weights);
-  FillBuffer(buffers_[kWeightTable], table);
+  if (mode != kCamerasTable) FillBuffer(buffers_[kWeightTable], std::vector<float>{});
   std::vector<float> offsets;  // each view's window (k, l), read by the quadrilinear lookup
   for (std::size_t i = 0; i < setup.cam_k_offset.size(); ++i)
     offsets.insert(offsets.end(), {setup.cam_k_offset[i], setup.cam_l_offset[i]});
@@ -349,25 +382,8 @@ double GlRenderer::RenderToTexture(const LightField& lf, const VirtualCamera& ca
   u.Int("weight_count", int(weights.size()));
   u.Int("views", 0);
   if (mode == kCamerasTable) {
-    const ArrayPlane& array = lf.slab().uv;
-    const Vec3 p00 = camera.focus_point(camera.pixel_direction(0, 0));
-    u.Vec3f("focus_at00", p00 - array.p_ca);
-    u.Vec3f("focus_di", camera.focus_point(camera.pixel_direction(1, 0)) - p00);
-    u.Vec3f("focus_dj", camera.focus_point(camera.pixel_direction(0, 1)) - p00);
-    u.Vec3f("eye_from_array", camera.e_c() - array.p_ca);
-    u.Vec3f("array_u", array.u_ca);
-    u.Vec3f("array_v", array.v_ca);
-    u.Vec3f("array_n", array.n_ca);
-    u.Vec3f("lens_u", camera.u_c());
-    u.Vec3f("lens_v", camera.v_c());
-    u.Float("pitch_mm", array.pitch_mm);
-    u.Float("lens_radius_mm", 0.5 * camera.params().aperture_mm);
-    const auto& levels = cameras->levels();
-    u.Int("level_count", int(levels.size()));
-    u.Int("nodes_per_pitch", CameraIntegratorFrame::kNodesPerPitch);
-    u.Int4("lattice", levels[0].x0, levels[0].y0, levels[0].nx, levels[0].ny);
-    u.Float("radius0", levels[0].radius);
-    u.Float("radius_step", levels.size() > 1 ? levels[1].radius - levels[0].radius : 1.0);
+    FootprintUniforms(u, lf, camera);
+    TableUniforms(u, layout);
   }
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D_ARRAY, sampled);
@@ -375,7 +391,86 @@ double GlRenderer::RenderToTexture(const LightField& lf, const VirtualCamera& ca
   CheckGl("setting the frame's parameters");
 
   last_lens_count_ = lens_samples ? static_cast<long long>(setup.lens_uv.size()) : 0;
-  return prefilter_ms + Dispatch(camera, options);
+  return prefilter_ms + table_ms + Dispatch(camera, options);
+}
+
+std::vector<CameraIntegratorFrame::Level> GlRenderer::BuildWeightTable(const LightField& lf,
+                                                                       const VirtualCamera& camera,
+                                                                       double* ms) {
+  const auto start = std::chrono::steady_clock::now();
+  const LightFieldDims& d = lf.dims();
+  const auto program_for = [&](int pass) {
+    const std::string defines =
+        fmt::format("#define PASS {}\n{}", pass, static_cast<const char*>(kCameraFootprintShader));
+    auto& program = programs_[fmt::format("weight table {}", pass)];
+    if (!program) program = CompileProgram(kCameraWeightTableShader, defines);
+    glUseProgram(program);
+    return Uniforms{program};
+  };
+  // Pass 0: the range of the frame's footprints, read back.
+  {
+    const Uniforms u = program_for(0);
+    u.Int2("frame_size", camera.width(), camera.height());
+    u.Int2("grid", d.cols, d.rows);
+    FootprintUniforms(u, lf, camera);
+    const std::vector<std::int32_t> empty = {
+        std::numeric_limits<std::int32_t>::max(), std::numeric_limits<std::int32_t>::min(),
+        std::numeric_limits<std::int32_t>::max(), std::numeric_limits<std::int32_t>::min(),
+        std::numeric_limits<std::int32_t>::max(), std::numeric_limits<std::int32_t>::min()};
+    FillBuffer(range_buffer_, empty);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, range_buffer_);
+    glDispatchCompute(GLuint((camera.width() + 15) / 16), GLuint((camera.height() + 7) / 8), 1);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  }
+  std::int32_t ordered[6];
+  glBindBuffer(GL_SHADER_STORAGE_BUFFER, range_buffer_);
+  glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof(ordered), ordered);
+  CheckGl("finding the frame's footprints");
+  double range[6];
+  for (int i = 0; i < 6; ++i) {
+    const std::int32_t bits = ordered[i] >= 0 ? ordered[i] : ordered[i] ^ 0x7fffffff;
+    float value;
+    std::memcpy(&value, &bits, sizeof(value));
+    range[i] = value;
+  }
+  *ms = 0;
+  if (ordered[0] > ordered[1]) return {};  // no pixel reaches the array
+  std::vector<CameraIntegratorFrame::Level> layout = CameraIntegratorFrame::TableLayout(
+      range[0], range[1], range[2], range[3], range[4], range[5]);
+  const std::uint64_t cameras = std::uint64_t(d.view_count());
+  const std::uint64_t nodes = std::uint64_t(layout[0].nx) * std::uint64_t(layout[0].ny);
+  const std::uint64_t entries = std::uint64_t(layout.size()) * nodes * cameras;
+  if (double(entries) * sizeof(float) > double(limits_.max_storage_block_bytes) ||
+      entries > std::uint64_t(std::numeric_limits<std::uint32_t>::max()))
+    throw Error(
+        fmt::format("the cameras integrator's weight table for this frame ({}) exceeds this GPU's "
+                    "storage block limit ({} on {}); a smaller frame or aperture fits",
+                    Mib(double(entries) * sizeof(float)),
+                    Mib(double(limits_.max_storage_block_bytes)), device().renderer));
+  glBindBuffer(GL_SHADER_STORAGE_BUFFER, buffers_[kWeightTable]);
+  glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(entries * sizeof(float)), nullptr,
+               GL_DYNAMIC_COPY);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffers_[kWeightTable]);
+  // Passes 1 and 2: the entries, then each node's normalisation; as many groups of 64 as the
+  // work needs, laid out in two dimensions (at most 65535 a dimension).
+  const auto dispatch = [](std::uint64_t invocations) {
+    const std::uint64_t groups = std::max<std::uint64_t>(1, (invocations + 63) / 64);
+    const std::uint64_t x = std::min<std::uint64_t>(groups, 65535);
+    glDispatchCompute(GLuint(x), GLuint((groups + x - 1) / x), 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  };
+  for (const int pass : {1, 2}) {
+    const Uniforms u = program_for(pass);
+    u.Int2("grid", d.cols, d.rows);
+    TableUniforms(u, layout);
+    const std::uint64_t work = pass == 1 ? entries : std::uint64_t(layout.size()) * nodes;
+    glUniform1ui(u.At("entries"), GLuint(work));
+    dispatch(work);
+  }
+  CheckGl("building the cameras integrator's weight table");
+  // The set-up's time as the frame's wall-clock sees it (it reads the range back).
+  *ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return layout;
 }
 
 double GlRenderer::Dispatch(const VirtualCamera& camera, const GlRenderOptions& options) {

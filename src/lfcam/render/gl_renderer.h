@@ -18,6 +18,7 @@
 
 #include "lfcam/core/lightfield.h"
 #include "lfcam/depth/depth_set.h"
+#include "lfcam/render/camera_integrator.h"
 #include "lfcam/render/cpu_renderer.h"
 #include "lfcam/render/gl_context.h"
 #include "lfcam/render/quadrilinear_limit.h"
@@ -80,6 +81,15 @@ class GlRenderer {
   // Runs the bound program over the frame and times it (a timer query, or on a software GL the
   // wall-clock time to glFinish).
   double Dispatch(const VirtualCamera& camera, const GlRenderOptions& options);
+  // The cameras integrator's weight table for a frame whose footprints differ (the eye off the
+  // array's plane, a turned camera), built on the GPU into the weight-table buffer
+  // (render/shaders/camera_weight_table.comp): the footprints' range found there and read back,
+  // the layout CameraIntegratorFrame's, the entries and their normalisation computed there. Its
+  // layout (levels without weights; empty when no pixel reaches the array), and its wall-clock
+  // time in `ms`.
+  std::vector<CameraIntegratorFrame::Level> BuildWeightTable(const LightField& lf,
+                                                             const VirtualCamera& camera,
+                                                             double* ms);
   // The quadrilinear limit's views: the views `read` of the uploaded light field filtered by the
   // prefilter's taps on the GPU (render/shaders/prefilter_views.comp), kept while the same
   // filter serves the next frame; the texture, and the pass's time in `ms` (0 when kept).
@@ -102,6 +112,7 @@ class GlRenderer {
   LightFieldDims filtered_dims_{};
   std::string filtered_key_;                // the light field, taps and views the second holds
   unsigned prefilter_buffers_[2] = {0, 0};  // taps, views
+  unsigned range_buffer_ = 0;               // the weight table's range of footprints
   unsigned depth_maps_ = 0;                 // the depth lookup's maps, R32F, a layer a view
   const DepthSet* uploaded_depth_ = nullptr;
   LightFieldDims depth_dims_{};

@@ -48,13 +48,8 @@ uniform vec3 uv_at00, uv_di, uv_dj, st_at00, st_di, st_dj;
 uniform Origin eye_st;  // the central lines
 uniform int lens_count;
 uniform int weight_count;
-// MODE 3: the footprint's set-up (world mm relative to the array's centre p_ca) and the table
-// (CameraIntegratorFrame's lattice of footprint centres, per radius level).
-uniform vec3 focus_at00, focus_di, focus_dj;  // p_o - p_ca
-uniform vec3 eye_from_array;                  // e_c - p_ca
-uniform vec3 array_u, array_v, array_n;       // u_ca, v_ca, n_ca
-uniform vec3 lens_u, lens_v;                  // u_c, v_c
-uniform float pitch_mm, lens_radius_mm;
+// MODE 3: the table (CameraIntegratorFrame's lattice of footprint centres, per radius level);
+// the footprint's set-up is camera_footprint.comp's, which the C++ side puts before this.
 uniform int level_count, nodes_per_pitch;
 uniform ivec4 lattice;  // x0, y0, nx, ny
 uniform float radius0, radius_step;
@@ -144,18 +139,9 @@ float LevelWeight(int level, int index, float cx, float cy) {
 void RenderCamerasTable(ivec2 pixel, vec3 p_st, out vec3 sum, out int reads) {
   sum = vec3(0.0);
   reads = 0;
-  const vec3 p_o = focus_at00 + focus_di * float(pixel.x) + focus_dj * float(pixel.y);
-  const vec3 to_eye = eye_from_array - p_o;
-  const float h_e = dot(array_n, to_eye);
-  if (abs(h_e) < 1e-12) return;
-  const float lambda = dot(array_n, -p_o) / h_e;
-  const vec3 centre = p_o + lambda * to_eye;
-  const float cx = dot(centre, array_u) / pitch_mm - 0.5;
-  const float cy = dot(centre, array_v) / pitch_mm - 0.5;
-  const vec3 du = lambda * lens_u - (lambda * dot(array_n, lens_u) / h_e) * to_eye;
-  const vec3 dv = lambda * lens_v - (lambda * dot(array_n, lens_v) / h_e) * to_eye;
-  const float det = dot(du, array_u) * dot(dv, array_v) - dot(du, array_v) * dot(dv, array_u);
-  const float radius = lens_radius_mm * sqrt(abs(det)) / pitch_mm;
+  vec3 footprint;
+  if (!Footprint(pixel, footprint)) return;
+  const float cx = footprint.x, cy = footprint.y, radius = footprint.z;
   // A footprint that does not meet the window has no weights.
   const float dx = max(max(-0.5 - cx, cx - (float(grid.x) - 0.5)), 0.0);
   const float dy = max(max(-0.5 - cy, cy - (float(grid.y) - 0.5)), 0.0);
