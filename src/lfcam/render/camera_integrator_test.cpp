@@ -57,6 +57,67 @@ TEST(CameraIntegrator, IsTheLimitOfLensSamplesWithTheFocalPlaneLookup) {
   }
 }
 
+// Where the st domain's edge crosses the frame, the lens samples reach past the pixels whose
+// central line meets it: a camera counts where its own line through p_o meets the domain, so the
+// cameras integrator renders the pixels the lens samples reach, with the blend the lens samples
+// converge to there (before issue 23 it left every pixel whose central line missed black). Eyes
+// on, in front of and behind the array.
+TEST(CameraIntegrator, RendersTheEdgePixelsTheLensSamplesReach) {
+  for (const render_test::ConvergenceCamera& c : {
+           render_test::ConvergenceCamera{
+               "on the array", {300, 275, 3600}, {300, 275, 0}, 70, 2500, 150, true},
+           render_test::ConvergenceCamera{
+               "in front", {250, 300, 3000}, {250, 300, 0}, 60, 2000, 120, true},
+           render_test::ConvergenceCamera{
+               "behind, turned", {300, 275, 4300}, {600, 400, 0}, 90, 2500, 150, false},
+       }) {
+    SCOPED_TRACE(c.name);
+    VirtualCameraParams p = c.Params(48);
+    const auto render = [&](Integrator integrator, double rate) {
+      p.lens_rate = rate;
+      CpuRenderOptions o;
+      o.integrator = integrator;
+      o.interpolation = Interpolation::kFocalPlane;
+      return RenderLightFieldCpu(render_test::GridPaperLightField(), VirtualCamera(p), o);
+    };
+    const RenderResult cameras = render(Integrator::kCameras, 4);
+    const RenderResult lens = render(Integrator::kLensSamples, 64);
+    const int n_ls = int(VirtualCamera(p).lens_samples().size());
+    // The frame's edge band: pixels some lens samples reach and others miss.
+    int band = 0, reached = 0, half_reached = 0, rendered_of_half = 0, stray = 0;
+    double squares = 0;
+    int compared = 0;
+    for (int y = 0; y < 48; ++y)
+      for (int x = 0; x < 48; ++x) {
+        const int hits = lens.counts.at<std::int32_t>(y, x);
+        const bool rendered = cameras.counts.at<std::int32_t>(y, x) > 0;
+        if (hits > 0 && hits < n_ls) ++band;
+        if (hits > 0) ++reached;
+        if (4 * hits >= n_ls) {
+          ++half_reached;
+          rendered_of_half += rendered;
+          if (rendered) {
+            const cv::Vec3f d = cameras.image.at<cv::Vec3f>(y, x) - lens.image.at<cv::Vec3f>(y, x);
+            squares += d.dot(d) / 3;
+            ++compared;
+          }
+        }
+        if (rendered && hits == 0) ++stray;
+      }
+    const double psnr = 10 * std::log10(1.0 / std::max(squares / std::max(compared, 1), 1e-30));
+    std::cout << "[" << c.name << "] " << band << " edge pixels; of the " << half_reached
+              << " that a quarter of the lens samples reach the cameras integrator renders "
+              << rendered_of_half << ", " << stray << " that none reach; " << psnr
+              << " dB against gamma 64 there\n";
+    ASSERT_GT(band, 48) << "the domain's edge should cross the frame";
+    EXPECT_EQ(rendered_of_half, half_reached);
+    // A camera's line is not one of the 64-gamma lens samples': at the band's outer rim a pixel
+    // may be rendered that none of them reaches.
+    EXPECT_LE(stray, band / 50);
+    EXPECT_GT(psnr, 35.0);
+  }
+}
+
 TEST(CameraIntegrator, APinholeOrATinyApertureIsTheFocalPlaneLookup) {
   VirtualCameraParams p;
   p.width = p.height = 32;

@@ -43,37 +43,37 @@ struct Frame {
 };
 
 // The cameras integrator: every camera under the footprint, read along its own ray through p_o
-// with its weight. Returns the cameras read.
+// with its weight. A camera counts where its own line through p_o meets the sampled st domain
+// (and, with views in their own windows, its view's window holds the point), as a lens sample
+// counts where its line does: at the domain's edge the cameras that still see the point carry
+// the pixel, their weights renormalised, and a pixel none of them sees misses. Returns the
+// cameras read.
 int RenderPixelCameras(const Frame& frame, int i, int j, float* weights, float out[3]) {
   const VirtualCamera& camera = frame.camera;
   const Vec3 direction = camera.pixel_direction(i, j);
   const Vec3 p_o = camera.focus_point(direction);
   out[0] = out[1] = out[2] = 0.0f;
-  // The lens samples' lines through p_o that leave the sampled st domain miss; here the pixel's
-  // central line decides for the whole pixel (the same away from the domain's edges).
-  if (!frame.sampler.MeetsStDomain(camera.e_c(), direction)) return 0;
   float sum[3] = {0, 0, 0};
   int read = 0;
-  float weight = 0, added = 0;  // the weights of the cameras, and of those that held p_o's rays
+  float held = 0;  // the weights of the cameras that count
+  const bool windows = frame.sampler.view_windows();
   const auto accumulate = [&](int row, int col, float w) {
+    if (!frame.sampler.CameraLineMeetsStDomain(row, col, p_o)) return;
     const float a = frame.sampler.AccumulateFocused(row, col, p_o, w, sum);
-    weight += w;
-    added += a;
-    read += a > 0 ? 1 : 0;
+    if (windows && !(a > 0)) return;  // its window misses the point
+    held += a;
+    ++read;
   };
   if (const auto& uniform = frame.cameras->uniform_weights(); !uniform.empty()) {
     for (const GridCameraWeight& c : uniform) accumulate(c.row, c.col, float(c.weight));
-    if (!frame.sampler.view_windows()) read = int(uniform.size());  // zero weights count too
   } else {
     frame.cameras->Weights(frame.cameras->FootprintOf(i, j), weights);
     const int cols = frame.sampler.cols();
     for (int c = 0; c < frame.view_count; ++c)
       if (weights[c] > 0.0f) accumulate(c / cols, c % cols, weights[c]);
   }
-  // Views with their own windows: the cameras whose windows miss the point are left out and the
-  // others' weights scaled up to the whole.
-  const float scale = !frame.sampler.view_windows() ? 1.0f : added > 0 ? weight / added : 0.0f;
-  for (int k = 0; k < 3; ++k) out[k] = sum[k] * scale;
+  if (!(held > 0)) return 0;
+  for (int k = 0; k < 3; ++k) out[k] = sum[k] / held;
   return read;
 }
 

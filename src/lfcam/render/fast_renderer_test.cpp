@@ -62,8 +62,12 @@ TEST(FastRenderer, AgreesWithTheScalarReferenceOnEveryInstructionSet) {
       worst = std::max(worst, difference);
       EXPECT_LE(difference, 1.0 / 255) << where;
       EXPECT_EQ(cv::countNonZero(fast.hit_mask != reference.hit_mask), 0) << where;
-      EXPECT_EQ(fast.rays, reference.rays) << where;
-      EXPECT_EQ(fast.rays_hit, reference.rays_hit) << where;
+      // The rays, or the cameras read: the same, but for a camera whose line through p_o grazes
+      // the domain's edge, which float (fast) and double (reference) may put on either side: at
+      // most one in 10^4 reads.
+      const double slack = std::max(1.0, 1e-4 * double(reference.rays_hit));
+      EXPECT_NEAR(double(fast.rays), double(reference.rays), slack) << where;
+      EXPECT_NEAR(double(fast.rays_hit), double(reference.rays_hit), slack) << where;
     }
     hwy::SetSupportedTargetsForTest(0);
   }

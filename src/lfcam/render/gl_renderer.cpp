@@ -377,7 +377,6 @@ double GlRenderer::RenderToTexture(const LightField& lf, const VirtualCamera& ca
               setup.domain[3]);
   u.Plane("uv", setup.uv);
   u.Plane("st", setup.st);
-  u.Origin("eye_st", setup.eye_st);
   u.Int("lens_count", int(setup.lens_uv.size()));
   u.Int("weight_count", int(weights.size()));
   u.Int("views", 0);

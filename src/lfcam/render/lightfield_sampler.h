@@ -162,6 +162,11 @@ class LightFieldSampler {
 
   // Whether the views have their own windows (reads outside a view's window then add nothing).
   bool view_windows() const { return !offsets_.empty(); }
+  // Whether camera (row, col)'s own line toward p_o meets the st-plane inside the sampled domain.
+  bool CameraLineMeetsStDomain(int row, int col, const Vec3& p_o) const {
+    const Vec3& c = camera_centers_[std::size_t(row) * cols_ + col];
+    return MeetsStDomain(c, p_o - c);
+  }
 
   // rgb = acc, renormalised by the weight the reads added when views have their own windows;
   // false when nothing was read.

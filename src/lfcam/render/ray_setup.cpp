@@ -68,7 +68,6 @@ RaySetup::RaySetup(const LightField& lf, const VirtualCamera& camera, bool lens_
   const SamplePlane uv_plane = UvSamplePlane(lf), st_plane = StSamplePlane(lf);
   uv = uv_plane.Affines(camera);
   st = st_plane.Affines(camera);
-  eye_st = st_plane.Origin(camera.e_c());
   const LightField::SampleRange all = lf.st_union_samples();
   domain[0] = float(all.k0 - 0.5);
   domain[1] = float(all.l0 - 0.5);

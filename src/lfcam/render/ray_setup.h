@@ -64,8 +64,7 @@ struct RaySetup {
   int rows = 0, cols = 0, n_s = 0, n_t = 0;
   long long view_bytes = 0;
   int width = 0, height = 0;
-  PlaneAffines uv, st;     // p_o against the uv- and st-planes
-  OriginConstants eye_st;  // the central lines (the st-domain test)
+  PlaneAffines uv, st;  // p_o against the uv- and st-planes
   // The sampled st domain in reference samples (lo_k, lo_l, hi_k, hi_l: the outer edges of the
   // union of the views' windows).
   float domain[4] = {0, 0, 0, 0};

@@ -112,7 +112,8 @@ bool BuildCamerasIntegrator(const LightField& lf, const VirtualCamera& camera, B
   for (const GridCameraWeight& c : uniform) {
     const int read = builder.CameraOrigin(c.row * cols + c.col);
     if (read < 0) return false;
-    frame.terms.push_back({c.row * cols + c.col, read, frame.eye, float(c.weight)});
+    // Each camera counts where its own line through p_o meets the domain (RenderPixelCameras).
+    frame.terms.push_back({c.row * cols + c.col, read, read, float(c.weight)});
   }
   frame.reads_per_pixel = int(uniform.size());
   return true;

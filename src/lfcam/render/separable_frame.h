@@ -49,10 +49,11 @@ struct SeparableFrame {
   std::vector<SeparableTerm> terms;
   // Lens samples: the pixel is the mean over these origins (each a lens sample whose rays meet
   // the array window) of their terms, counted where each meets the st domain. The cameras
-  // integrator: empty, and every term is masked by the eye (origin `eye`).
+  // integrator: empty, `eye` set, and every term masked by its own camera's line (a camera counts
+  // where its line through p_o meets the domain; the counted weights are renormalised).
   std::vector<int> hit_origins;
   int eye = -1;
-  int reads_per_pixel = 0;  // the cameras integrator: cameras read where the eye's line hits
+  int reads_per_pixel = 0;  // the cameras integrator: its cameras (those a pixel can read)
   int width = 0, height = 0;
   int band_rows = 32;    // pixel rows rendered together (a task)
   double map_error = 0;  // samples: the most a resampled row's k strays from a pixel's own

@@ -21,11 +21,11 @@ using namespace sample_rows;  // NOLINT: the shared helpers of this instruction 
 
 // acc += weight * the term's view read along the lines from its `read` origin, where the lines
 // from its `mask` origin meet the domain, for pixel rows [j0, j1); the mask's hits are added
-// to `hits` when `count_hits`. `band_mask`, when given, is the mask's hits already (0 or 1 per
-// pixel of the band: the cameras integrator's eye, the same for every term).
+// to `hits` when `count_hits`, and the weight added to `held` when given (the cameras
+// integrator renormalises by it).
 void AddTerm(const SeparableFrame& f, const RaySetup& s, const SeparableTerm& t, int j0, int j1,
-             std::size_t stride, float* const acc[3], float* hits, bool count_hits,
-             const float* band_mask, Planes& decoded, Planes& resampled, TileMap& k_map) {
+             std::size_t stride, float* const acc[3], float* hits, bool count_hits, float* held,
+             Planes& decoded, Planes& resampled, TileMap& k_map) {
   const DF d;
   const DI di;
   const int lanes = int(hn::Lanes(d));
@@ -96,18 +96,15 @@ void AddTerm(const SeparableFrame& f, const RaySetup& s, const SeparableTerm& t,
     };
     // The mask's lines meet the domain all along the row when they do at both ends (the domain
     // is convex and the row's lines meet the st-plane along a segment).
-    bool all_inside = false;
-    if (band_mask == nullptr) {
-      double l_ma, l_mb;
-      Coordinates(mask, f.st, 0, j, &k_a, &l_ma);
-      Coordinates(mask, f.st, last, j, &k_b, &l_mb);
-      const auto in = [&](double k, double l) {
-        return k >= s.domain[0] && k <= s.domain[2] && l >= s.domain[1] && l <= s.domain[3];
-      };
-      all_inside = in(k_a, l_ma) && in(k_b, l_mb);
-    }
+    double l_ma, l_mb;
+    Coordinates(mask, f.st, 0, j, &k_a, &l_ma);
+    Coordinates(mask, f.st, last, j, &k_b, &l_mb);
+    const auto in = [&](double k, double l) {
+      return k >= s.domain[0] && k <= s.domain[2] && l >= s.domain[1] && l <= s.domain[3];
+    };
+    const bool all_inside = in(k_a, l_ma) && in(k_b, l_mb);
     const int base = row_base(l_a);
-    if (base == row_base(l_b) && (all_inside || band_mask != nullptr)) {
+    if (base == row_base(l_b) && all_inside) {
       // One pair of sample rows for the whole row, each pixel with its own weights.
       const float* r0[3] = {resampled.channel(std::size_t(base - l_lo), 0),
                             resampled.channel(std::size_t(base - l_lo), 1),
@@ -120,11 +117,11 @@ void AddTerm(const SeparableFrame& f, const RaySetup& s, const SeparableTerm& t,
       for (int i = 0; i < padded; i += lanes) {
         const VF pixel = hn::Iota(d, float(i));
         const auto real = hn::Lt(pixel, width);
-        VF w = hn::IfThenElseZero(real, weight);
-        if (band_mask != nullptr) w = hn::Mul(w, hn::LoadU(d, band_mask + at + i));
+        const VF w = hn::IfThenElseZero(real, weight);
         if (count_hits)
           hn::StoreU(hn::Add(hn::LoadU(d, hits + at + i), hn::IfThenElseZero(real, one)), d,
                      hits + at + i);
+        if (held != nullptr) hn::StoreU(hn::Add(hn::LoadU(d, held + at + i), w), d, held + at + i);
         const VF l = hn::MulAdd(hn::MulAdd(vc, pixel, vb), pixel, va);
         const VF w1 = hn::Sub(hn::Min(hn::Max(l, zero), l_top), vbase);
         const VF a0 = hn::Mul(w, hn::Sub(one, w1)), a1 = hn::Mul(w, w1);
@@ -141,17 +138,14 @@ void AddTerm(const SeparableFrame& f, const RaySetup& s, const SeparableTerm& t,
     for (int i = 0; i < padded; i += lanes) {
       const VF pixel = hn::Iota(d, float(i));
       const Hit r = Project(read, row, pixel, s.n_s, s.n_t);
-      VF w = hn::IfThenElseZero(hn::Lt(pixel, width), weight);
-      if (band_mask != nullptr) {
-        w = hn::Mul(w, hn::LoadU(d, band_mask + at + i));
-      } else {
-        const auto inside =
-            t.mask == t.read ? r.inside : Project(mask, row, pixel, s.domain).inside;
-        w = hn::IfThenElseZero(inside, w);
-        if (count_hits)
-          hn::StoreU(hn::Add(hn::LoadU(d, hits + at + i), hn::IfThenElseZero(hn::Gt(w, zero), one)),
-                     d, hits + at + i);
-      }
+      const auto counted =
+          hn::And(hn::Lt(pixel, width),
+                  t.mask == t.read ? r.inside : Project(mask, row, pixel, s.domain).inside);
+      const VF w = hn::IfThenElseZero(counted, weight);
+      if (count_hits)
+        hn::StoreU(hn::Add(hn::LoadU(d, hits + at + i), hn::IfThenElseZero(counted, one)), d,
+                   hits + at + i);
+      if (held != nullptr) hn::StoreU(hn::Add(hn::LoadU(d, held + at + i), w), d, held + at + i);
       if (hn::AllFalse(d, hn::Gt(w, zero))) continue;
       const VF lc = hn::Min(hn::Max(r.l, zero), l_top);
       const int low =
@@ -183,43 +177,32 @@ void RenderSeparableBandT(const SeparableFrame& f, const RaySetup& s, int j0, in
   const std::size_t stride = std::size_t(padded), band = std::size_t(j1 - j0) * stride;
   float* const acc[3] = {out.r, out.g, out.b};
   for (float* channel : acc) std::fill_n(channel, band, 0.0f);
-  std::vector<float> hits(band, 0.0f);
-  if (f.eye >= 0) {
-    // The cameras integrator: the eye's central lines decide the domain, for every term.
-    const OriginConstants& eye = f.origins[std::size_t(f.eye)];
-    for (int j = j0; j < j1; ++j) {
-      const RowFunctions row(f.st, j);
-      float* mask = hits.data() + std::size_t(j - j0) * stride;
-      for (int i = 0; i < padded; i += int(hn::Lanes(d))) {
-        const VF pixel = hn::Iota(d, float(i));
-        const auto inside = hn::And(Project(eye, row, pixel, s.domain).inside,
-                                    hn::Lt(pixel, hn::Set(d, float(f.width))));
-        hn::StoreU(hn::IfThenElseZero(inside, hn::Set(d, 1.0f)), d, mask + i);
-      }
-    }
-  }
+  // hits: the lens samples that hit, or the cameras counted; held: the cameras integrator's
+  // counted weights (each camera counts where its own line through p_o meets the domain).
+  const bool cameras = f.eye >= 0;
+  std::vector<float> hits(band, 0.0f), held(cameras ? band : 0, 0.0f);
   Planes decoded, resampled;
   TileMap k_map;
   int counted_mask = -1;
   for (const SeparableTerm& t : f.terms) {
     // Lens samples: each one's hits are counted once (its terms come together).
-    const bool count_hits = f.eye < 0 && t.mask != counted_mask;
-    AddTerm(f, s, t, j0, j1, stride, acc, hits.data(), count_hits,
-            f.eye >= 0 ? hits.data() : nullptr, decoded, resampled, k_map);
+    const bool count_hits = cameras || t.mask != counted_mask;
+    AddTerm(f, s, t, j0, j1, stride, acc, hits.data(), count_hits, cameras ? held.data() : nullptr,
+            decoded, resampled, k_map);
     if (count_hits) counted_mask = t.mask;
   }
   for (int j = j0; j < j1; ++j) {
     const std::size_t at = std::size_t(j - j0) * stride;
     float* count = hits.data() + at;
-    if (f.eye >= 0) {
-      for (int i = 0; i < padded; ++i) count[i] *= float(f.reads_per_pixel);
-    } else {
-      for (int i = 0; i < padded; i += int(hn::Lanes(d))) {
-        const VF n = hn::LoadU(d, count + i);
-        const VF inv = hn::IfThenElseZero(hn::Gt(n, hn::Zero(d)), hn::Div(hn::Set(d, 1.0f), n));
-        for (float* channel : acc)
-          hn::StoreU(hn::Mul(hn::LoadU(d, channel + at + i), inv), d, channel + at + i);
-      }
+    // Lens samples: the mean over those that hit; cameras: the counted weights renormalised.
+    const float* divisor = cameras ? held.data() + at : count;
+    for (int i = 0; i < padded; i += int(hn::Lanes(d))) {
+      const VF n = hn::LoadU(d, divisor + i);
+      const auto any = hn::Gt(n, hn::Zero(d));
+      const VF inv = hn::IfThenElseZero(any, hn::Div(hn::Set(d, 1.0f), n));
+      for (float* channel : acc)
+        hn::StoreU(hn::Mul(hn::LoadU(d, channel + at + i), inv), d, channel + at + i);
+      if (cameras) hn::StoreU(hn::IfThenElseZero(any, hn::LoadU(d, count + i)), d, count + i);
     }
     for (int i = 0; i < padded; ++i) out.count[at + std::size_t(i)] = std::int32_t(count[i]);
   }

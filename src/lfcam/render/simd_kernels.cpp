@@ -266,52 +266,45 @@ void RenderRowCamerasT(const RaySetup& s, const GridCameraWeight* uniform, int u
   const RowPlane st(s.st, j);
   const int lanes = int(hn::Lanes(d));
   const int padded = PaddedRowWidth(s.width);
-  const OriginLanes eye = OriginLanes::Broadcast(s.eye_st);
   for (int i = 0; i < padded; i += lanes) {
     const VF pixel = hn::Iota(d, float(i));
     const ChunkPoints p_st = st.At(pixel);
     Rgb sum{hn::Zero(d), hn::Zero(d), hn::Zero(d)};
     VI reads = hn::Zero(di);
-    VF weight = hn::Zero(d), held = hn::Zero(d);  // the cameras' weights, and those that read
-    // The pixel's central line decides whether the pixel meets the sampled st domain.
-    const MF in_domain = InsideDomain(Project(p_st, eye), s);
-    if (!hn::AllFalse(d, in_domain)) {
-      const auto read_camera = [&](int index, const VF& w) {
-        const VF h = AddFocused(s, p_st, hn::Set(di, index),
-                                OriginLanes::Broadcast(s.camera_st(index)), w, sum);
-        reads = hn::Add(
-            reads, hn::IfThenElseZero(hn::RebindMask(di, hn::Gt(h, hn::Zero(d))), hn::Set(di, 1)));
-        if (s.view_windows) {  // the renormalisation's sums
-          weight = hn::Add(weight, w);
-          held = hn::Add(held, h);
-        }
-      };
-      if (uniform_count > 0) {
-        for (int n = 0; n < uniform_count; ++n)
-          read_camera(uniform[n].row * s.cols + uniform[n].col,
-                      hn::IfThenElseZero(in_domain, hn::Set(d, float(uniform[n].weight))));
-        // Every camera counts as read, zero weights too (as the scalar renderer counts them).
-        if (!s.view_windows)
-          reads = hn::IfThenElseZero(hn::RebindMask(di, in_domain), hn::Set(di, uniform_count));
-      } else {
-        const int padded_width = PaddedRowWidth(s.width);
-        for (int n = 0; n < camera_count; ++n) {
-          const int index = cameras[n];
-          const VF w = hn::LoadU(d, pixel_weights + std::size_t(index) * padded_width + i);
-          const MF read = hn::And(in_domain, hn::Gt(w, hn::Zero(d)));
-          if (hn::AllFalse(d, read)) continue;
-          read_camera(index, hn::IfThenElseZero(read, w));
-        }
+    VF held = hn::Zero(d);  // the weights of the cameras that count
+    // Camera `index` in the lanes of `listed` (those whose pixels weigh it): it counts where its
+    // own line through p_o meets the sampled st domain and, with views in their own windows, its
+    // window holds the point (RenderPixelCameras).
+    const auto read_camera = [&](int index, const VF& w, const MF& listed) {
+      const OriginLanes camera = OriginLanes::Broadcast(s.camera_st(index));
+      const MF in = hn::And(listed, InsideDomain(Project(p_st, camera), s));
+      if (hn::AllFalse(d, in)) return;
+      const VF h = AddFocused(s, p_st, hn::Set(di, index), camera, hn::IfThenElseZero(in, w), sum);
+      const MF counted = s.view_windows ? hn::Gt(h, hn::Zero(d)) : in;
+      reads = hn::Add(reads, hn::IfThenElseZero(hn::RebindMask(di, counted), hn::Set(di, 1)));
+      held = hn::Add(held, h);
+    };
+    if (uniform_count > 0) {
+      const MF all = hn::Lt(pixel, hn::Set(d, float(s.width)));
+      for (int n = 0; n < uniform_count; ++n)
+        read_camera(uniform[n].row * s.cols + uniform[n].col, hn::Set(d, float(uniform[n].weight)),
+                    all);
+    } else {
+      const int padded_width = PaddedRowWidth(s.width);
+      for (int n = 0; n < camera_count; ++n) {
+        const int index = cameras[n];
+        const VF w = hn::LoadU(d, pixel_weights + std::size_t(index) * padded_width + i);
+        const MF listed = hn::Gt(w, hn::Zero(d));
+        if (hn::AllFalse(d, listed)) continue;
+        read_camera(index, w, listed);
       }
     }
-    if (s.view_windows) {
-      // The cameras whose windows miss the point are left out, the others' weights scaled up.
-      const MF any = hn::Gt(held, hn::Zero(d));
-      const VF scale =
-          hn::IfThenElseZero(any, hn::Div(weight, hn::IfThenElse(any, held, hn::Set(d, 1.0f))));
-      sum = {hn::Mul(sum.r, scale), hn::Mul(sum.g, scale), hn::Mul(sum.b, scale)};
-    }
-    StoreChunk(out, i, sum, reads);
+    // The counted cameras' weights renormalised to the whole.
+    const MF any = hn::Gt(held, hn::Zero(d));
+    const VF scale = hn::IfThenElseZero(
+        any, hn::Div(hn::Set(d, 1.0f), hn::IfThenElse(any, held, hn::Set(d, 1.0f))));
+    sum = {hn::Mul(sum.r, scale), hn::Mul(sum.g, scale), hn::Mul(sum.b, scale)};
+    StoreChunk(out, i, sum, hn::IfThenElseZero(hn::RebindMask(di, any), reads));
   }
 }
 
@@ -349,15 +342,10 @@ bool RenderRowCamerasResampledT(const RaySetup& s, const GridCameraWeight* unifo
   std::fill_n(out.r, padded, 0.0f);
   std::fill_n(out.g, padded, 0.0f);
   std::fill_n(out.b, padded, 0.0f);
-  // The pixel's central line decides whether it meets the sampled st domain.
+  // Each camera counts where its own line through p_o meets the sampled st domain (the views
+  // share the grid here); `held` sums the counted cameras' weights, to renormalise by.
   const sample_rows::RowFunctions row(s.st, j);
-  std::vector<float> domain(static_cast<std::size_t>(padded)), reads(domain.size(), 0.0f);
-  for (int i = 0; i < padded; i += lanes) {
-    const VF pixel = hn::Iota(d, float(i));
-    const auto inside = hn::And(sample_rows::Project(s.eye_st, row, pixel, s.n_s, s.n_t).inside,
-                                hn::Lt(pixel, hn::Set(d, float(s.width))));
-    hn::StoreU(hn::IfThenElseZero(inside, hn::Set(d, 1.0f)), d, domain.data() + i);
-  }
+  std::vector<float> reads(static_cast<std::size_t>(padded), 0.0f), held(reads.size(), 0.0f);
   sample_rows::Planes decoded, resampled;
   sample_rows::TileMap k_map;
   float* const acc[3] = {out.r, out.g, out.b};
@@ -388,16 +376,19 @@ bool RenderRowCamerasResampledT(const RaySetup& s, const GridCameraWeight* unifo
       sample_rows::ResampleRow(k_map, in, rows_out, padded);
     }
     for (int i = 0; i < padded; i += lanes) {
+      const VF pixel = hn::Iota(d, float(i));
+      const sample_rows::Hit line = sample_rows::Project(c, row, pixel, s.domain);
       VF w = weights ? hn::LoadU(d, weights + i) : uniform_weight;
-      w = hn::Mul(w, hn::LoadU(d, domain.data() + i));
-      const auto read = hn::Gt(w, zero);
+      const auto listed = hn::And(hn::Lt(pixel, hn::Set(d, float(s.width))),
+                                  weights ? hn::Gt(w, zero) : hn::Ge(w, zero));
+      const auto read = hn::And(listed, line.inside);
       if (hn::AllFalse(d, read)) continue;
+      w = hn::IfThenElseZero(read, w);
       hn::StoreU(hn::Add(hn::LoadU(d, reads.data() + i), hn::IfThenElseZero(read, one)), d,
                  reads.data() + i);
+      hn::StoreU(hn::Add(hn::LoadU(d, held.data() + i), w), d, held.data() + i);
       // A tent over the sample rows around each pixel's own l.
-      const VF lc = hn::Min(
-          hn::Max(sample_rows::Project(c, row, hn::Iota(d, float(i)), s.n_s, s.n_t).l, zero),
-          l_top);
+      const VF lc = hn::Min(hn::Max(line.l, zero), l_top);
       VF sum[3] = {zero, zero, zero};
       for (int l = l_lo; l <= l_hi; ++l) {
         const VF tent = hn::Max(zero, hn::Sub(one, hn::Abs(hn::Sub(lc, hn::Set(d, float(l))))));
@@ -409,7 +400,15 @@ bool RenderRowCamerasResampledT(const RaySetup& s, const GridCameraWeight* unifo
         hn::StoreU(hn::MulAdd(w, sum[ch], hn::LoadU(d, acc[ch] + i)), d, acc[ch] + i);
     }
   }
-  for (int i = 0; i < padded; ++i) out.count[i] = std::int32_t(reads[std::size_t(i)]);
+  // The counted cameras' weights renormalised to the whole.
+  for (int i = 0; i < padded; ++i) {
+    const float h = held[std::size_t(i)];
+    const float scale = h > 0 ? 1.0f / h : 0.0f;
+    out.r[i] *= scale;
+    out.g[i] *= scale;
+    out.b[i] *= scale;
+    out.count[i] = h > 0 ? std::int32_t(reads[std::size_t(i)]) : 0;
+  }
   (void)di;
   return true;
 }

@@ -45,7 +45,6 @@ uniform vec4 st_domain;
 const bool view_windows = VIEW_WINDOWS != 0;
 // p_o against the uv- and st-planes: (n.p_o, a_x.p_o, a_y.p_o) = at00 + di * i + dj * j.
 uniform vec3 uv_at00, uv_di, uv_dj, st_at00, st_di, st_dj;
-uniform Origin eye_st;  // the central lines
 uniform int lens_count;
 uniform int weight_count;
 // MODE 3: the table (CameraIntegratorFrame's lattice of footprint centres, per radius level);
@@ -103,6 +102,14 @@ vec4 ReadFocused(int index, vec3 p_st) {
   const Hit h = Project(p_st, camera_st[index]);
   const float held = Held(h);
   return vec4(h.valid && held > 0.0 ? ReadView(index, h.at) : vec3(0.0), held);
+}
+
+// The cameras integrator's read of camera `index`: as ReadFocused where the camera's own line
+// through p_o meets the sampled st domain, else nothing and no weight (a camera counts where its
+// line does, as a lens sample does; RenderPixelCameras in C++).
+vec4 ReadCounted(int index, vec3 p_st) {
+  if (!InsideDomain(Project(p_st, camera_st[index]))) return vec4(0.0);
+  return ReadFocused(index, p_st);
 }
 
 // Camera `index` read at the ray's own st point (reference samples; the paper's lookup), the
@@ -164,14 +171,15 @@ void RenderCamerasTable(ivec2 pixel, vec3 p_st, out vec3 sum, out int reads) {
       float w = LevelWeight(k, index, cx, cy);
       if (level_count > 1) w = (1.0 - t) * w + t * LevelWeight(k + 1, index, cx, cy);
       if (!(w > 0.0)) continue;
-      const vec4 read = ReadFocused(index, p_st);
+      const vec4 read = ReadCounted(index, p_st);
       if (!(read.a > 0.0)) continue;
       total += w;
       sum += w * read.rgb;
       ++reads;
     }
-  // Renormalised, as next to the window's edge a lattice node may miss the window.
+  // The counted cameras' weights renormalised to the whole.
   if (total > 0.0) sum /= total;
+  else reads = 0;
 }
 #endif
 
@@ -227,22 +235,20 @@ void main() {
   }
   if (count > 0) sum /= float(count);
 #else
-  // The pixel's central line decides whether the pixel meets the sampled st domain.
-  if (InsideDomain(Project(p_st, eye_st))) {
 #if MODE == 2
-    float weight = 0.0, held = 0.0;
-    for (int n = 0; n < weight_count; ++n) {
-      const vec4 read = ReadFocused(camera_weights[n].index, p_st);
-      sum += camera_weights[n].weight * read.rgb;
-      weight += camera_weights[n].weight;
-      held += camera_weights[n].weight * read.a;
-      if (read.a > 0.0) ++count;
-    }
-    if (view_windows) sum = held > 0.0 ? sum * (weight / held) : vec3(0.0);
-#else
-    RenderCamerasTable(pixel, p_st, sum, count);
-#endif
+  float held = 0.0;
+  for (int n = 0; n < weight_count; ++n) {
+    const vec4 read = ReadCounted(camera_weights[n].index, p_st);
+    sum += camera_weights[n].weight * read.rgb;
+    held += camera_weights[n].weight * read.a;
+    if (read.a > 0.0) ++count;
   }
+  // The counted cameras' weights renormalised to the whole.
+  sum = held > 0.0 ? sum / held : vec3(0.0);
+  if (!(held > 0.0)) count = 0;
+#else
+  RenderCamerasTable(pixel, p_st, sum, count);
+#endif
 #endif
   imageStore(frame_image, pixel, vec4(sum, float(count)));
 }
