@@ -63,9 +63,14 @@ class Viewer {
       view_.camera = StartingView(lf_, view_.camera.width, view_.camera.height);
       rig_position_[0] = 0.5 * (lf_.dims().rows - 1);  // where StartingView stands
       rig_position_[1] = 0.5 * (lf_.dims().cols - 1);
-      // The paper's smooth blur without its noise: out of focus, the focal-plane limit
-      // (Integrator::kCameras) shows a lattice of the cameras' copies.
-      view_.integrator = Integrator::kCamerasQuadrilinear;
+      // A smooth out-of-focus blur (the focal-plane limit, Integrator::kCameras, shows a lattice
+      // of the cameras' copies there): on the GPU the paper's estimator's limit, noise-free; on
+      // the CPU the paper's estimator itself, which stays responsive (reduced frames while the
+      // view moves, lens samples accumulated in parts at rest), where the limit's prefilter
+      // would remake the views it reads at every change of focus or aperture (1-2 s whatever
+      // the frame's size).
+      view_.integrator =
+          renderer_->uses_gl() ? Integrator::kCamerasQuadrilinear : Integrator::kLensSamples;
     }
     view_.light_field = options.light_field;
     stats_.backend = renderer_->description();
