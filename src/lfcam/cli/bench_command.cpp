@@ -17,6 +17,7 @@
 #include "lfcam/core/lightfield_file.h"
 #include "lfcam/core/progress.h"
 #include "lfcam/core/signal_cleanup.h"
+#include "lfcam/depth/depth_set.h"
 #include "lfcam/render/benchmark_tables.h"
 #include "lfcam/render/simd_kernels.h"
 #include "lfcam/sim/scene.h"
@@ -91,8 +92,8 @@ void AddBenchCommand(CLI::App& app) {
   auto* bench = app.add_subcommand(
       "bench", "Time the renderer on the paper's Tables 1 and 2, beside the paper's figures");
   struct Flags {
-    std::string table, lightfield, json, integrator = "lens-samples",
-                                         interpolation = "quadrilinear";
+    std::string table, lightfield, json, depth, integrator = "lens-samples",
+                                                interpolation = "quadrilinear";
     BackendFlags backend;
     int min_runs = 5;
     double min_seconds = 1.0;
@@ -116,13 +117,18 @@ void AddBenchCommand(CLI::App& app) {
                   "read from a file; printed beside, with the ratio");
   bench
       ->add_option("--integrator", flags->integrator,
-                   "table2: lens-samples (the paper's) or cameras (their limit; gamma plays no "
-                   "part, so one cell per aperture)")
+                   "table2: lens-samples (the paper's), cameras (their limit with the "
+                   "focal-plane lookup) or cameras-quadrilinear (the limit of the paper's own "
+                   "estimator); for the limits gamma plays no part, so one cell per aperture")
       ->capture_default_str();
   bench
       ->add_option("--interpolation", flags->interpolation,
-                   "table2 with lens-samples: quadrilinear (the paper's) or focal-plane")
+                   "table2 with lens-samples: quadrilinear (the paper's), focal-plane or depth "
+                   "(with --depth)")
       ->capture_default_str();
+  bench->add_option("--depth", flags->depth,
+                    "With --interpolation depth: the views' depth maps (a folder from `lfcam depth "
+                    "--all` or `lfcam simulate lightfield --depth-out`) of the --lightfield");
   bench->add_flag("--reference", flags->reference,
                   "cpu: time the scalar reference renderer instead");
   flags->backend.AddTo(*bench);
@@ -146,6 +152,15 @@ void AddBenchCommand(CLI::App& app) {
       throw UsageError(
           "--integrator/--interpolation: table1 is the paper's pinhole with its quadrilinear "
           "lookup; they apply to table2");
+    const bool depth_lookup = interpolation == Interpolation::kDepth;
+    if (depth_lookup && integrator != Integrator::kLensSamples)
+      throw UsageError("--interpolation depth goes with --integrator lens-samples");
+    if (depth_lookup && (flags->depth.empty() || flags->lightfield.empty()))
+      throw UsageError(
+          "--interpolation depth needs --depth DIR, the depth maps of the --lightfield FILE "
+          "(`lfcam depth FILE --all --out DIR`, or `lfcam simulate lightfield --depth-out DIR`)");
+    if (!flags->depth.empty() && !depth_lookup)
+      throw UsageError("--depth: only with --interpolation depth");
     FrameRenderOptions render_options;
     render_options.reference = flags->reference;
     const Backend backend = flags->backend.Validate(render_options);
@@ -155,6 +170,15 @@ void AddBenchCommand(CLI::App& app) {
 
     const LightField lf = flags->lightfield.empty() ? PaperBenchLightField(flags->quiet)
                                                     : ReadLightField(flags->lightfield);
+    DepthSet depth;
+    if (depth_lookup) {
+      depth = ReadDepthSet(flags->depth, lf);
+      render_options.depth = &depth;
+      if (flags->users_case)
+        throw UsageError(
+            "--users-case: the user's light field has no depth maps to go with "
+            "--interpolation depth");
+    }
     std::optional<LightField> users;
     if (flags->users_case) users.emplace(UsersCaseLightField(lf.dims(), flags->quiet));
     const int cores = tbb::info::default_concurrency();

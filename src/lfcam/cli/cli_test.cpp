@@ -127,6 +127,28 @@ TEST_F(Cli, BenchTimesThePapersTablesBesideItsFigures) {
   EXPECT_DOUBLE_EQ(t2["cells"][3]["paper_ms"].get<double>(), 87.38);
   EXPECT_EQ(t2["cells"][3]["integrator"], "cameras");
   EXPECT_FALSE(t2["cells"][3].contains("users_case_ms"));
+  // The quadrilinear limit's cells: one per aperture, the paper's lookup.
+  run = Lfcam("bench table2 --integrator cameras-quadrilinear" + fast + " --json " +
+              Path("t2q.json"));
+  ASSERT_EQ(run.status, 0) << run.output;
+  std::ifstream t2q_file(Path("t2q.json"));
+  const auto t2q = nlohmann::json::parse(t2q_file);
+  ASSERT_EQ(t2q["cells"].size(), 4u);
+  EXPECT_EQ(t2q["cells"][3]["integrator"], "cameras-quadrilinear");
+  EXPECT_EQ(t2q["cells"][3]["interpolation"], "quadrilinear");
+  EXPECT_NE(t2q["cells"][3]["renderer"].get<std::string>().find("views prefiltered"),
+            std::string::npos);
+  // The depth lookup's cells need the light field's depth maps, and a light field to go with.
+  for (const std::string& flags : std::vector<std::string>{
+           " --interpolation depth" + fast,
+           " --interpolation depth --integrator cameras --depth " + Path("nowhere") + fast,
+           " --depth " + Path("nowhere") + fast}) {
+    run = Lfcam("bench table2" + flags);
+    EXPECT_EQ(run.status, 2) << flags << ": " << run.output;
+  }
+  run = Lfcam("bench table2 --interpolation depth --depth " + Path("nowhere") + fast);
+  EXPECT_EQ(run.status, 1) << run.output;
+  EXPECT_NE(run.output.find("nowhere"), std::string::npos) << run.output;
 
   // The user's case beside: every cell timed on both, the ratio printed, no file left behind.
   const auto leftovers = [] {

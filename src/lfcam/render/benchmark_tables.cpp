@@ -44,13 +44,16 @@ std::vector<BenchCell> Table2Cells(Integrator integrator, Interpolation interpol
   std::vector<BenchCell> cells;
   for (int a = 0; a < 4; ++a)
     for (int g = 0; g < 5; ++g) {
-      if (integrator == Integrator::kCameras && g != 4) continue;
+      // The cameras integrators (the limits): gamma plays no part, one cell per aperture.
+      if (integrator != Integrator::kLensSamples && g != 4) continue;
       BenchCell c;
       c.table = "table2";
       c.size = 1024;
       c.integrator = integrator;
-      c.interpolation =
-          integrator == Integrator::kCameras ? Interpolation::kFocalPlane : interpolation;
+      c.interpolation = integrator == Integrator::kCameras ? Interpolation::kFocalPlane
+                        : integrator == Integrator::kCamerasQuadrilinear
+                            ? Interpolation::kQuadrilinear
+                            : interpolation;
       c.aperture_mm = kTable2Apertures[a];
       if (integrator == Integrator::kLensSamples) c.lens_rate = kTable2Rates[g];
       c.focal_length_mm = 444;
