@@ -9,7 +9,7 @@
 
 #include "lfcam/calib/intrinsics_calibration.h"
 #include "lfcam/calib/session_detection.h"
-#include "lfcam/capture/session.h"
+#include "lfcam/session/session.h"
 #include "lfcam/core/error.h"
 
 namespace lfcam {

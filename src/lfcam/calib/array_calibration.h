@@ -13,9 +13,9 @@
 #include <vector>
 
 #include "lfcam/calib/array_fit.h"
-#include "lfcam/calib/board.h"
+#include "lfcam/session/board.h"
 #include "lfcam/calib/bundle_adjustment.h"
-#include "lfcam/capture/session.h"
+#include "lfcam/session/session.h"
 #include "lfcam/core/slab.h"
 
 namespace lfcam {

@@ -9,7 +9,7 @@
 #include <fstream>
 #include <map>
 
-#include "lfcam/capture/session.h"
+#include "lfcam/session/session.h"
 #include "lfcam/core/error.h"
 #include "lfcam/core/input_file.h"
 #include "lfcam/core/json_input.h"

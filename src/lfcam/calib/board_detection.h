@@ -1,13 +1,13 @@
 #pragma once
 // Finding a board's inner corners in a photograph: detected on a downscaled copy (fast), refined
-// at full resolution (accurate), and put in the board's own point order (calib/board.h), so that
+// at full resolution (accurate), and put in the board's own point order (session/board.h), so that
 // every camera numbers the corners of a shared board pose alike. A chessboard is found whole or
 // not at all; a ChArUco board (calib/charuco.h) also in part, its missing corners NaN.
 #include <opencv2/core.hpp>
 #include <optional>
 #include <vector>
 
-#include "lfcam/calib/board.h"
+#include "lfcam/session/board.h"
 
 namespace lfcam {
 

@@ -7,7 +7,7 @@
 #include <optional>
 #include <vector>
 
-#include "lfcam/calib/board.h"
+#include "lfcam/session/board.h"
 #include "lfcam/calib/session_detection.h"
 #include "lfcam/core/camera_model.h"
 

@@ -157,7 +157,7 @@ std::optional<std::vector<cv::Point2f>> DetectCharuco(const cv::Mat& gray, const
   const int half = std::clamp(int(gap_px * 0.8), 2, 25);
   cv::cornerSubPix(gray, found, cv::Size(half, half), cv::Size(-1, -1),
                    cv::TermCriteria(cv::TermCriteria::EPS | cv::TermCriteria::COUNT, 50, 0.005));
-  // Into the board's point order (calib/board.h), NaN where not found.
+  // Into the board's point order (session/board.h), NaN where not found.
   const int cols = board.cols, rows = board.rows;
   const float nan = std::numeric_limits<float>::quiet_NaN();
   std::vector<cv::Point2f> corners(std::size_t(board.corner_count()), cv::Point2f(nan, nan));

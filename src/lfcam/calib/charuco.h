@@ -1,13 +1,13 @@
 #pragma once
 // ChArUco boards through OpenCV's aruco module (opencv_contrib): the board's layout in lfcam's
-// board frame (calib/board.h), which the simulator draws, and the detector that finds its
+// board frame (session/board.h), which the simulator draws, and the detector that finds its
 // corners, each identified by the markers around it, even when only part of the board is in view.
 #include <cstdint>
 #include <opencv2/core.hpp>
 #include <optional>
 #include <vector>
 
-#include "lfcam/calib/board.h"
+#include "lfcam/session/board.h"
 #include "lfcam/calib/board_detection.h"
 
 namespace lfcam {

@@ -4,7 +4,7 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
-#include "lfcam/calib/board.h"
+#include "lfcam/session/board.h"
 #include "lfcam/core/camera_model.h"
 
 namespace lfcam {

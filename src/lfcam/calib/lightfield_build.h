@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "lfcam/calib/calibration_file.h"
-#include "lfcam/capture/session.h"
+#include "lfcam/session/session.h"
 #include "lfcam/core/jpeg_region.h"
 #include "lfcam/core/lightfield.h"
 

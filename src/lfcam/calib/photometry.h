@@ -14,9 +14,9 @@
 #include <optional>
 #include <vector>
 
-#include "lfcam/calib/board.h"
+#include "lfcam/session/board.h"
 #include "lfcam/calib/calibration_file.h"
-#include "lfcam/capture/session.h"
+#include "lfcam/session/session.h"
 
 namespace lfcam {
 

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "lfcam/calib/board_detection.h"
-#include "lfcam/capture/session.h"
+#include "lfcam/session/session.h"
 
 namespace lfcam {
 

@@ -7,7 +7,7 @@
 
 #include "lfcam/capture/concurrency.h"
 #include "lfcam/capture/node_client.h"
-#include "lfcam/capture/session.h"
+#include "lfcam/session/session.h"
 #include "lfcam/core/contact_sheet.h"
 #include "lfcam/core/json_input.h"
 

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "lfcam/capture/array_file.h"
-#include "lfcam/capture/session.h"
+#include "lfcam/session/session.h"
 #include "lfcam/core/progress.h"
 #include "lfcam/node/request_signature.h"
 

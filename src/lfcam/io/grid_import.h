@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "lfcam/calib/calibration_file.h"
-#include "lfcam/capture/session.h"
+#include "lfcam/session/session.h"
 #include "lfcam/io/hci_parameters.h"
 
 namespace lfcam {

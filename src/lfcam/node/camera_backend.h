@@ -1,7 +1,7 @@
 #pragma once
 // What a node's camera does, whatever drives it: a Raspberry Pi camera through rpicam-apps
 // (rpicam_camera.h), a folder of images (replay_camera.h) or the simulated module
-// (capture/simulated_camera.h). The agent calls Prepare before the trigger time, Fire at it and
+// (node/simulated_camera.h). The agent calls Prepare before the trigger time, Fire at it and
 // Collect after, so that everything slow happens outside the instant that must line up.
 #include <chrono>
 #include <string>

@@ -14,7 +14,7 @@
 #include "lfcam/node/replay_camera.h"
 #include "lfcam/node/rpicam_camera.h"
 #ifdef LFCAM_NODE_WITH_SIMULATOR
-#include "lfcam/capture/simulated_camera.h"
+#include "lfcam/node/simulated_camera.h"
 #endif
 
 namespace {

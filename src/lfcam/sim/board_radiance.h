@@ -4,7 +4,7 @@
 // with the footprint's extent along the board's axes (the box filter's integral of a checker is
 // separable: a triangle wave per axis; a ChArUco board's marker cells are rectangles too,
 // calib/charuco.h). No supersampling, and corners stay where they are.
-#include "lfcam/calib/board.h"
+#include "lfcam/session/board.h"
 #include "lfcam/sim/camera_module.h"
 #include "lfcam/sim/scene.h"
 

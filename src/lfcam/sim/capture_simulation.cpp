@@ -10,7 +10,7 @@
 #include <numbers>
 #include <random>
 
-#include "lfcam/capture/session.h"
+#include "lfcam/session/session.h"
 #include "lfcam/core/atomic_file.h"
 #include "lfcam/core/error.h"
 #include "lfcam/core/image_io.h"

@@ -1,7 +1,7 @@
 #pragma once
 // A raw capture session played by the simulator: every module of the array photographs the
 // intrinsics board in several poses, the world board at the view window, and the scene, and the
-// session is written in the capture layout (capture/session.h) with ground_truth.json beside.
+// session is written in the capture layout (session/session.h) with ground_truth.json beside.
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "lfcam/calib/board.h"
-#include "lfcam/capture/session.h"
+#include "lfcam/session/board.h"
+#include "lfcam/session/session.h"
 #include "lfcam/sim/camera_module.h"
 #include "lfcam/sim/scene.h"
 
@@ -50,7 +50,7 @@ bool SeesWholeBoard(const SimulatedModule& module, const BoardSpec& board,
 
 // The simulated array and its shots: the modules (with their defects), the intrinsics board's
 // poses, and for every shot what each module records. SimulateCapture photographs every shot
-// with every module; a simulated node (capture/simulated_camera.h) photographs them with one.
+// with every module; a simulated node (node/simulated_camera.h) photographs them with one.
 class SimulatedArray {
  public:
   struct ShotPlan {

@@ -5,9 +5,9 @@
 #include <string>
 #include <string_view>
 
-#include "lfcam/calib/board.h"
+#include "lfcam/session/board.h"
 #include "lfcam/calib/charuco.h"
-#include "lfcam/capture/session.h"
+#include "lfcam/session/session.h"
 #include "lfcam/core/error.h"
 #include "lfcam/core/json_input.h"
 

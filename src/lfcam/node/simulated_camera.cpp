@@ -1,4 +1,4 @@
-#include "lfcam/capture/simulated_camera.h"
+#include "lfcam/node/simulated_camera.h"
 
 #include <fmt/format.h>
 

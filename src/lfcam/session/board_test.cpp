@@ -1,4 +1,4 @@
-#include "lfcam/calib/board.h"
+#include "lfcam/session/board.h"
 
 #include <gtest/gtest.h>
 

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "lfcam/calib/board.h"
+#include "lfcam/session/board.h"
 
 namespace lfcam {
 

@@ -1,4 +1,4 @@
-#include "lfcam/capture/session.h"
+#include "lfcam/session/session.h"
 
 #include <gtest/gtest.h>
 
