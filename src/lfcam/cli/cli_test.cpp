@@ -97,6 +97,29 @@ TEST_F(Cli, RenderAndOracleAgreeAndCompareReportsIt) {
             2);
 }
 
+// The scene at a time (issue 24): its movers in, recorded in the file's metadata; the still
+// without them; a time that is not one refused.
+TEST_F(Cli, SimulatesTheSceneAtATime) {
+  const std::string common = " --scene paper --grid 2x2 --st-res 96x88 --quiet --out ";
+  ASSERT_EQ(Lfcam("simulate lightfield" + common + Path("still.lf")).status, 0);
+  ASSERT_EQ(Lfcam("simulate lightfield --time 1.2" + common + Path("at.lf")).status, 0);
+  const auto info = nlohmann::json::parse(Lfcam("info --json " + Path("at.lf")).output);
+  EXPECT_DOUBLE_EQ(info["metadata"]["time_s"].get<double>(), 1.2);
+  const auto still = nlohmann::json::parse(Lfcam("info --json " + Path("still.lf")).output);
+  EXPECT_FALSE(still["metadata"].contains("time_s"));
+  // The ball (and the bead) show: the two light fields' views differ.
+  const CommandResult compare =
+      Lfcam("compare " + Path("still.lf") + " " + Path("at.lf") + " --json");
+  ASSERT_EQ(compare.status, 0) << compare.output;
+  const auto difference = nlohmann::json::parse(compare.output);
+  ASSERT_TRUE(difference["psnr_db"].is_number()) << compare.output;  // null: identical
+  EXPECT_LT(difference["psnr_db"].get<double>(), 40.0);
+  for (const char* bad : {"--time -1", "--time nan", "--time 1e9"})
+    EXPECT_EQ(Lfcam(std::string("simulate lightfield ") + bad + common + Path("bad.lf")).status, 2)
+        << bad;
+  EXPECT_FALSE(fs::exists(Path("bad.lf")));
+}
+
 TEST_F(Cli, BenchTimesThePapersTablesBesideItsFigures) {
   const std::string fast = " --lightfield " + Path("small.lf") + " --min-runs 1 --min-seconds 0";
   CommandResult run = Lfcam("bench table1" + fast + " --json " + Path("t1.json"));

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <optional>
 
 #include "lfcam/cli/commands.h"
 #include "lfcam/cli/parse.h"
@@ -57,6 +58,7 @@ void AddSimulateCommand(CLI::App& app) {
     std::string scene = "paper", out, grid = "10x10", st_res = "1248x1152", st_domain = "0,0,1,1",
                 sample_type = "srgb8", compression = "none", centers_from, depth_out;
     int supersampling = 2;
+    std::optional<double> time_s;
     bool quiet = false;
   };
   auto flags = std::make_shared<Flags>();
@@ -83,8 +85,17 @@ void AddSimulateCommand(CLI::App& app) {
                       "Also write the true depth of every view (the first surface along each st "
                       "sample's ray), as the folder `lfcam depth --all` writes and `lfcam render "
                       "--interpolation depth --depth DIR` reads");
+  command
+      ->add_option("--time", flags->time_s,
+                   "The scene at this time, in seconds (its moving objects where they are then: "
+                   "the paper scene's fan turns, a ball rolls across the table, a bead whirls); "
+                   "without it, the still scene (none of the movers)")
+      ->check(CLI::Range(0.0, 86400.0));
   command->add_flag("--quiet", flags->quiet, "No progress bar (it is drawn only on a terminal)");
   command->callback([flags] {
+    // CLI11's range lets NaN through (no comparison with it is true).
+    if (flags->time_s && !std::isfinite(*flags->time_s))
+      throw UsageError("--time: not a number of seconds (0 to 86400)");
     SimulateLightFieldOptions o;
     // Grid and st resolution: the limits the light field reader accepts.
     const auto [rows, cols] = ParseSize("--grid", flags->grid, kMaxViewsPerSide);
@@ -100,7 +111,8 @@ void AddSimulateCommand(CLI::App& app) {
       w.compression = Compression::kZstd;
     else if (flags->compression != "none")
       throw UsageError(fmt::format("--compress: '{}' is not none or zstd", flags->compression));
-    const Scene scene = FlagValue("--scene", [&] { return MakeScene(flags->scene); });
+    Scene scene = FlagValue("--scene", [&] { return MakeScene(flags->scene); });
+    if (flags->time_s) scene = scene.AtTime(*flags->time_s);
     if (!flags->centers_from.empty())
       o.camera_centers = ReadCameraCenters(flags->centers_from, rows, cols);
     RequireWritableOutput(flags->out, "--out");
@@ -113,7 +125,8 @@ void AddSimulateCommand(CLI::App& app) {
                          ProgressWanted(flags->quiet));
     if (const auto advance = progress.callback()) o.progress = [advance](int, int) { advance(1); };
     const auto start = std::chrono::steady_clock::now();
-    const LightField lf = SimulateLightField(scene, o);
+    LightField lf = SimulateLightField(scene, o);
+    if (flags->time_s) lf.metadata()["time_s"] = *flags->time_s;
     progress.finish();
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

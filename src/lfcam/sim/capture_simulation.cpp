@@ -10,12 +10,12 @@
 #include <numbers>
 #include <random>
 
-#include "lfcam/session/session.h"
 #include "lfcam/core/atomic_file.h"
 #include "lfcam/core/error.h"
 #include "lfcam/core/image_io.h"
 #include "lfcam/core/json_input.h"
 #include "lfcam/core/limits.h"
+#include "lfcam/session/session.h"
 #include "lfcam/sim/board_radiance.h"
 #include "lfcam/sim/simulate_lightfield.h"
 

@@ -16,6 +16,8 @@ constexpr double kFloorY = 75.0;  // the table top, 200 mm below the array's cen
 
 double ZAtDistance(double metres) { return kArrayDistanceMm - 1000.0 * metres; }
 
+constexpr double kTwoPi = 6.283185307179586;
+
 Texture Make(Pattern pattern, Vec3 a, Vec3 b, double scale_mm, unsigned seed = 1) {
   return Texture{pattern, a, b, scale_mm, seed};
 }
@@ -67,8 +69,14 @@ Scene MakePaperScene() {
 
   // Fan at 4.7 m: a bladed disc on a stand.
   const double z_fan = ZAtDistance(4.7);
-  scene.Add("fan", std::make_shared<DiscShape>(Vec3(420, kFloorY + 250, z_fan), Vec3::UnitZ(), 120),
-            Make(Pattern::kRadial, {0.75, 0.75, 0.80}, {0.12, 0.16, 0.30}, 12));
+  // It turns at 2 revolutions a second (in a scene at a time).
+  const Vec3 fan_centre(420, kFloorY + 250, z_fan);
+  Motion fan_turning;
+  fan_turning.pivot = fan_centre;
+  fan_turning.axis = Vec3::UnitZ();
+  fan_turning.spin_rad_per_s = 2 * kTwoPi;
+  scene.Add("fan", std::make_shared<DiscShape>(fan_centre, Vec3::UnitZ(), 120),
+            Make(Pattern::kRadial, {0.75, 0.75, 0.80}, {0.12, 0.16, 0.30}, 12), fan_turning);
   scene.Add(
       "fan stand",
       std::make_shared<BoxShape>(Vec3(410, kFloorY, z_fan - 20), Vec3(430, kFloorY + 130, z_fan)),
@@ -79,6 +87,25 @@ Scene MakePaperScene() {
             std::make_shared<RectangleShape>(Vec3(240, kFloorY + 275, ZAtDistance(5.2)),
                                              Vec3::UnitX(), Vec3::UnitY(), 350, 275),
             Make(Pattern::kChecker, {0.80, 0.80, 0.80}, {0.03, 0.03, 0.03}, 25));
+
+  // What moves only in a scene at a time (Scene::AtTime; a still leaves these out). A ball of
+  // 40 mm radius flying across the scene 4.3 m from the array, 360 mm above the table, left to
+  // right at 400 mm/s: at t = 0 it is out of the board's view, at x = -150, and it crosses the
+  // 600 mm view window in about two seconds, before the checkerboard and the fan's top.
+  Motion flying;
+  flying.velocity_mm_per_s = Vec3(400, 0, 0);
+  scene.AddMover("ball",
+                 std::make_shared<SphereShape>(Vec3(-150, kFloorY + 360, ZAtDistance(4.3)), 40),
+                 Make(Pattern::kBlotchGrid, {0.85, 0.20, 0.10}, {0.95, 0.85, 0.20}, 15, 9), flying);
+  // A small fast thing, to show a sync error: a 12 mm bead on a 70 mm arm whirling at 5
+  // revolutions a second (2.2 m/s; 0.7 mm in 0.3 ms) about a pivot before the checkerboard's
+  // left half, at 4.4 m.
+  Motion whirling;
+  whirling.pivot = Vec3(110, kFloorY + 330, ZAtDistance(4.4));
+  whirling.axis = Vec3::UnitZ();
+  whirling.spin_rad_per_s = 5 * kTwoPi;
+  scene.AddMover("bead", std::make_shared<SphereShape>(whirling.pivot + Vec3(70, 0, 0), 12),
+                 Make(Pattern::kConstant, {0.95, 0.95, 0.15}, {0, 0, 0}, 1), whirling);
   return scene;
 }
 

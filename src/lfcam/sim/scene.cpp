@@ -10,6 +10,27 @@ namespace lfcam {
 
 double Scene::FirstHitDistance(const Ray& ray) const { return FirstHit(ray).t; }
 
+Scene Scene::AtTime(double t_seconds) const {
+  Scene at = *this;
+  at.objects.clear();
+  at.movers.clear();
+  for (const std::vector<SceneObject>* list : {&objects, &movers})
+    for (const SceneObject& o : *list) {
+      SceneObject moved = o;
+      if (o.motion) moved.shape = std::make_shared<MovedShape>(o.shape, o.motion->At(t_seconds));
+      moved.motion.reset();
+      at.objects.push_back(std::move(moved));
+    }
+  return at;
+}
+
+bool Scene::moves() const {
+  if (!movers.empty()) return true;
+  for (const SceneObject& o : objects)
+    if (o.motion) return true;
+  return false;
+}
+
 Scene::Hit Scene::FirstHit(const Ray& ray) const {
   Hit first{std::numeric_limits<double>::infinity(), -1};
   SurfaceHit hit;

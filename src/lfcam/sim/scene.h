@@ -2,10 +2,12 @@
 // A scene for the simulator: analytic shapes with procedural textures under a simple light,
 // plus the ideal camera array and world board that go with it.
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "lfcam/core/slab.h"
+#include "lfcam/sim/motion.h"
 #include "lfcam/sim/shapes.h"
 #include "lfcam/sim/texture.h"
 
@@ -15,6 +17,7 @@ struct SceneObject {
   std::string name;
   std::shared_ptr<const Shape> shape;
   Texture texture;
+  std::optional<Motion> motion;  // how it moves over time (Scene::AtTime); none: it stays
 };
 
 // The ideal rig a scene is laid out for: the camera array (uv-plane) and the world board
@@ -36,9 +39,25 @@ class Scene {
   Vec3 light_direction = Vec3(-0.4, 0.7, 0.6).normalized();  // toward the light
   double ambient = 0.35;
 
-  void Add(std::string object_name, std::shared_ptr<const Shape> shape, const Texture& texture) {
-    objects.push_back({std::move(object_name), std::move(shape), texture});
+  // Objects that exist only in the scene at a time (a ball crossing it): a still of the scene
+  // (the scene itself, as every still light field and test renders it) leaves them out, and
+  // AtTime puts them in, moved.
+  std::vector<SceneObject> movers;
+
+  void Add(std::string object_name, std::shared_ptr<const Shape> shape, const Texture& texture,
+           std::optional<Motion> motion = std::nullopt) {
+    objects.push_back({std::move(object_name), std::move(shape), texture, motion});
   }
+  void AddMover(std::string object_name, std::shared_ptr<const Shape> shape, const Texture& texture,
+                const Motion& motion) {
+    movers.push_back({std::move(object_name), std::move(shape), texture, motion});
+  }
+  // The scene at time t (seconds from a recording's start): every moving object where its
+  // motion puts it then, the movers in. A still scene of its own: the oracle, the depth truth
+  // and the simulated cameras render it as they render any scene.
+  Scene AtTime(double t_seconds) const;
+  // Whether anything in it moves.
+  bool moves() const;
   // Linear RGB radiance arriving along `ray` (from its origin, t > 0).
   Vec3 Radiance(const Ray& ray) const;
   // Distance t of the first surface along `ray`, or +inf.
