@@ -118,6 +118,13 @@ TEST_F(Cli, SimulatesTheSceneAtATime) {
     EXPECT_EQ(Lfcam(std::string("simulate lightfield ") + bad + common + Path("bad.lf")).status, 2)
         << bad;
   EXPECT_FALSE(fs::exists(Path("bad.lf")));
+  // The oracle speaks of the same instant.
+  const std::string frame = " --size 48x44 --samples 4 --quiet --out ";
+  ASSERT_EQ(Lfcam("oracle --time 1.2" + frame + Path("at.png")).status, 0);
+  ASSERT_EQ(Lfcam("oracle" + frame + Path("still.png")).status, 0);
+  EXPECT_TRUE(fs::exists(Path("at.png")));
+  EXPECT_EQ(Lfcam("oracle --time nan" + frame + Path("bad.png")).status, 2);
+  EXPECT_FALSE(fs::exists(Path("bad.png")));
 }
 
 TEST_F(Cli, BenchTimesThePapersTablesBesideItsFigures) {

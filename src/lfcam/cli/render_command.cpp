@@ -13,6 +13,7 @@
 #include "lfcam/cli/camera_flags.h"
 #include "lfcam/cli/commands.h"
 #include "lfcam/cli/parse.h"
+#include "lfcam/cli/scene_flags.h"
 #include "lfcam/core/error.h"
 #include "lfcam/core/image_io.h"
 #include "lfcam/core/lightfield_file.h"
@@ -217,6 +218,7 @@ void AddOracleCommand(CLI::App& app) {
     std::string scene = "paper", out;
     CameraFlags camera;
     int samples = 0, threads = 0;
+    std::optional<double> time_s;
     bool quiet = false;
   };
   auto flags = std::make_shared<Flags>();
@@ -229,11 +231,12 @@ void AddOracleCommand(CLI::App& app) {
       ->check(CLI::Range(0, kMaxOracleSamples));
   oracle->add_option("--threads", flags->threads, "Worker threads (0 = all cores)")
       ->check(CLI::Range(0, kMaxThreads));
+  AddSceneTimeOption(*oracle, flags->time_s);
   oracle->add_flag("--quiet", flags->quiet, "No progress bar (it is drawn only on a terminal)");
   oracle->callback([flags] {
     flags->camera.Validate();
     RequireImageOutput(flags->out, "--out");
-    const Scene scene = FlagValue("--scene", [&] { return MakeScene(flags->scene); });
+    const Scene scene = SceneAtTime(flags->scene, flags->time_s);
     const VirtualCamera camera = flags->camera.MakeCamera(scene.rig.array);
     const auto start = std::chrono::steady_clock::now();
     ProgressBar progress("oracle", std::int64_t(camera.width()) * camera.height(),

@@ -9,6 +9,7 @@
 
 #include "lfcam/cli/commands.h"
 #include "lfcam/cli/parse.h"
+#include "lfcam/cli/scene_flags.h"
 #include "lfcam/core/atomic_file.h"
 #include "lfcam/core/error.h"
 #include "lfcam/core/input_file.h"
@@ -85,17 +86,10 @@ void AddSimulateCommand(CLI::App& app) {
                       "Also write the true depth of every view (the first surface along each st "
                       "sample's ray), as the folder `lfcam depth --all` writes and `lfcam render "
                       "--interpolation depth --depth DIR` reads");
-  command
-      ->add_option("--time", flags->time_s,
-                   "The scene at this time, in seconds (its moving objects where they are then: "
-                   "the paper scene's fan turns, a ball rolls across the table, a bead whirls); "
-                   "without it, the still scene (none of the movers)")
-      ->check(CLI::Range(0.0, 86400.0));
+  AddSceneTimeOption(*command, flags->time_s);
   command->add_flag("--quiet", flags->quiet, "No progress bar (it is drawn only on a terminal)");
   command->callback([flags] {
-    // CLI11's range lets NaN through (no comparison with it is true).
-    if (flags->time_s && !std::isfinite(*flags->time_s))
-      throw UsageError("--time: not a number of seconds (0 to 86400)");
+    const Scene scene = SceneAtTime(flags->scene, flags->time_s);
     SimulateLightFieldOptions o;
     // Grid and st resolution: the limits the light field reader accepts.
     const auto [rows, cols] = ParseSize("--grid", flags->grid, kMaxViewsPerSide);
@@ -111,8 +105,6 @@ void AddSimulateCommand(CLI::App& app) {
       w.compression = Compression::kZstd;
     else if (flags->compression != "none")
       throw UsageError(fmt::format("--compress: '{}' is not none or zstd", flags->compression));
-    Scene scene = FlagValue("--scene", [&] { return MakeScene(flags->scene); });
-    if (flags->time_s) scene = scene.AtTime(*flags->time_s);
     if (!flags->centers_from.empty())
       o.camera_centers = ReadCameraCenters(flags->centers_from, rows, cols);
     RequireWritableOutput(flags->out, "--out");
