@@ -9,8 +9,8 @@
 
 #include "lfcam/calib/intrinsics_calibration.h"
 #include "lfcam/calib/session_detection.h"
-#include "lfcam/session/session.h"
 #include "lfcam/core/error.h"
+#include "lfcam/session/session.h"
 
 namespace lfcam {
 namespace {

@@ -13,10 +13,10 @@
 #include <vector>
 
 #include "lfcam/calib/array_fit.h"
-#include "lfcam/session/board.h"
 #include "lfcam/calib/bundle_adjustment.h"
-#include "lfcam/session/session.h"
 #include "lfcam/core/slab.h"
+#include "lfcam/session/board.h"
+#include "lfcam/session/session.h"
 
 namespace lfcam {
 

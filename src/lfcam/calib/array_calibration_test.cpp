@@ -9,11 +9,11 @@
 #include <fstream>
 #include <map>
 
-#include "lfcam/session/session.h"
 #include "lfcam/core/error.h"
 #include "lfcam/core/input_file.h"
 #include "lfcam/core/json_input.h"
 #include "lfcam/core/test_support.h"
+#include "lfcam/session/session.h"
 #include "lfcam/sim/capture_simulation.h"
 #include "lfcam/sim/test_capture.h"
 

@@ -7,9 +7,9 @@
 #include <optional>
 #include <vector>
 
-#include "lfcam/session/board.h"
 #include "lfcam/calib/session_detection.h"
 #include "lfcam/core/camera_model.h"
+#include "lfcam/session/board.h"
 
 namespace lfcam {
 

@@ -7,8 +7,8 @@
 #include <optional>
 #include <vector>
 
-#include "lfcam/session/board.h"
 #include "lfcam/calib/board_detection.h"
+#include "lfcam/session/board.h"
 
 namespace lfcam {
 

@@ -4,8 +4,8 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
-#include "lfcam/session/board.h"
 #include "lfcam/core/camera_model.h"
+#include "lfcam/session/board.h"
 
 namespace lfcam {
 

@@ -12,9 +12,9 @@
 #include <vector>
 
 #include "lfcam/calib/calibration_file.h"
-#include "lfcam/session/session.h"
 #include "lfcam/core/jpeg_region.h"
 #include "lfcam/core/lightfield.h"
+#include "lfcam/session/session.h"
 
 namespace lfcam {
 

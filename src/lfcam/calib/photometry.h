@@ -14,8 +14,8 @@
 #include <optional>
 #include <vector>
 
-#include "lfcam/session/board.h"
 #include "lfcam/calib/calibration_file.h"
+#include "lfcam/session/board.h"
 #include "lfcam/session/session.h"
 
 namespace lfcam {

@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "lfcam/session/board.h"
 #include "lfcam/node/capture_settings.h"
+#include "lfcam/session/board.h"
 
 namespace lfcam {
 

@@ -7,9 +7,9 @@
 
 #include "lfcam/capture/concurrency.h"
 #include "lfcam/capture/node_client.h"
-#include "lfcam/session/session.h"
 #include "lfcam/core/contact_sheet.h"
 #include "lfcam/core/json_input.h"
+#include "lfcam/session/session.h"
 
 namespace lfcam {
 

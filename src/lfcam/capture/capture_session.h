@@ -11,9 +11,9 @@
 #include <vector>
 
 #include "lfcam/capture/array_file.h"
-#include "lfcam/session/session.h"
 #include "lfcam/core/progress.h"
 #include "lfcam/node/request_signature.h"
+#include "lfcam/session/session.h"
 
 namespace lfcam {
 

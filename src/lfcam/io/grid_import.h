@@ -18,8 +18,8 @@
 #include <vector>
 
 #include "lfcam/calib/calibration_file.h"
-#include "lfcam/session/session.h"
 #include "lfcam/io/hci_parameters.h"
+#include "lfcam/session/session.h"
 
 namespace lfcam {
 

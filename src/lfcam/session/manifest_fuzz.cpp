@@ -5,11 +5,11 @@
 #include <string>
 #include <string_view>
 
-#include "lfcam/session/board.h"
 #include "lfcam/calib/charuco.h"
-#include "lfcam/session/session.h"
 #include "lfcam/core/error.h"
 #include "lfcam/core/json_input.h"
+#include "lfcam/session/board.h"
+#include "lfcam/session/session.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view text(reinterpret_cast<const char*>(data), size);

@@ -68,8 +68,8 @@ float AxisWeight(float x, int i, int n) {
 // Where AxisWeight(., i, n) has a kink or a jump, sorted. (The sorts here run over whole arrays
 // with fixed bounds: no loop condition reads an element, which a compiler may read early.)
 float[7] AxisKinks(int i, int n) {
-  float k[7] = float[7](-0.5, float(n) - 0.5, float(i) - 1.0, float(i), float(i) + 1.0, 0.0,
-                        float(n - 1));
+  float k[7] =
+      float[7](-0.5, float(n) - 0.5, float(i) - 1.0, float(i), float(i) + 1.0, 0.0, float(n - 1));
   for (int a = 0; a < 7; ++a) k[a] = clamp(k[a], -0.5, float(n) - 0.5);
   for (int a = 0; a < 6; ++a)
     for (int b = 0; b < 6 - a; ++b)
@@ -124,10 +124,10 @@ float DiskCameraIntegral(float radius, float cx, float cy, int col, int row) {
         cuts[b] = cuts[b + 1];
         cuts[b + 1] = t;
       }
-  const float nodes[4] = float[4](0.1834346424956498, 0.5255324099163290, 0.7966664774136267,
-                                  0.9602898564975363);
-  const float weights[4] = float[4](0.3626837833783620, 0.3137066458778873,
-                                    0.2223810344533745, 0.1012285362903763);
+  const float nodes[4] =
+      float[4](0.1834346424956498, 0.5255324099163290, 0.7966664774136267, 0.9602898564975363);
+  const float weights[4] =
+      float[4](0.3626837833783620, 0.3137066458778873, 0.2223810344533745, 0.1012285362903763);
   float sum = 0.0;
   for (int p = 0; p + 1 < n; ++p) {
     const float mid = 0.5 * (cuts[p] + cuts[p + 1]), half_width = 0.5 * (cuts[p + 1] - cuts[p]);
@@ -138,8 +138,8 @@ float DiskCameraIntegral(float radius, float cx, float cy, int col, int row) {
       const float x = cx + radius * sin(theta), h = radius * cos(theta);
       const float wx = AxisWeight(x, col, grid.x);
       if (wx == 0.0) continue;
-      const float wy = AxisCumulative(cy + h, row, grid.y, yk) -
-                       AxisCumulative(cy - h, row, grid.y, yk);
+      const float wy =
+          AxisCumulative(cy + h, row, grid.y, yk) - AxisCumulative(cy - h, row, grid.y, yk);
       piece += weights[q % 4] * wx * wy * h;
     }
     sum += half_width * piece;

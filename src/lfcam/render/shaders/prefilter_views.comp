@@ -12,8 +12,8 @@ layout(rgba16f, binding = 0) uniform writeonly image2DArray target;
 layout(std430, binding = 0) readonly buffer Taps { float taps[]; };
 layout(std430, binding = 1) readonly buffer Layers { int layers[]; };
 
-uniform ivec2 size;   // n_s, n_t
-uniform ivec2 axis;   // (1, 0) along s, (0, 1) along t
+uniform ivec2 size;     // n_s, n_t
+uniform ivec2 axis;     // (1, 0) along s, (0, 1) along t
 uniform int tap_count;  // odd: taps[tap_count / 2] is the centre's
 
 void main() {

@@ -270,8 +270,9 @@ void main() {
     if (lens_count == 0) {
       for (int a = 0; a < 2; ++a)
         for (int b = 0; b < 2; ++b)
-          if (Sample(eye, DirectionThrough(vec2(pixel) + vec2(0.25 + 0.5 * float(b),
-                                                               0.25 + 0.5 * float(a))),
+          if (Sample(eye,
+                     DirectionThrough(vec2(pixel) +
+                                      vec2(0.25 + 0.5 * float(b), 0.25 + 0.5 * float(a))),
                      rgb)) {
             sum += rgb;
             ++hits;

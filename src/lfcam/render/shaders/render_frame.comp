@@ -178,8 +178,10 @@ void RenderCamerasTable(ivec2 pixel, vec3 p_st, out vec3 sum, out int reads) {
       ++reads;
     }
   // The counted cameras' weights renormalised to the whole.
-  if (total > 0.0) sum /= total;
-  else reads = 0;
+  if (total > 0.0)
+    sum /= total;
+  else
+    reads = 0;
 }
 #endif
 
