@@ -219,6 +219,32 @@ GlRenderer::~GlRenderer() {
   if (depth_maps_) glDeleteTextures(1, &depth_maps_);
 }
 
+void GlRenderer::RequireGpuMemory(double bytes, const std::string& what) const {
+  if (limits_.dedicated_memory_kb > 0 && bytes > 1024.0 * double(limits_.dedicated_memory_kb))
+    throw Error(fmt::format("{}: about {} on the GPU, and {} has {}", what, Mib(bytes),
+                            device().renderer, Mib(1024.0 * double(limits_.dedicated_memory_kb))));
+}
+
+unsigned GlRenderer::NewTextureArray(unsigned format, const LightFieldDims& d, int filter,
+                                     double bytes, const std::string& what) {
+  while (glGetError() != GL_NO_ERROR) {
+  }
+  GLuint texture = 0;
+  glGenTextures(1, &texture);
+  glBindTexture(GL_TEXTURE_2D_ARRAY, texture);
+  glTexStorage3D(GL_TEXTURE_2D_ARRAY, 1, format, d.n_s, d.n_t, GLsizei(d.view_count()));
+  if (glGetError() == GL_OUT_OF_MEMORY) {
+    glDeleteTextures(1, &texture);
+    throw Error(fmt::format("{} ({}): more than the memory of {} holds", what, Mib(bytes),
+                            device().renderer));
+  }
+  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, filter);
+  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, filter);
+  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  return texture;
+}
+
 void GlRenderer::Upload(const LightField& lf) {
   const LightFieldDims& d = lf.dims();
   if (views_ && uploaded_ == lf.data() && uploaded_dims_ == d) return;
@@ -233,32 +259,15 @@ void GlRenderer::Upload(const LightField& lf) {
   const bool srgb8 = lf.sample_type() == SampleType::kSrgb8;
   // The driver may pad each texel to four channels.
   const double bytes = double(d.samples_per_view()) * double(d.view_count()) * (srgb8 ? 4 : 8);
-  if (limits_.dedicated_memory_kb > 0 && bytes > 1024.0 * double(limits_.dedicated_memory_kb))
-    throw Error(fmt::format("the light field needs about {} on the GPU; {} has {}", Mib(bytes),
-                            device().renderer, Mib(1024.0 * double(limits_.dedicated_memory_kb))));
+  RequireGpuMemory(bytes, "the light field");
   if (views_) glDeleteTextures(1, &views_);
   views_ = 0;
   uploaded_ = nullptr;
-  while (glGetError() != GL_NO_ERROR) {
-  }
-  glGenTextures(1, &views_);
-  glBindTexture(GL_TEXTURE_2D_ARRAY, views_);
-  glTexStorage3D(GL_TEXTURE_2D_ARRAY, 1, srgb8 ? GL_SRGB8 : GL_RGB16F, d.n_s, d.n_t,
-                 GLsizei(d.view_count()));
-  if (glGetError() == GL_OUT_OF_MEMORY) {
-    glDeleteTextures(1, &views_);
-    views_ = 0;
-    throw Error(fmt::format("the light field ({}) does not fit in the memory of {}", Mib(bytes),
-                            device().renderer));
-  }
+  views_ = NewTextureArray(srgb8 ? GL_SRGB8 : GL_RGB16F, d, GL_LINEAR, bytes, "the light field");
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
   for (std::size_t v = 0; v < d.view_count(); ++v)
     glTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, GLint(v), d.n_s, d.n_t, 1, GL_RGB,
                     srgb8 ? GL_UNSIGNED_BYTE : GL_HALF_FLOAT, lf.data() + v * lf.view_bytes());
-  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
   CheckGl("uploading the light field");
   uploaded_ = lf.data();
   uploaded_dims_ = d;
@@ -496,23 +505,11 @@ void GlRenderer::UploadDepth(const DepthSet& depth) {
   const LightFieldDims& d = depth.dims();
   if (depth_maps_ && uploaded_depth_ == &depth && depth_dims_ == d) return;
   const double bytes = 4.0 * double(d.samples_per_view()) * double(d.view_count());
-  if (limits_.dedicated_memory_kb > 0 && bytes > 1024.0 * double(limits_.dedicated_memory_kb))
-    throw Error(fmt::format("the depth maps need about {} on the GPU; {} has {}", Mib(bytes),
-                            device().renderer, Mib(1024.0 * double(limits_.dedicated_memory_kb))));
+  RequireGpuMemory(bytes, "the depth maps");
   if (depth_maps_) glDeleteTextures(1, &depth_maps_);
   depth_maps_ = 0;
   uploaded_depth_ = nullptr;
-  while (glGetError() != GL_NO_ERROR) {
-  }
-  glGenTextures(1, &depth_maps_);
-  glBindTexture(GL_TEXTURE_2D_ARRAY, depth_maps_);
-  glTexStorage3D(GL_TEXTURE_2D_ARRAY, 1, GL_R32F, d.n_s, d.n_t, GLsizei(d.view_count()));
-  if (glGetError() == GL_OUT_OF_MEMORY) {
-    glDeleteTextures(1, &depth_maps_);
-    depth_maps_ = 0;
-    throw Error(fmt::format("the depth maps ({}) do not fit in the memory of {}", Mib(bytes),
-                            device().renderer));
-  }
+  depth_maps_ = NewTextureArray(GL_R32F, d, GL_NEAREST, bytes, "the depth maps");
   glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
   for (int r = 0; r < d.rows; ++r)
     for (int c = 0; c < d.cols; ++c) {
@@ -523,8 +520,6 @@ void GlRenderer::UploadDepth(const DepthSet& depth) {
                       GL_FLOAT, m.ptr<float>(0));
     }
   glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
-  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   CheckGl("uploading the depth maps");
   uploaded_depth_ = &depth;
   depth_dims_ = d;
@@ -637,32 +632,13 @@ unsigned GlRenderer::Prefilter(const LightField& lf, const StPrefilter& prefilte
   filtered_key_.clear();
   if (!(filtered_dims_ == d) || !filtered_[0]) {
     // Two RGBA16F arrays as large as the light field: the first pass's output and the second's.
-    const double bytes = 2.0 * 8.0 * double(d.samples_per_view()) * double(d.view_count());
-    if (limits_.dedicated_memory_kb > 0 && bytes > 1024.0 * double(limits_.dedicated_memory_kb))
-      throw Error(fmt::format(
-          "the quadrilinear limit's prefiltered views need about {} on the GPU; {} has {}",
-          Mib(bytes), device().renderer, Mib(1024.0 * double(limits_.dedicated_memory_kb))));
+    const double bytes = 8.0 * double(d.samples_per_view()) * double(d.view_count());
+    const std::string what = "the quadrilinear limit's prefiltered views";
+    RequireGpuMemory(2 * bytes, what);
     glDeleteTextures(2, filtered_);
     filtered_[0] = filtered_[1] = 0;
-    while (glGetError() != GL_NO_ERROR) {
-    }
-    glGenTextures(2, filtered_);
-    for (const GLuint texture : filtered_) {
-      glBindTexture(GL_TEXTURE_2D_ARRAY, texture);
-      glTexStorage3D(GL_TEXTURE_2D_ARRAY, 1, GL_RGBA16F, d.n_s, d.n_t, GLsizei(d.view_count()));
-      glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-      glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-      glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-      glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    }
-    if (glGetError() == GL_OUT_OF_MEMORY) {
-      glDeleteTextures(2, filtered_);
-      filtered_[0] = filtered_[1] = 0;
-      throw Error(
-          fmt::format("the quadrilinear limit's prefiltered views ({}) do not fit in the "
-                      "memory of {}",
-                      Mib(bytes), device().renderer));
-    }
+    for (GLuint& texture : filtered_)
+      texture = NewTextureArray(GL_RGBA16F, d, GL_LINEAR, bytes, what);
     filtered_dims_ = d;
   }
   auto& program = programs_["prefilter"];

@@ -70,6 +70,12 @@ class GlRenderer {
 
  private:
   void Upload(const LightField& lf);
+  // Throws naming `what` when the driver says the GPU has less memory than `bytes` (NVIDIA's).
+  void RequireGpuMemory(double bytes, const std::string& what) const;
+  // A texture array of the light field's shape (n_s x n_t, a layer a view) in `format`, with
+  // `filter` and clamped edges; throws naming `what` and its `bytes` when it does not fit.
+  unsigned NewTextureArray(unsigned format, const LightFieldDims& d, int filter, double bytes,
+                           const std::string& what);
   unsigned Program(int mode, bool view_windows, const GlRenderOptions& options);
   void EnsureOutput(int width, int height);
   // The depth lookup's frame (render/shaders/render_depth.comp): the depth maps uploaded as a
