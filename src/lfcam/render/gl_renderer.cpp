@@ -6,6 +6,7 @@
 
 #include <chrono>
 #include <cstring>
+#include <functional>
 #include <limits>
 #include <optional>
 #include <vector>
@@ -482,21 +483,27 @@ std::vector<CameraIntegratorFrame::Level> GlRenderer::BuildWeightTable(const Lig
 }
 
 double GlRenderer::Dispatch(const VirtualCamera& camera, const GlRenderOptions& options) {
+  return Timed("rendering the frame", [&] {
+    glDispatchCompute(GLuint((camera.width() + options.workgroup_x - 1) / options.workgroup_x),
+                      GLuint((camera.height() + options.workgroup_y - 1) / options.workgroup_y), 1);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
+                    GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+  });
+}
+
+double GlRenderer::Timed(const std::string& what, const std::function<void()>& passes) {
   const auto start = std::chrono::steady_clock::now();
   glBeginQuery(GL_TIME_ELAPSED, timer_);
-  glDispatchCompute(GLuint((camera.width() + options.workgroup_x - 1) / options.workgroup_x),
-                    GLuint((camera.height() + options.workgroup_y - 1) / options.workgroup_y), 1);
+  passes();
   glEndQuery(GL_TIME_ELAPSED);
-  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
-                  GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   glFinish();
   const double wall_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  CheckGl("rendering the frame");
+  CheckGl(what);
   GLuint64 nanoseconds = 0;
   glGetQueryObjectui64v(timer_, GL_QUERY_RESULT, &nanoseconds);
   // A software GL (llvmpipe) runs compute work outside its timer queries (they read 0): there
-  // the pass's wall-clock time, from the dispatch to glFinish, stands in.
+  // the passes' wall-clock time, from the first dispatch to glFinish, stands in.
   const double gpu_ms = double(nanoseconds) * 1e-6;
   return device().software || gpu_ms <= 0 ? wall_ms : gpu_ms;
 }
@@ -649,31 +656,23 @@ unsigned GlRenderer::Prefilter(const LightField& lf, const StPrefilter& prefilte
   u.Int("source", 0);
   FillBuffer(prefilter_buffers_[1], layers);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, prefilter_buffers_[1]);
-  const auto start = std::chrono::steady_clock::now();
-  glBeginQuery(GL_TIME_ELAPSED, timer_);
   const std::pair<GLuint, GLuint> passes[2] = {{views_, filtered_[0]},
                                                {filtered_[0], filtered_[1]}};
-  for (int pass = 0; pass < 2; ++pass) {
-    const std::vector<float>& taps = pass == 0 ? taps_s : taps_t;
-    FillBuffer(prefilter_buffers_[0], taps);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, prefilter_buffers_[0]);
-    u.Int2("axis", pass == 0 ? 1 : 0, pass == 0 ? 0 : 1);
-    u.Int("tap_count", int(taps.size()));
-    glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_2D_ARRAY, passes[pass].first);
-    glBindImageTexture(0, passes[pass].second, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    glDispatchCompute(GLuint((d.n_s + 15) / 16), GLuint((d.n_t + 15) / 16), GLuint(layers.size()));
-    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-  }
-  glEndQuery(GL_TIME_ELAPSED);
-  glFinish();
-  const double wall_ms =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  CheckGl("prefiltering the views");
-  GLuint64 nanoseconds = 0;
-  glGetQueryObjectui64v(timer_, GL_QUERY_RESULT, &nanoseconds);
-  const double gpu_ms = double(nanoseconds) * 1e-6;
-  *ms = device().software || gpu_ms <= 0 ? wall_ms : gpu_ms;
+  *ms = Timed("prefiltering the views", [&] {
+    for (int pass = 0; pass < 2; ++pass) {
+      const std::vector<float>& taps = pass == 0 ? taps_s : taps_t;
+      FillBuffer(prefilter_buffers_[0], taps);
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, prefilter_buffers_[0]);
+      u.Int2("axis", pass == 0 ? 1 : 0, pass == 0 ? 0 : 1);
+      u.Int("tap_count", int(taps.size()));
+      glActiveTexture(GL_TEXTURE0);
+      glBindTexture(GL_TEXTURE_2D_ARRAY, passes[pass].first);
+      glBindImageTexture(0, passes[pass].second, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+      glDispatchCompute(GLuint((d.n_s + 15) / 16), GLuint((d.n_t + 15) / 16),
+                        GLuint(layers.size()));
+      glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    }
+  });
   filtered_key_ = key;
   return filtered_[1];
 }

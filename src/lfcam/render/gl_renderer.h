@@ -11,6 +11,7 @@
 // thousandths of the contrast between neighbouring samples; render/gl_renderer_test.cpp bounds
 // it). It is uploaded once and kept while the same light field is rendered.
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -87,6 +88,9 @@ class GlRenderer {
   // Runs the bound program over the frame and times it (a timer query, or on a software GL the
   // wall-clock time to glFinish).
   double Dispatch(const VirtualCamera& camera, const GlRenderOptions& options);
+  // Runs `passes` (GL commands) under the timer, waits for them, checks GL's errors naming
+  // `what`, and returns their GPU milliseconds (a software GL's wall-clock).
+  double Timed(const std::string& what, const std::function<void()>& passes);
   // The cameras integrator's weight table for a frame whose footprints differ (the eye off the
   // array's plane, a turned camera), built on the GPU into the weight-table buffer
   // (render/shaders/camera_weight_table.comp): the footprints' range found there and read back,
