@@ -37,17 +37,22 @@ std::string CpuModel() {
   return "unknown CPU";
 }
 
+// The `paper` scene simulated with `o`, a progress bar labelled `label` drawn meanwhile.
+LightField SimulatePaper(SimulateLightFieldOptions o, const std::string& label, bool quiet) {
+  ProgressBar progress(label, o.rows * o.cols, ProgressWanted(quiet));
+  if (const auto advance = progress.callback()) o.progress = [advance](int, int) { advance(1); };
+  LightField lf = SimulateLightField(MakePaperScene(), o);
+  progress.finish();
+  return lf;
+}
+
 // The paper's light field: the `paper` scene seen by a 10 x 10 array, 1248 x 1152 samples a
 // view over the st domain [-1.2, 1.2]^2, one ray a sample.
 LightField PaperBenchLightField(bool quiet) {
   SimulateLightFieldOptions o;
   o.st_domain = StDomain{-1.2, -1.2, 1.2, 1.2};
   o.supersampling = 1;
-  ProgressBar progress("simulating the 10x10x1248x1152 light field", 100, ProgressWanted(quiet));
-  if (const auto advance = progress.callback()) o.progress = [advance](int, int) { advance(1); };
-  LightField lf = SimulateLightField(MakePaperScene(), o);
-  progress.finish();
-  return lf;
+  return SimulatePaper(o, "simulating the 10x10x1248x1152 light field", quiet);
 }
 
 // The light field a user has (--users-case): the `paper` scene simulated as `lfcam simulate
@@ -61,12 +66,11 @@ LightField UsersCaseLightField(const LightFieldDims& dims, bool quiet) {
   o.cols = dims.cols;
   o.n_s = dims.n_s;
   o.n_t = dims.n_t;
-  ProgressBar progress(fmt::format("simulating the user's {}x{}x{}x{} light field", dims.rows,
-                                   dims.cols, dims.n_s, dims.n_t),
-                       dims.rows * dims.cols, ProgressWanted(quiet));
-  if (const auto advance = progress.callback()) o.progress = [advance](int, int) { advance(1); };
-  const LightField simulated = SimulateLightField(MakePaperScene(), o);
-  progress.finish();
+  const LightField simulated =
+      SimulatePaper(o,
+                    fmt::format("simulating the user's {}x{}x{}x{} light field", dims.rows,
+                                dims.cols, dims.n_s, dims.n_t),
+                    quiet);
   const std::filesystem::path path = std::filesystem::temp_directory_path() /
                                      fmt::format("lfcam-bench-users-case-{}.lf", ::getpid());
   const TemporaryFileRegistration registration(path);
