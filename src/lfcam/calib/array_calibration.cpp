@@ -111,6 +111,7 @@ ArrayCalibration CalibrateArray(const std::filesystem::path& dir, const CaptureM
   }
   // Cameras the manifest has no image of.
   for (const Shot& shot : manifest.shots) {
+    if (shot.kind == ShotKind::kVideo) continue;  // recordings are not calibration's
     std::vector<bool> present(out.cameras.size(), false);
     for (const ShotImage& image : shot.images)
       present[std::size_t(image.row * out.cols + image.col)] = true;

@@ -9,7 +9,9 @@
 
 #include "lfcam/capture/array_status.h"
 #include "lfcam/capture/concurrency.h"
+#include "lfcam/capture/manifest_keeper.h"
 #include "lfcam/capture/node_client.h"
+#include "lfcam/capture/recording_session.h"
 #include "lfcam/core/atomic_file.h"
 #include "lfcam/core/error.h"
 #include "lfcam/core/json_input.h"
@@ -24,51 +26,7 @@ double SecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// The manifest in memory, written to disk (atomically) after a change, at most every 0.25 s
-// while images stream in (a manifest of 1600 images is about 1 MB: rewriting it after each
-// would cost more than the downloads) and always on Flush. An image renamed into place but not
-// yet recorded is found by the next fetch by its checksum.
-class ManifestKeeper {
- public:
-  ManifestKeeper(fs::path session, CaptureManifest manifest)
-      : path_(std::move(session) / kManifestName), manifest_(std::move(manifest)) {}
-  ~ManifestKeeper() {
-    try {
-      Flush();
-    } catch (const Error&) {
-    }
-  }
-
-  template <typename F>
-  void Update(F&& change) {
-    std::lock_guard lock(mutex_);
-    change(manifest_);
-    dirty_ = true;
-    if (std::chrono::steady_clock::now() - written_ > std::chrono::milliseconds(250)) WriteLocked();
-  }
-  void Flush() {
-    std::lock_guard lock(mutex_);
-    if (dirty_) WriteLocked();
-  }
-  CaptureManifest Snapshot() {
-    std::lock_guard lock(mutex_);
-    return manifest_;
-  }
-
- private:
-  void WriteLocked() {
-    const std::string text = JsonToText(ManifestToJson(manifest_), 2) + "\n";
-    WriteFileAtomically(path_, {reinterpret_cast<const std::uint8_t*>(text.data()), text.size()});
-    written_ = std::chrono::steady_clock::now();
-    dirty_ = false;
-  }
-
-  fs::path path_;
-  std::mutex mutex_;
-  CaptureManifest manifest_;
-  bool dirty_ = false;
-  std::chrono::steady_clock::time_point written_{};
-};
+}  // namespace
 
 CaptureManifest NewManifest(const ArrayConfig& array) {
   CaptureManifest m;
@@ -94,6 +52,8 @@ std::string ShotFolder(ShotKind kind, const std::string& name) {
       return "calib/world";
     case ShotKind::kScene:
       return "scene";
+    case ShotKind::kVideo:
+      return "video/" + name;
   }
   return name;
 }
@@ -102,7 +62,7 @@ std::string NextShotName(const CaptureManifest& m, ShotKind kind) {
   if (kind == ShotKind::kScene) return "scene";
   if (kind == ShotKind::kWorld) return "world";
   for (int k = 0;; ++k) {
-    const std::string name = fmt::format("shot_{:02d}", k);
+    const std::string name = fmt::format("{}_{:02d}", kind == ShotKind::kVideo ? "rec" : "shot", k);
     if (std::none_of(m.shots.begin(), m.shots.end(), [&](const Shot& s) { return s.name == name; }))
       return name;
   }
@@ -122,7 +82,28 @@ void CollectProblems(const CaptureManifest& m, SessionReport& report) {
   }
 }
 
-}  // namespace
+CaptureManifest OpenSessionManifest(const ArrayConfig& array, const fs::path& session) {
+  std::error_code ec;
+  fs::create_directories(session, ec);
+  if (ec)
+    throw Error(fmt::format("{}: cannot create the session: {}", session.string(), ec.message()));
+  CaptureManifest manifest =
+      fs::is_regular_file(session / kManifestName, ec) ? ReadManifest(session) : NewManifest(array);
+  if (manifest.rows != array.rows || manifest.cols != array.cols)
+    throw Error(fmt::format("{}: the session's grid is {}x{}, the array's {}x{}", session.string(),
+                            manifest.rows, manifest.cols, array.rows, array.cols));
+  if (manifest.sensor_width != array.settings.width ||
+      manifest.sensor_height != array.settings.height)
+    throw Error(
+        fmt::format("{}: the session was shot at {}x{}, the array is set to {}x{}; shoot "
+                    "into a new session",
+                    session.string(), manifest.sensor_width, manifest.sensor_height,
+                    array.settings.width, array.settings.height));
+  if (!manifest.source.is_object()) manifest.source = nlohmann::json::object();
+  if (!manifest.source.contains("session_id") || !manifest.source["session_id"].is_string())
+    manifest.source["session_id"] = RandomHex(4);
+  return manifest;
+}
 
 SessionReport FetchSession(const ArrayConfig& array, const SharedKey& key, const fs::path& session,
                            const FetchOptions& options) {
@@ -139,11 +120,13 @@ SessionReport FetchSession(const ArrayConfig& array, const SharedKey& key, const
   struct Job {
     std::string shot;
     ShotImage image;
+    bool video = false;
   };
   std::vector<Job> jobs;
   for (const Shot& s : initial.shots)
     for (const ShotImage& i : s.pending)
-      if (i.status == ImageStatus::kCaptured) jobs.push_back({s.name, i});
+      if (i.status == ImageStatus::kCaptured)
+        jobs.push_back({s.name, i, s.kind == ShotKind::kVideo});
 
   // Moves the image of camera (row, col) in `shot` to the session's images, or updates it.
   auto settle = [&](const Job& job, bool ok, const std::string& reason, bool lost) {
@@ -183,8 +166,30 @@ SessionReport FetchSession(const ArrayConfig& array, const SharedKey& key, const
     std::string last_error;
     try {
       const std::string id = JsonString(c, "capture_id", "capture");
-      const std::uint64_t size = JsonUnsigned(c, "size", UINT64_MAX, "capture");
-      const std::string sha256 = JsonString(c, "sha256", "capture");
+      NodeClient client(address, key, {2.0, 15.0});
+      nlohmann::json capture = c;
+      if (job.video && !c.contains("sha256")) {
+        // A recording whose end the host did not see: the node says how it ended.
+        const NodeRecording r = AskRecording(client, id);
+        if (r.status == "recording") {
+          settle(job, false, "still recording on the node", false);
+          return;
+        }
+        keeper.Update([&](CaptureManifest& m) {
+          for (Shot& s : m.shots)
+            if (s.name == job.shot)
+              for (ShotImage& p : s.pending)
+                if (p.row == job.image.row && p.col == job.image.col) ApplyRecording(p, r);
+        });
+        if (r.status == "failed") {
+          settle(job, false, "the node recorded nothing: " + r.reason, true);
+          return;
+        }
+        capture["size"] = r.size;
+        capture["sha256"] = r.sha256;
+      }
+      const std::uint64_t size = JsonUnsigned(capture, "size", UINT64_MAX, "capture");
+      const std::string sha256 = JsonString(capture, "sha256", "capture");
       fs::create_directories(destination.parent_path());
       // Already here (a fetch that stopped between the rename and the manifest's next write).
       std::error_code exists_ec;
@@ -194,7 +199,6 @@ SessionReport FetchSession(const ArrayConfig& array, const SharedKey& key, const
         if (options.progress) options.progress(std::int64_t(size));
         return;
       }
-      NodeClient client(address, key, {2.0, 15.0});
       for (int attempt = 0; attempt <= options.retries; ++attempt) {
         if (attempt > 0)
           std::this_thread::sleep_for(std::chrono::milliseconds(250 << (attempt - 1)));
@@ -225,25 +229,7 @@ SessionReport FetchSession(const ArrayConfig& array, const SharedKey& key, const
 
 SessionReport ShootSession(const ArrayConfig& array, const SharedKey& key, const fs::path& session,
                            const ShootOptions& options) {
-  std::error_code ec;
-  fs::create_directories(session, ec);
-  if (ec)
-    throw Error(fmt::format("{}: cannot create the session: {}", session.string(), ec.message()));
-  CaptureManifest manifest =
-      fs::is_regular_file(session / kManifestName, ec) ? ReadManifest(session) : NewManifest(array);
-  if (manifest.rows != array.rows || manifest.cols != array.cols)
-    throw Error(fmt::format("{}: the session's grid is {}x{}, the array's {}x{}", session.string(),
-                            manifest.rows, manifest.cols, array.rows, array.cols));
-  if (manifest.sensor_width != array.settings.width ||
-      manifest.sensor_height != array.settings.height)
-    throw Error(
-        fmt::format("{}: the session was shot at {}x{}, the array is set to {}x{}; shoot "
-                    "into a new session",
-                    session.string(), manifest.sensor_width, manifest.sensor_height,
-                    array.settings.width, array.settings.height));
-  if (!manifest.source.is_object()) manifest.source = nlohmann::json::object();
-  if (!manifest.source.contains("session_id") || !manifest.source["session_id"].is_string())
-    manifest.source["session_id"] = RandomHex(4);
+  CaptureManifest manifest = OpenSessionManifest(array, session);
   const std::string session_id = manifest.source["session_id"];
   const std::string shot_name = NextShotName(manifest, options.kind);
   if (std::any_of(manifest.shots.begin(), manifest.shots.end(),

@@ -39,7 +39,8 @@ struct CameraProblem {
 };
 
 struct SessionReport {
-  std::string shot;               // the shot taken (shoot only)
+  std::string shot;               // the shot taken (shoot and record only)
+  bool video = false;             // a recording's
   int cameras = 0;                // in the array file
   int fired = 0;                  // took the image
   std::optional<double> skew_ms;  // latest minus earliest actual trigger time, per group
@@ -59,5 +60,15 @@ SessionReport FetchSession(const ArrayConfig& array, const SharedKey& key,
                            const std::filesystem::path& session, const FetchOptions& options);
 
 nlohmann::json SessionReportToJson(const SessionReport& report);
+
+// What shoot and record share. The session's manifest to add a shot to: read, or new for
+// `array` (the folder created); refused when its grid or sensor mode differs from the array's.
+CaptureManifest OpenSessionManifest(const ArrayConfig& array, const std::filesystem::path& session);
+// The next free name for a shot of `kind`: "scene", "world", "shot_KK", "rec_KK".
+std::string NextShotName(const CaptureManifest& manifest, ShotKind kind);
+// Where a shot's files go in the session: "scene", "calib/intrinsics/shot_03", "video/rec_00".
+std::string ShotFolder(ShotKind kind, const std::string& name);
+// The report's problems and images_ok, from the manifest.
+void CollectProblems(const CaptureManifest& manifest, SessionReport& report);
 
 }  // namespace lfcam

@@ -162,7 +162,7 @@ void AddCalibrateCommand(CLI::App& app) {
     const CaptureManifest manifest = ReadManifest(flags->session);
     std::int64_t images = 0;
     for (const Shot& s : manifest.shots)
-      if (s.kind != ShotKind::kScene)
+      if (s.kind == ShotKind::kIntrinsics || s.kind == ShotKind::kWorld)
         images += std::int64_t(s.images.size()) * (s.kind == ShotKind::kWorld ? 2 : 1);
     ProgressBar progress("finding boards", images, ProgressWanted(flags->quiet || flags->json));
     if (const auto advance = progress.callback()) o.image_done = [advance] { advance(1); };

@@ -11,6 +11,7 @@
 #include "lfcam/capture/array_status.h"
 #include "lfcam/capture/capture_session.h"
 #include "lfcam/capture/node_client.h"
+#include "lfcam/capture/recording_session.h"
 #include "lfcam/cli/commands.h"
 #include "lfcam/cli/parse.h"
 #include "lfcam/core/error.h"
@@ -62,10 +63,11 @@ void FinishSession(const SessionReport& report, const fs::path& session, bool js
     return;
   }
   if (!report.shot.empty()) {
-    fmt::print("shot '{}': {} of {} cameras fired", report.shot, report.fired, report.cameras);
+    fmt::print("{} '{}': {} of {} cameras {}", report.video ? "recording" : "shot", report.shot,
+               report.fired, report.cameras, report.video ? "recorded" : "fired");
     if (report.skew_ms) fmt::print(", trigger skew {:.3f} ms", *report.skew_ms);
-    fmt::print(" ({:.2f} s from request to last image taken, margin {:.2f} s)\n", report.capture_s,
-               report.trigger_wait_s);
+    fmt::print(" ({:.2f} s from request to last {} taken, margin {:.2f} s)\n", report.capture_s,
+               report.video ? "frame" : "image", report.trigger_wait_s);
   }
   fmt::print("fetched {:.1f} MB in {:.2f} s; {} images in {}\n", double(report.bytes) / 1e6,
              report.fetch_s, report.images_ok, session.string());
@@ -309,6 +311,59 @@ void AddShoot(CLI::App& capture) {
   });
 }
 
+void AddRecord(CLI::App& capture) {
+  auto* command = capture.add_subcommand(
+      "record", "Record video on every node from one start time, then fetch the recordings");
+  struct Flags : ArrayFlags {
+    std::string session, size = "648x486";
+    RecordOptions o;
+    bool no_sync = false, no_fetch = false, quiet = false;
+  };
+  auto f = std::make_shared<Flags>();
+  f->Add(command);
+  command->add_option("--session", f->session, "The session folder (created or extended)")
+      ->required();
+  command->add_option("--seconds", f->o.seconds, "How long to record")
+      ->capture_default_str()
+      ->check(CLI::Range(0.001, 3600.0));
+  command->add_option("--fps", f->o.fps, "Frames a second")
+      ->capture_default_str()
+      ->check(CLI::Range(0.1, 1000.0));
+  command
+      ->add_option("--size", f->size,
+                   "The video's sensor mode, WIDTHxHEIGHT (the Pi v1.3's: 648x486, 1296x972)")
+      ->capture_default_str();
+  command->add_flag("--no-sync", f->no_sync,
+                    "Free-running cameras (a shared start time only; no libcamera sync)");
+  command->add_option("--margin", f->o.margin_s, "Seconds from now to the start")
+      ->capture_default_str()
+      ->check(CLI::Range(0.05, 60.0));
+  command
+      ->add_option("--finish-timeout", f->o.finish_timeout_s,
+                   "Seconds after the end the nodes have to finish writing")
+      ->capture_default_str()
+      ->check(CLI::Range(1.0, 86400.0));
+  AddFetchFlags(command, f->o.fetch_options);
+  command->add_flag("--no-fetch", f->no_fetch, "Leave the recordings on the nodes (fetch later)");
+  command->add_flag("--quiet", f->quiet, "No progress bar");
+  command->callback([f] {
+    char x = 0;
+    if (std::sscanf(f->size.c_str(), "%dx%d%c", &f->o.width, &f->o.height, &x) != 2)
+      throw UsageError(fmt::format("--size '{}': expected WIDTHxHEIGHT", f->size));
+    f->o.sync = !f->no_sync;
+    f->o.fetch = !f->no_fetch;
+    const auto [array, key] = f->Load();
+    const auto frames = std::int64_t(double(array.nodes.size()) * f->o.fps * f->o.seconds + 0.5);
+    ProgressBar recording("recording", frames, ProgressWanted(f->quiet || f->json));
+    if (auto advance = recording.callback()) f->o.progress = advance;
+    f->o.fetch_options.progress = [&recording](std::int64_t) { recording.finish(); };
+    SessionReport report = RecordSession(array, key, f->session, f->o);
+    recording.finish();
+    report.video = true;
+    FinishSession(report, f->session, f->json);
+  });
+}
+
 void AddFetch(CLI::App& capture) {
   auto* command = capture.add_subcommand(
       "fetch", "Download whatever a session's nodes hold and the session does not yet");
@@ -343,7 +398,8 @@ void AddFetch(CLI::App& capture) {
 
 void AddCaptureCommand(CLI::App& app) {
   auto* capture = app.add_subcommand(
-      "capture", "Drive a camera array of lfcam-node agents: status, configure, shoot, fetch");
+      "capture",
+      "Drive a camera array of lfcam-node agents: status, configure, shoot, record, fetch");
   capture->require_subcommand(1);
   AddKeygen(*capture);
   AddInit(*capture);
@@ -352,6 +408,7 @@ void AddCaptureCommand(CLI::App& app) {
   AddIdentify(*capture);
   AddPreview(*capture);
   AddShoot(*capture);
+  AddRecord(*capture);
   AddFetch(*capture);
 }
 

@@ -3,10 +3,14 @@
 // (rpicam_camera.h), a folder of images (replay_camera.h) or the simulated module
 // (node/simulated_camera.h). The agent calls Prepare before the trigger time, Fire at it and
 // Collect after, so that everything slow happens outside the instant that must line up.
+#include <atomic>
 #include <chrono>
+#include <cstdint>
+#include <functional>
 #include <string>
 
 #include "lfcam/node/capture_settings.h"
+#include "lfcam/node/recording.h"
 
 namespace lfcam {
 
@@ -15,6 +19,21 @@ struct ShotRequest {
   std::string kind;  // "scene", "world" or "intrinsics"
   std::string shot;  // the shot's name in the session: "scene", "world", "shot_03"
 };
+
+// A video recording (node/recording.h): from the array's start time, for video.seconds at
+// video.fps and video.width x video.height, with libcamera's software sync as video.sync says.
+struct RecordRequest {
+  std::string id, shot;
+  std::int64_t start_unix_ns = 0;  // the array's first frame (the node's wall clock)
+  VideoRecordInfo video;
+};
+
+// A frame as the camera delivers it.
+struct CapturedFrame {
+  std::int64_t sequence = 0, wall_clock_ns = 0, sensor_ns = 0;
+  std::string jpeg;
+};
+using FrameSink = std::function<void(CapturedFrame&&)>;
 
 struct CameraProbe {
   bool present = false;
@@ -35,6 +54,11 @@ class CameraBackend {
   virtual void Fire() = 0;
   // After Fire: the JPEG taken. Throws lfcam::Error when none comes within `timeout`.
   virtual std::string Collect(std::chrono::milliseconds timeout) = 0;
+  // Records video, passing every frame to `sink` in order, until the recording's end or until
+  // `stop` is set (then as soon as it can). Throws lfcam::Error when it cannot record; the
+  // default: this camera records no video.
+  virtual void Record(const RecordRequest& request, const FrameSink& sink,
+                      const std::atomic<bool>& stop);
   // A small JPEG for aiming and focusing, at most `max_width` pixels wide.
   virtual std::string Preview(int max_width) = 0;
 };

@@ -7,6 +7,7 @@
 #include <sys/prctl.h>
 #include <time.h>
 
+#include <atomic>
 #include <fstream>
 #include <future>
 #include <mutex>
@@ -17,6 +18,7 @@
 #include "lfcam/core/input_file.h"
 #include "lfcam/core/json_input.h"
 #include "lfcam/node/capture_store.h"
+#include "lfcam/node/recording.h"
 #include "lfcam/node/system_status.h"
 
 // After Eigen (through json_input.h): <resolv.h>, which httplib includes, defines a macro _res.
@@ -71,6 +73,14 @@ struct NodeAgent::Impl {
   CaptureSettings settings;
   bool configured = false;
   std::mutex log_mutex;
+  // The recording under way, if any (one at a time).
+  struct ActiveRecording {
+    std::string id;
+    std::atomic<bool> stop{false}, done{false};
+    std::thread thread;
+  };
+  std::mutex recording_mutex;
+  std::unique_ptr<ActiveRecording> recording;
 
   Impl(NodeOptions o, std::unique_ptr<CameraBackend> c)
       : options(std::move(o)),
@@ -152,9 +162,29 @@ struct NodeAgent::Impl {
         {"settings", configured ? SettingsToJson(settings) : nlohmann::json()},
         {"system", SystemStatusToJson(system)},
         {"captures_held", store.count()},
+        {"recording", RecordingStatus()},
         {"max_clock_offset_ms", options.max_clock_offset_ms},
         {"min_free_bytes", options.min_free_bytes},
         {"node_time_unix_ns", Now()}};
+  }
+
+  nlohmann::json RecordingStatus() {
+    std::lock_guard lock(recording_mutex);
+    if (!recording || recording->done) return nullptr;
+    return recording->id;
+  }
+
+  // Stops the recording under way (what it recorded is kept, "truncated"), or joins one that
+  // ended.
+  void StopRecording() {
+    std::unique_ptr<ActiveRecording> r;
+    {
+      std::lock_guard lock(recording_mutex);
+      r = std::move(recording);
+    }
+    if (!r) return;
+    r->stop = true;
+    if (r->thread.joinable()) r->thread.join();
   }
 
   // Why this node must not capture now, or nullopt.
@@ -195,6 +225,7 @@ struct NodeAgent::Impl {
       max_offset_ms =
           std::min(max_offset_ms, JsonNumber(body, "max_clock_offset_ms", "capture request"));
 
+    if (RecordingStatus().is_string()) return Refuse(res, {409, "busy", "the camera is recording"});
     if (const auto held = store.Find(shot.id)) {
       if (held->requested_unix_ns == at) return Reply(res, 200, RecordToJson(*held));
       return Refuse(res,
@@ -265,11 +296,132 @@ struct NodeAgent::Impl {
     Reply(res, 200, RecordToJson(record));
   }
 
+  // POST /v1/record: checks what the host asks, answers at once (202) and records on a thread
+  // of its own from the start time; GET /v1/recordings/ID says how it goes.
+  void Record(const httplib::Request& req, httplib::Response& res) {
+    const auto body = ParseJsonBounded(req.body, "record request");
+    RecordRequest request;
+    request.id = JsonString(body, "id", "record request");
+    request.shot = JsonString(body, "shot", "record request");
+    if (!IsValidCaptureId(request.id) || !IsValidCaptureId(request.shot))
+      return Refuse(res, {400, "request", "id and shot must be 1..64 of [A-Za-z0-9_.-]"});
+    request.start_unix_ns = JsonInteger(body, "at_unix_ns", 0, INT64_MAX, "record request");
+    nlohmann::json video = JsonField(body, "video", "record request");
+    video["status"] = "recording";
+    video["frames"] = 0;
+    request.video = VideoInfoFromJson(video, "record request: video");
+    const CaptureSettings array_settings =
+        SettingsFromJson(JsonField(body, "settings", "record request"), "record request: settings");
+    double max_offset_ms = options.max_clock_offset_ms;
+    if (body.contains("max_clock_offset_ms"))
+      max_offset_ms =
+          std::min(max_offset_ms, JsonNumber(body, "max_clock_offset_ms", "record request"));
+
+    if (const auto held = store.Find(request.id)) {
+      if (held->video && held->requested_unix_ns == request.start_unix_ns)
+        return Reply(res, 202, RecordToJson(*held));
+      return Refuse(res,
+                    {409, "exists", fmt::format("capture '{}' exists (another time)", request.id)});
+    }
+    const std::int64_t lead = request.start_unix_ns - Now();
+    if (lead < 0)
+      return Refuse(res,
+                    {409, "late", fmt::format("the start time is {:.1f} ms past", -lead / 1e6)});
+    if (lead > std::int64_t(120) * 1'000'000'000)
+      return Refuse(res, {400, "request", "the start time is more than 120 s ahead"});
+    if (double(array_settings.exposure_us) > 1e6 / request.video.fps)
+      return Refuse(res, {409, "settings",
+                          fmt::format("an exposure of {} us is longer than a frame at {} fps",
+                                      array_settings.exposure_us, request.video.fps)});
+    if (auto refusal = CaptureRefusal(array_settings, max_offset_ms)) {
+      Log("refusing recording '{}': {}", request.id, refusal->message);
+      return Refuse(res, *refusal);
+    }
+    // About a quarter of a byte a pixel at the JPEG qualities used (measured on the simulator
+    // at 95: 0.2-0.3).
+    const double expected = 0.3 * request.video.width * request.video.height * request.video.fps *
+                            request.video.seconds;
+    if (const auto free = store.FreeBytes();
+        double(free) < expected + double(options.min_free_bytes))
+      return Refuse(res, {507, "disk",
+                          fmt::format("not enough disk for the recording: {:.0f} MB free, about "
+                                      "{:.0f} MB needed",
+                                      double(free) / 1e6,
+                                      (expected + double(options.min_free_bytes)) / 1e6)});
+
+    std::lock_guard lock(recording_mutex);
+    if (recording && !recording->done)
+      return Refuse(res, {409, "busy", fmt::format("recording '{}' is under way", recording->id)});
+    if (recording && recording->thread.joinable()) recording->thread.join();
+    CaptureRecord record;
+    record.id = request.id;
+    record.kind = "video";
+    record.shot = request.shot;
+    record.requested_unix_ns = request.start_unix_ns;
+    {
+      std::lock_guard settings_lock(settings_mutex);
+      record.settings = SettingsToJson(settings);
+    }
+    record.video = request.video;
+    std::shared_ptr<CaptureStore::Recording> writer = store.BeginRecording(record);
+    recording = std::make_unique<ActiveRecording>();
+    recording->id = request.id;
+    ActiveRecording* active = recording.get();
+    active->thread = std::thread([this, active, writer, request] {
+      std::string status = "complete", reason;
+      try {
+        std::lock_guard camera_lock(camera_mutex);
+        camera->Record(
+            request,
+            [&](CapturedFrame&& f) {
+              writer->Append({f.sequence, 0, 0, f.wall_clock_ns, f.sensor_ns}, f.jpeg);
+            },
+            active->stop);
+        if (active->stop) status = "truncated", reason = "the node was stopped mid-recording";
+      } catch (const Error& e) {
+        status = "truncated";
+        reason = e.what();
+      }
+      if (writer->frames() == 0 && status != "complete") status = "failed";
+      try {
+        const CaptureRecord done = writer->Finish(status, reason);
+        if (!options.quiet || status != "complete")
+          Log("recording '{}' {}: {} frames, {} bytes{}", done.id, status, done.video->frames,
+              done.size, reason.empty() ? "" : " (" + reason + ")");
+      } catch (const Error& e) {
+        Log("recording '{}': {}", request.id, e.what());
+      }
+      active->done = true;
+    });
+    Log("recording '{}' from {:.3f} s ahead: {:g} s at {:g} fps, {}x{}, sync {}", request.id,
+        lead / 1e9, request.video.seconds, request.video.fps, request.video.width,
+        request.video.height, request.video.sync);
+    Reply(res, 202, RecordToJson(record));
+  }
+
+  void RecordingInfo(const httplib::Request& req, httplib::Response& res) {
+    const std::string id = req.matches[1];
+    const auto record = store.Find(id);
+    if (!record || !record->video)
+      return Refuse(res, {404, "missing", fmt::format("no recording '{}'", id)});
+    const std::vector<VideoFrameEntry> entries = store.Frames(*record);
+    nlohmann::json reply = {{"record", RecordToJson(*record)}, {"frame_count", entries.size()}};
+    // ?frames=0: the count alone (the host's progress while the array records).
+    if (req.get_param_value("frames") != "0") {
+      nlohmann::json frames = nlohmann::json::array();
+      for (const VideoFrameEntry& f : entries) frames.push_back(FrameEntryToJson(f));
+      reply["frames"] = std::move(frames);
+    }
+    Reply(res, 200, reply);
+  }
+
   void Download(const httplib::Request& req, httplib::Response& res) {
     const std::string id = req.matches[1];
     const auto record = store.Find(id);
     if (!record) return Refuse(res, {404, "missing", fmt::format("no capture '{}'", id)});
-    auto file = std::make_shared<std::ifstream>(store.ImagePath(id), std::ios::binary);
+    if (record->video && record->video->status == "recording")
+      return Refuse(res, {409, "recording", fmt::format("'{}' is still recording", id)});
+    auto file = std::make_shared<std::ifstream>(store.DataPath(*record), std::ios::binary);
     if (!*file) return Refuse(res, {500, "io", fmt::format("cannot open capture '{}'", id)});
     res.set_header("X-Lfcam-Sha256", record->sha256);
     const NodeFaults faults = options.faults;
@@ -388,6 +540,9 @@ struct NodeAgent::Impl {
                       return Refuse(res, {404, "missing", fmt::format("no capture '{}'", id)});
                     Reply(res, 200, {{"deleted", id}});
                   }));
+    server.Post("/v1/record", Signed([this](const auto& req, auto& res) { Record(req, res); }));
+    server.Get(R"(/v1/recordings/([A-Za-z0-9_.\-]{1,64}))",
+               Signed([this](const auto& req, auto& res) { RecordingInfo(req, res); }));
     server.Post("/v1/identify", Signed([this](const auto& req, auto& res) { Identify(req, res); }));
     server.Get("/v1/preview", Signed([this](const auto& req, auto& res) {
                  int width = 320;
@@ -429,7 +584,9 @@ int NodeAgent::Bind(const std::string& host, int port) {
 void NodeAgent::Serve() { impl_->server.listen_after_bind(); }
 
 void NodeAgent::Stop() {
-  if (impl_) impl_->server.stop();
+  if (!impl_) return;
+  impl_->server.stop();
+  impl_->StopRecording();
 }
 
 }  // namespace lfcam

@@ -8,8 +8,10 @@
 //   POST   /v1/configure           {settings}: lock the camera's settings
 //   POST   /v1/capture             {id, kind, shot, at_unix_ns, settings}: fire at T
 //   GET    /v1/captures            the captures held (records)
-//   GET    /v1/captures/ID         the image (Range supported; X-Lfcam-Sha256)
+//   GET    /v1/captures/ID         the image or recorded stream (Range supported; X-Lfcam-Sha256)
 //   DELETE /v1/captures/ID
+//   POST   /v1/record              {id, shot, at_unix_ns, video, settings}: record from T (202)
+//   GET    /v1/recordings/ID       a recording's record and frame index (while it records too)
 //   POST   /v1/identify            {seconds}: blink the activity LED, log loudly
 //   GET    /v1/preview?width=W     a small JPEG for aiming
 #include <chrono>

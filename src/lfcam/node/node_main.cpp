@@ -82,6 +82,13 @@ int main(int argc, char** argv) {
   app.add_option("--sim-defects", sim.defects, "sim: realistic or none")->capture_default_str();
   app.add_option("--sim-board", sim.board, "sim: the intrinsics board, chessboard or charuco")
       ->capture_default_str();
+  app.add_option("--sim-clock-offset-us", sim.clock_offset_us,
+                 "sim video: how far this node's wall clock may be off true time (+-)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1e7));
+  app.add_option("--sim-drop-rate", sim.drop_rate, "sim video: a frame's chance of being dropped")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0));
 #endif
   app.add_option("--max-clock-offset-ms", options.max_clock_offset_ms,
                  "Refuse to capture when chrony's offset exceeds this")

@@ -1,6 +1,6 @@
 // libFuzzer target: what reaches lfcam-node from the network before and after its signature is
 // checked: the signature headers, the settings of a configure or capture request, a capture
-// record, and the chrony line it reads about its own clock.
+// record, a record request's video, and the chrony line it reads about its own clock.
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -35,6 +35,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     }
     try {
       (void)lfcam::RecordToJson(lfcam::RecordFromJson(j, "fuzz"));
+    } catch (const lfcam::Error&) {
+    }
+    try {
+      (void)lfcam::VideoInfoToJson(lfcam::VideoInfoFromJson(j, "fuzz"));
     } catch (const lfcam::Error&) {
     }
   } catch (const lfcam::Error&) {

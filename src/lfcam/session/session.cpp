@@ -24,6 +24,8 @@ std::string ToString(ShotKind kind) {
       return "world";
     case ShotKind::kScene:
       return "scene";
+    case ShotKind::kVideo:
+      return "video";
   }
   return "?";
 }
@@ -62,9 +64,26 @@ nlohmann::json ManifestToJson(const CaptureManifest& m) {
         nlohmann::json image = {{"row", i.row}, {"col", i.col}, {"file", i.file}};
         if (i.status != ImageStatus::kOk) image["status"] = ToString(i.status);
         if (!i.capture.is_null()) image["capture"] = i.capture;
+        if (!i.frames.empty()) {
+          nlohmann::json frames = nlohmann::json::array();
+          for (const FrameTime& f : i.frames)
+            frames.push_back({f.sequence, f.offset, f.size, f.wall_clock_ns, f.sensor_ns});
+          image["frames"] = std::move(frames);
+        }
         images.push_back(std::move(image));
       }
-    shots.push_back({{"kind", ToString(s.kind)}, {"name", s.name}, {"images", images}});
+    nlohmann::json shot = {{"kind", ToString(s.kind)}, {"name", s.name}, {"images", images}};
+    if (s.video)
+      shot["video"] = {
+          {"fps", s.video->fps},
+          {"seconds", s.video->seconds},
+          {"width", s.video->width},
+          {"height", s.video->height},
+          {"sync", s.video->sync},
+          {"start_unix_ns", s.video->start_unix_ns},
+          {"groups", s.video->groups},
+          {"frame_columns", {"sequence", "offset", "size", "wall_clock_ns", "sensor_ns"}}};
+    shots.push_back(std::move(shot));
   }
   nlohmann::json boards = nlohmann::json::object();
   if (m.intrinsics_board) boards["intrinsics"] = BoardToJson(*m.intrinsics_board);
@@ -85,8 +104,66 @@ ShotKind ShotKindFromString(const std::string& text, const std::string& where) {
   if (text == "intrinsics") return ShotKind::kIntrinsics;
   if (text == "world") return ShotKind::kWorld;
   if (text == "scene") return ShotKind::kScene;
-  throw Error(fmt::format("{}: shot kind '{}' is not intrinsics, world or scene", where, text));
+  if (text == "video") return ShotKind::kVideo;
+  throw Error(
+      fmt::format("{}: shot kind '{}' is not intrinsics, world, scene or video", where, text));
 }
+
+VideoShot VideoShotFromJson(const nlohmann::json& j, const std::string& where) {
+  VideoShot v;
+  v.fps = JsonNumber(j, "fps", where);
+  v.seconds = JsonNumber(j, "seconds", where);
+  if (!(v.fps > 0 && v.fps <= 1000) || !(v.seconds > 0 && v.seconds <= 86400))
+    throw Error(fmt::format("{}: fps must be in (0, 1000] and seconds in (0, 86400]", where));
+  v.width = int(JsonInteger(j, "width", 1, kMaxImageSide, where));
+  v.height = int(JsonInteger(j, "height", 1, kMaxImageSide, where));
+  v.sync = JsonString(j, "sync", where);
+  if (v.sync != "on" && v.sync != "off")
+    throw Error(fmt::format("{}: sync '{}' is not on or off", where, v.sync));
+  v.start_unix_ns = JsonInteger(j, "start_unix_ns", 0, INT64_MAX, where);
+  v.groups = int(JsonInteger(j, "groups", 1, 64, where));
+  return v;
+}
+
+}  // namespace
+
+std::vector<FrameTime> FramesFromJson(const nlohmann::json& j, const std::string& where) {
+  if (!j.is_array()) throw Error(fmt::format("{}: frames must be an array", where));
+  std::vector<FrameTime> out;
+  out.reserve(j.size());
+  for (std::size_t k = 0; k < j.size(); ++k) {
+    const nlohmann::json& f = j[k];
+    const std::string fw = fmt::format("{}: frames[{}]", where, k);
+    if (!f.is_array() || f.size() != 5 ||
+        !std::all_of(f.begin(), f.end(), [](const auto& x) { return x.is_number_integer(); }))
+      throw Error(fmt::format(
+          "{}: a frame is [sequence, offset, size, wall_clock_ns, sensor_ns], integers", fw));
+    FrameTime t;
+    t.sequence = f[0].get<std::int64_t>();
+    t.offset = f[1].get<std::uint64_t>();
+    t.size = f[2].get<std::uint64_t>();
+    t.wall_clock_ns = f[3].get<std::int64_t>();
+    t.sensor_ns = f[4].get<std::int64_t>();
+    if (t.sequence < 0 || t.wall_clock_ns < 0 || t.size < 4 || t.size > kMaxEncodedImageBytes ||
+        f[1].get<std::int64_t>() < 0)
+      throw Error(fmt::format("{}: a negative number or a frame size out of range", fw));
+    if (!out.empty()) {
+      const FrameTime& before = out.back();
+      if (t.sequence <= before.sequence || t.wall_clock_ns <= before.wall_clock_ns ||
+          t.offset != before.offset + before.size)
+        throw Error(fmt::format(
+            "{}: frame {} does not follow frame {} (sequence and time increase, bytes back to "
+            "back)",
+            fw, t.sequence, before.sequence));
+    } else if (t.offset != 0) {
+      throw Error(fmt::format("{}: the first frame must start at byte 0", fw));
+    }
+    out.push_back(t);
+  }
+  return out;
+}
+
+namespace {
 
 // A relative, '/'-separated path with no empty, "." or ".." parts and no NUL.
 void CheckRelativeName(const std::string& file, const std::string& where) {
@@ -138,6 +215,8 @@ CaptureManifest ManifestFromJson(const nlohmann::json& j, const std::string& whe
     shot.name = JsonString(shots[s], "name", sw);
     if (!names.insert(shot.name).second)
       throw Error(fmt::format("{}: shot name '{}' is used twice", sw, shot.name));
+    if (shot.kind == ShotKind::kVideo)
+      shot.video = VideoShotFromJson(JsonField(shots[s], "video", sw), sw + ": video");
     const auto& images = JsonField(shots[s], "images", sw);
     if (!images.is_array()) throw Error(fmt::format("{}: images must be an array", sw));
     std::set<std::pair<int, int>> seen;
@@ -161,6 +240,11 @@ CaptureManifest ManifestFromJson(const nlohmann::json& j, const std::string& whe
         image.capture = images[i]["capture"];
         if (!image.capture.is_object())
           throw Error(fmt::format("{}: capture must be an object", iw));
+      }
+      if (images[i].contains("frames")) {
+        if (shot.kind != ShotKind::kVideo)
+          throw Error(fmt::format("{}: frames belong to a video shot only", iw));
+        image.frames = FramesFromJson(images[i]["frames"], iw);
       }
       if (!seen.insert({image.row, image.col}).second)
         throw Error(fmt::format("{}: {} appears twice in shot '{}'", iw,

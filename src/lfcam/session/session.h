@@ -6,7 +6,9 @@
 //   DIR/calib/intrinsics/shot_KK/cam_RR_CC.jpg   the intrinsics board, K = 00, 01, ...
 //   DIR/calib/world/cam_RR_CC.jpg           the world board at the view window
 //   DIR/scene/cam_RR_CC.jpg                 the scene
+//   DIR/video/NAME/cam_RR_CC.mjpeg          a recording (its frames' times in the manifest)
 //   DIR/ground_truth.json                   (simulated sessions only) what the simulator knows
+#include <cstdint>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -20,7 +22,9 @@ namespace lfcam {
 inline constexpr const char* kManifestName = "manifest.json";
 inline constexpr int kManifestVersion = 1;
 
-enum class ShotKind { kIntrinsics, kWorld, kScene };
+// A recording (issue 24) is a shot too: each camera's "image" is its Motion-JPEG stream
+// (DIR/video/NAME/cam_RR_CC.mjpeg), with its frames' times in the manifest.
+enum class ShotKind { kIntrinsics, kWorld, kScene, kVideo };
 std::string ToString(ShotKind kind);
 
 // What the capture controller knows of a camera's image (docs/capture-layout.md): "ok", the file
@@ -29,6 +33,16 @@ std::string ToString(ShotKind kind);
 // (`capture.reason` says why).
 enum class ImageStatus { kOk, kCaptured, kMissing };
 std::string ToString(ImageStatus status);
+
+// A recorded frame of one camera: where its JPEG lies in the camera's stream, and when its
+// exposure started on the node's wall clock (Unix ns; libcamera's FrameWallClock) and on the
+// sensor's clock (SensorTimestamp).
+struct FrameTime {
+  std::int64_t sequence = 0;  // the camera's frame number: gaps are frames it dropped
+  std::uint64_t offset = 0, size = 0;
+  std::int64_t wall_clock_ns = 0, sensor_ns = 0;
+  bool operator==(const FrameTime&) const = default;
+};
 
 struct ShotImage {
   ShotImage() = default;
@@ -42,6 +56,17 @@ struct ShotImage {
   // From the capture controller: node, requested and actual trigger time, settings, size,
   // sha256, reason. Null for sessions written otherwise.
   nlohmann::json capture;
+  // A recording's camera: its frames, in order, once the node has said (empty before).
+  std::vector<FrameTime> frames;
+};
+
+// How a recording was made: what every node was asked for.
+struct VideoShot {
+  double fps = 30, seconds = 0;
+  int width = 0, height = 0;       // the video's sensor mode
+  std::string sync = "off";        // "on": libcamera's software sync, one node the server
+  std::int64_t start_unix_ns = 0;  // the first frame's time (the host's clock)
+  int groups = 1;                  // staggered: group g's frames start g / (groups * fps) later
 };
 
 struct Shot {
@@ -53,6 +78,7 @@ struct Shot {
   std::string name;                // "shot_00", "world", "scene"
   std::vector<ShotImage> images;   // the images in the session (status ok)
   std::vector<ShotImage> pending;  // the cameras whose image is not (captured or missing)
+  std::optional<VideoShot> video;  // kVideo's
 };
 
 struct CaptureManifest {
@@ -73,6 +99,10 @@ std::string CameraFileName(int row, int col);
 std::string CameraLabel(int row, int col);
 
 nlohmann::json ManifestToJson(const CaptureManifest& manifest);
+// A camera's frames as the manifest lists them: [sequence, offset, size, wall_clock_ns,
+// sensor_ns] each, in order, back to back in the stream from byte 0, sequence and wall-clock time
+// increasing. Throws lfcam::Error naming `where` and the frame.
+std::vector<FrameTime> FramesFromJson(const nlohmann::json& j, const std::string& where);
 // Parses a manifest; `where` names it in errors. File names must be relative and stay inside
 // the session (no "..", no absolute paths); each camera appears at most once per shot; row and
 // col are inside the grid.

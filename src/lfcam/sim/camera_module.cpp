@@ -163,6 +163,39 @@ cv::Mat RenderRadiance(const SimulatedModule& module, const cv::Mat& directions,
   return out;
 }
 
+PixelRuns SphereFootprintRuns(const SimulatedModule& module, const cv::Mat& directions,
+                              const std::vector<BoundingSphere>& spheres) {
+  RequireModuleImage(module, directions, "direction map");
+  const int width = directions.cols, height = directions.rows;
+  const Vec3 origin = module.world_from_camera.translation;
+  PixelRuns runs(std::size_t(height), cv::Vec2i(0, 0));
+  if (spheres.empty()) return runs;
+  tbb::parallel_for(0, height, [&](int y) {
+    const auto* d = directions.ptr<cv::Vec3f>(y);
+    const auto* d_down = directions.ptr<cv::Vec3f>(y + 1 < height ? y + 1 : y - 1);
+    int begin = width, end = 0;
+    for (int x = 0; x < width; ++x) {
+      const Vec3 dir = ToVec3(d[x]);
+      const int xn = x + 1 < width ? x + 1 : x - 1;
+      // A pixel's angular size: its footprint at distance D is about D times this.
+      const double pixel = std::max((ToVec3(d[xn]) - dir).norm(), (ToVec3(d_down[x]) - dir).norm());
+      for (const BoundingSphere& b : spheres) {
+        const Vec3 oc = b.center - origin;
+        const double along = oc.dot(dir);
+        const double reach = b.radius + 1.5 * pixel * std::max(0.0, along + b.radius);
+        if (along < -b.radius) continue;  // behind the camera
+        if ((oc - along * dir).squaredNorm() <= reach * reach) {
+          begin = std::min(begin, x);
+          end = std::max(end, x + 1);
+          break;
+        }
+      }
+    }
+    if (begin < end) runs[std::size_t(y)] = cv::Vec2i(begin, end);
+  });
+  return runs;
+}
+
 namespace {
 
 // What the sensor does to one row of radiance, with everything it needs held by value: the

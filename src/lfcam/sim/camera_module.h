@@ -9,6 +9,7 @@
 
 #include "lfcam/core/camera_model.h"
 #include "lfcam/core/slab.h"
+#include "lfcam/sim/shapes.h"
 
 namespace lfcam {
 
@@ -76,6 +77,12 @@ using PixelRuns = std::vector<cv::Vec2i>;
 cv::Mat RenderRadiance(const SimulatedModule& module, const cv::Mat& directions,
                        const PixelRadiance& radiance, const cv::Mat* behind = nullptr,
                        const PixelRuns* runs = nullptr);
+
+// The pixels whose footprints may meet any of `spheres` (world mm): per row, the run from the
+// first such pixel to the last (empty runs where none). Conservative: a footprint is taken one
+// and a half pixels wide.
+PixelRuns SphereFootprintRuns(const SimulatedModule& module, const cv::Mat& directions,
+                              const std::vector<BoundingSphere>& spheres);
 
 // What the sensor records of `radiance` (CV_32FC3 linear, the module's size): the module's
 // photometry, shot and read noise, 8-bit sRGB RGB (CV_8UC3, row 0 at the top). Rows in parallel;

@@ -179,6 +179,25 @@ cv::Mat SimulatedArray::Expose(std::size_t index, std::size_t s, ModuleCache& ca
       exposure);
 }
 
+cv::Mat SimulatedArray::ExposeAt(std::size_t index, double t_seconds, std::uint64_t frame,
+                                 ModuleCache& cache) const {
+  const SimulatedModule& m = modules_.at(index);
+  if (cache.directions.empty()) cache.directions = ModuleRayDirections(m);
+  if (cache.scene.empty())
+    cache.scene =
+        RenderRadiance(m, cache.directions, SceneRadiance(scene_, options_.scene_supersampling));
+  const Scene at = scene_.AtTime(t_seconds);
+  const PixelRuns runs = SphereFootprintRuns(m, cache.directions, scene_.MovingBounds(t_seconds));
+  ExposureOptions exposure;
+  exposure.noise = options_.noise;
+  exposure.noise_seed = options_.seed * 1000003ull + index * 131ull + (frame + 1) * 7919ull + 101;
+  return ExposeRadiance(
+      m,
+      RenderRadiance(m, cache.directions, SceneRadiance(at, options_.scene_supersampling),
+                     &cache.scene, &runs),
+      exposure);
+}
+
 CaptureSimulationResult SimulateCapture(const Scene& scene, const CaptureSimulationOptions& o,
                                         const fs::path& out_dir) {
   const auto start = std::chrono::steady_clock::now();

@@ -83,6 +83,12 @@ class SimulatedArray {
 
   // What module `module` records in shot `shot` (8-bit sRGB RGB), deterministic in the seed.
   cv::Mat Expose(std::size_t module, std::size_t shot, ModuleCache& cache) const;
+  // A video frame: what module `module` records of the scene at time t (Scene::AtTime; an
+  // instant's exposure: no motion blur, no rolling shutter), its noise drawn for frame number
+  // `frame`. Only the pixels that may see something that moves are traced again; the rest are
+  // the still scene's, which `cache` keeps.
+  cv::Mat ExposeAt(std::size_t module, double t_seconds, std::uint64_t frame,
+                   ModuleCache& cache) const;
 
  private:
   const Scene& scene_;

@@ -27,4 +27,9 @@ bool MovedShape::Intersect(const Ray& ray, double t_min, double t_max, SurfaceHi
   return true;
 }
 
+BoundingSphere MovedShape::Bounds() const {
+  const BoundingSphere b = base_->Bounds();
+  return {world_from_object_ * b.center, b.radius};
+}
+
 }  // namespace lfcam

@@ -29,6 +29,7 @@ class MovedShape final : public Shape {
  public:
   MovedShape(std::shared_ptr<const Shape> base, const Rigid3& world_from_object);
   bool Intersect(const Ray& ray, double t_min, double t_max, SurfaceHit* hit) const override;
+  BoundingSphere Bounds() const override;
 
  private:
   std::shared_ptr<const Shape> base_;

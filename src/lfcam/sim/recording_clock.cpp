@@ -19,23 +19,25 @@ std::vector<RecordedFrame> SimulateNodeFrames(int node, double duration_s,
   std::normal_distribution<double> jitter(0.0, o.period_jitter_s);
   std::bernoulli_distribution dropped(std::clamp(o.drop_rate, 0.0, 1.0));
   const double period = 1.0 / o.fps;
-  // The node's clocks: an offset and a rate error against true time (the sync server's too).
+  // The node's clocks: its wall clock's offset from true time (chrony keeps its rate), and its
+  // sensor crystal's rate error.
   const double offset = uniform(o.clock_offset_s);
   const double drift = uniform(o.clock_drift_ppm) * 1e-6;
   const double boot = 100.0 + 10.0 * std::uniform_real_distribution<double>(0, 1)(rng);
-  // The first frame's start: with sync, on the server's frame grid (its clock's offset is the
-  // reference every node follows; it starts at true time 0); without, at any phase.
+  // Free-running, the first frame starts at any phase.
   double start = o.sync ? 0.0 : std::uniform_real_distribution<double>(0, period)(rng);
   std::vector<RecordedFrame> frames;
   for (int sequence = 0;; ++sequence) {
-    double t;
+    double t, wall;
     if (o.sync) {
-      // Sync keeps each frame start on the server's grid, to within its error (the node's own
-      // drift corrected frame by frame).
-      t = sequence * period + (node == 0 ? 0.0 : uniform(o.sync_error_s));
+      // Sync steers each frame's wall-clock start onto the server's grid, to within its error
+      // (the server's own frames are the grid); the true start is off by the node's clock.
+      wall = sequence * period + (node == 0 ? 0.0 : uniform(o.sync_error_s));
+      t = wall - offset;
     } else {
-      // Free-running: the node's period, off by its drift, each period jittered.
+      // Free-running: the crystal's period, each jittered.
       t = start;
+      wall = t + offset;
       start += period * (1.0 + drift) + jitter(rng);
     }
     // With sync a frame belongs to the recording by its slot on the grid (its start may fall a
@@ -45,7 +47,7 @@ std::vector<RecordedFrame> SimulateNodeFrames(int node, double duration_s,
     RecordedFrame f;
     f.sequence = sequence;
     f.exposure_start = t;
-    f.wall_clock = t + offset + drift * t;
+    f.wall_clock = wall;
     f.sensor_timestamp = boot + t * (1.0 + drift);
     frames.push_back(f);
   }

@@ -31,6 +31,19 @@ bool Scene::moves() const {
   return false;
 }
 
+std::vector<BoundingSphere> Scene::MovingBounds(double t_seconds) const {
+  std::vector<BoundingSphere> out;
+  for (const SceneObject& o : objects)
+    if (o.motion) {
+      out.push_back(o.shape->Bounds());
+      out.push_back(MovedShape(o.shape, o.motion->At(t_seconds)).Bounds());
+    }
+  for (const SceneObject& o : movers)
+    out.push_back(o.motion ? MovedShape(o.shape, o.motion->At(t_seconds)).Bounds()
+                           : o.shape->Bounds());
+  return out;
+}
+
 Scene::Hit Scene::FirstHit(const Ray& ray) const {
   Hit first{std::numeric_limits<double>::infinity(), -1};
   SurfaceHit hit;

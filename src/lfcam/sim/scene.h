@@ -58,6 +58,10 @@ class Scene {
   Scene AtTime(double t_seconds) const;
   // Whether anything in it moves.
   bool moves() const;
+  // Spheres that hold everything that moves: where each moving object and mover is at time t,
+  // and where the still scene has each moving object. Outside them, the scene at t and the
+  // still scene look the same.
+  std::vector<BoundingSphere> MovingBounds(double t_seconds) const;
   // Linear RGB radiance arriving along `ray` (from its origin, t > 0).
   Vec3 Radiance(const Ray& ray) const;
   // Distance t of the first surface along `ray`, or +inf.

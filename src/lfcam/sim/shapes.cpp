@@ -135,4 +135,19 @@ bool DiscShape::Intersect(const Ray& ray, double t_min, double t_max, SurfaceHit
   return true;
 }
 
+BoundingSphere RectangleShape::Bounds() const { return {center_, std::hypot(half_u_, half_v_)}; }
+
+BoundingSphere BoxShape::Bounds() const { return {(min_ + max_) / 2, (max_ - min_).norm() / 2}; }
+
+BoundingSphere SphereShape::Bounds() const { return {center_, radius_}; }
+
+BoundingSphere ConeShape::Bounds() const {
+  // The sphere through the base's rim whose centre is on the axis, or the base's own when the
+  // apex falls inside that.
+  const double y = std::max(0.0, (height_ * height_ - radius_ * radius_) / (2 * height_));
+  return {base_ + Vec3(0, y, 0), std::hypot(radius_, y)};
+}
+
+BoundingSphere DiscShape::Bounds() const { return {center_, radius_}; }
+
 }  // namespace lfcam
