@@ -12,6 +12,7 @@
 
 #include "lfcam/capture/array_status.h"
 #include "lfcam/capture/local_array_test_support.h"
+#include "lfcam/cli/cli_test_support.h"
 #include "lfcam/core/image_io.h"
 #include "lfcam/node/request_signature.h"
 
@@ -19,6 +20,7 @@ namespace lfcam {
 namespace {
 
 namespace fs = std::filesystem;
+using testing::Lfcam;
 using testing::LocalArray;
 
 std::string ReadBytes(const fs::path& path) {
@@ -95,6 +97,20 @@ TEST(RecordSession, SimulatedNodesRecordInStepAndEveryFrameComesHomeWithItsTime)
   cv::Mat diff;
   cv::absdiff(decode(first.frames.front()), decode(first.frames.back()), diff);
   EXPECT_GT(cv::countNonZero(diff.reshape(1) > 40), 10);
+
+  // The report: ten light field frames, each of four cameras, in step to the sync error.
+  auto run = Lfcam(fmt::format("capture report --session {} --json --out {}",
+                               (dir / "session").string(), (dir / "sync.png").string()));
+  ASSERT_EQ(run.status, 0) << run.output;
+  const auto report_json = nlohmann::json::parse(run.output);
+  EXPECT_EQ(report_json["frames"], 10);
+  EXPECT_EQ(report_json["camera_frames_missing"], 0);
+  EXPECT_LE(report_json["spread_us"]["max"].get<double>(), 60.0 + 1e-3);
+  EXPECT_EQ(report_json["per_frame"][9]["cameras"], 4);
+  EXPECT_TRUE(fs::is_regular_file(dir / "sync.png"));
+  run = Lfcam(fmt::format("capture report --session {} --shot rec_07", (dir / "session").string()));
+  EXPECT_EQ(run.status, 1);
+  EXPECT_NE(run.output.find("no recording 'rec_07'"), std::string::npos) << run.output;
   fs::remove_all(dir);
 }
 

@@ -11,6 +11,7 @@
 #include "lfcam/capture/array_status.h"
 #include "lfcam/capture/capture_session.h"
 #include "lfcam/capture/node_client.h"
+#include "lfcam/capture/recording_report.h"
 #include "lfcam/capture/recording_session.h"
 #include "lfcam/cli/commands.h"
 #include "lfcam/cli/parse.h"
@@ -147,11 +148,59 @@ void AddInit(CLI::App& capture) {
 
 void AddStatus(CLI::App& capture) {
   auto* command = capture.add_subcommand("status", "Every node's health, in one table");
-  auto flags = std::make_shared<ArrayFlags>();
+  struct Flags : ArrayFlags {
+    std::string session;
+  };
+  auto flags = std::make_shared<Flags>();
   flags->Add(command);
+  command->add_option("--session", flags->session,
+                      "Also say how well the array kept in step in each of its recordings");
   command->callback([flags] {
     const auto [array, key] = flags->Load();
-    PrintReports(ArrayStatus(array, key), flags->json);
+    const std::vector<NodeReport> reports = ArrayStatus(array, key);
+    if (flags->session.empty()) return PrintReports(reports, flags->json);
+    const CaptureManifest manifest = ReadManifest(flags->session);
+    std::vector<RecordingReport> recordings;
+    for (const Shot& s : manifest.shots)
+      if (s.kind == ShotKind::kVideo) recordings.push_back(MakeRecordingReport(manifest, s.name));
+    if (flags->json) {
+      nlohmann::json j = {{"nodes", ReportsToJson(reports)},
+                          {"recordings", nlohmann::json::array()}};
+      for (const RecordingReport& r : recordings) {
+        nlohmann::json one = RecordingReportToJson(r);
+        one.erase("per_frame");
+        one.erase("per_camera");
+        j["recordings"].push_back(std::move(one));
+      }
+      fmt::print("{}\n", JsonToText(j, 2));
+      return;
+    }
+    PrintReports(reports, false);
+    for (const RecordingReport& r : recordings) fmt::print("\n{}", RecordingReportText(r));
+  });
+}
+
+void AddReport(CLI::App& capture) {
+  auto* command = capture.add_subcommand(
+      "report", "How well the array kept in step over a recording: spread, missing frames");
+  struct Flags {
+    std::string session, shot, out;
+    bool json = false;
+  };
+  auto f = std::make_shared<Flags>();
+  command->add_option("--session", f->session, "The session folder")->required();
+  command->add_option("--shot", f->shot, "The recording (default: the session's last)");
+  command->add_option("--out", f->out,
+                      "Also draw the spread over time and each camera's offsets into this PNG");
+  command->add_flag("--json", f->json, "Print the report as JSON (every frame and camera)");
+  command->callback([f] {
+    if (!f->out.empty()) RequireImageOutput(f->out, "--out");
+    const RecordingReport report = MakeRecordingReport(ReadManifest(f->session), f->shot);
+    if (!f->out.empty()) WriteImage(f->out, RecordingReportPicture(report));
+    if (f->json)
+      fmt::print("{}\n", JsonToText(RecordingReportToJson(report), 2));
+    else
+      fmt::print("{}", RecordingReportText(report));
   });
 }
 
@@ -360,6 +409,9 @@ void AddRecord(CLI::App& capture) {
     SessionReport report = RecordSession(array, key, f->session, f->o);
     recording.finish();
     report.video = true;
+    if (!f->json)
+      fmt::print("{}",
+                 RecordingReportText(MakeRecordingReport(ReadManifest(f->session), report.shot)));
     FinishSession(report, f->session, f->json);
   });
 }
@@ -410,6 +462,7 @@ void AddCaptureCommand(CLI::App& app) {
   AddShoot(*capture);
   AddRecord(*capture);
   AddFetch(*capture);
+  AddReport(*capture);
 }
 
 }  // namespace lfcam::cli
