@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+
 #include "lfcam/calib/array_calibration.h"
 #include "lfcam/core/error.h"
 #include "lfcam/core/input_file.h"
@@ -94,6 +96,30 @@ CalibrationFile ReadCalibration(const std::filesystem::path& path) {
   const auto bytes = ReadFileBytes(path, kMaxJsonBytes, "calibration file");
   return CalibrationFromJson(
       ParseJsonBounded(std::string(bytes.begin(), bytes.end()), path.string()), path.string());
+}
+
+CalibrationFile ScaledCalibration(const CalibrationFile& cal, int width, int height) {
+  if (width == cal.width && height == cal.height) return cal;
+  const double sx = double(width) / cal.width, sy = double(height) / cal.height;
+  if (width < 1 || height < 1 || std::abs(sx / sy - 1) > 2e-3)
+    throw Error(
+        fmt::format("a calibration of {}x{} images does not scale to {}x{}: another "
+                    "aspect ratio (another field of view)",
+                    cal.width, cal.height, width, height));
+  CalibrationFile out = cal;
+  out.width = width;
+  out.height = height;
+  for (CalibratedCamera& c : out.cameras) {
+    CameraIntrinsics& k = c.intrinsics;
+    k.width = width;
+    k.height = height;
+    k.fx *= sx;
+    k.fy *= sy;
+    // Pixel centres: x = i + 0.5 in the image's own units before and after.
+    k.cx = (k.cx + 0.5) * sx - 0.5;
+    k.cy = (k.cy + 0.5) * sy - 0.5;
+  }
+  return out;
 }
 
 }  // namespace lfcam

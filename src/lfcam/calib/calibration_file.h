@@ -51,4 +51,11 @@ struct CalibrationFile {
 CalibrationFile CalibrationFromJson(const nlohmann::json& j, const std::string& where);
 CalibrationFile ReadCalibration(const std::filesystem::path& path);
 
+// The calibration of the same cameras in another sensor mode of the same field of view (a
+// video's binned mode: 648x486 or 1296x972 of a 2592x1944 calibration): focal lengths and
+// principal points scaled, pixel centres kept where they are; the distortion, the poses and the
+// photometry (in units of the image's half-diagonal) are unchanged. Throws lfcam::Error when the
+// mode's aspect ratio is not the calibration's.
+CalibrationFile ScaledCalibration(const CalibrationFile& calibration, int width, int height);
+
 }  // namespace lfcam

@@ -53,7 +53,7 @@ int ReductionFlags(int reduction) {
 struct ViewJob {
   int row, col;
   const CalibratedCamera* camera;
-  std::filesystem::path image;
+  const CameraImage* image;
 };
 
 // The part of the image a map reads, decoded: R, G, B (CV_8UC3) and where it lies in the image
@@ -115,18 +115,18 @@ int BuildView(const ViewJob& job, const StSampling& sampling, StOffset window,
   int reduction = 1;
   while (reduction < 8 && 2.0 * reduction <= footprint) reduction *= 2;
 
-  const auto bytes = ReadFileBytes(job.image, kMaxEncodedImageBytes, "image file");
+  const std::vector<std::uint8_t> bytes = job.image->read();
+  const std::string& name = job.image->name;
   ImageHeader header;
   try {
     header = ProbeImageHeader(bytes);
   } catch (const Error& e) {
-    throw Error(
-        fmt::format("{} ({}): {}", job.image.string(), CameraLabel(job.row, job.col), e.what()));
+    throw Error(fmt::format("{} ({}): {}", name, CameraLabel(job.row, job.col), e.what()));
   }
   if (header.width != k.width || header.height != k.height)
     throw Error(fmt::format("{} ({}): the image is {}x{}, but the calibration is for {}x{} images",
-                            job.image.string(), CameraLabel(job.row, job.col), header.width,
-                            header.height, k.width, k.height));
+                            name, CameraLabel(job.row, job.col), header.width, header.height,
+                            k.width, k.height));
   const cv::Size scaled((k.width + reduction - 1) / reduction,
                         (k.height + reduction - 1) / reduction);
 
@@ -159,8 +159,7 @@ int BuildView(const ViewJob& job, const StSampling& sampling, StOffset window,
                 cv::Point(int(std::ceil(x_hi)) + margin + 1, int(std::ceil(y_hi)) + margin + 1)) &
                 cv::Rect(cv::Point(0, 0), scaled);
   const auto start = std::chrono::steady_clock::now();
-  const DecodedRegion region =
-      DecodeRegion(bytes, job.image.string(), reduction, scaled, wanted, options.chroma);
+  const DecodedRegion region = DecodeRegion(bytes, name, reduction, scaled, wanted, options.chroma);
   *decode_seconds +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
@@ -322,8 +321,6 @@ std::string ToString(Resampling resampling) {
 LightField BuildLightField(const std::filesystem::path& dir, const CaptureManifest& manifest,
                            const CalibrationFile& cal, const BuildOptions& o,
                            BuildReport* report_out) {
-  const auto start = std::chrono::steady_clock::now();
-  BuildReport report;
   if (manifest.rows != cal.rows || manifest.cols != cal.cols)
     throw Error(fmt::format("the calibration is for a {}x{} array, the session has {}x{}", cal.rows,
                             cal.cols, manifest.rows, manifest.cols));
@@ -336,6 +333,30 @@ LightField BuildLightField(const std::filesystem::path& dir, const CaptureManife
   if (!shot)
     throw Error(fmt::format("{}: the session has no shot named '{}'",
                             (dir / kManifestName).string(), o.shot));
+  if (shot->kind == ShotKind::kVideo)
+    throw Error(
+        fmt::format("shot '{}' is a recording: its light field is a video "
+                    "(BuildLightFieldVideo)",
+                    o.shot));
+  std::vector<CameraImage> images;
+  for (const ShotImage& image : shot->images) {
+    const std::filesystem::path path = dir / image.file;
+    images.push_back({image.row, image.col, path.string(),
+                      [path] { return ReadFileBytes(path, kMaxEncodedImageBytes, "image file"); }});
+  }
+  LightField lf =
+      BuildLightFieldFromImages(cal, images, fmt::format("in shot '{}'", o.shot), o, report_out);
+  lf.metadata()["shot"] = o.shot;
+  lf.metadata()["session"] = manifest.source;
+  return lf;
+}
+
+LightField BuildLightFieldFromImages(const CalibrationFile& cal,
+                                     const std::vector<CameraImage>& images,
+                                     const std::string& where, const BuildOptions& o,
+                                     BuildReport* report_out) {
+  const auto start = std::chrono::steady_clock::now();
+  BuildReport report;
   if (o.n_s < 1 || o.n_t < 1 || o.n_s > kMaxStSamplesPerSide || o.n_t > kMaxStSamplesPerSide)
     throw Error(fmt::format("st resolution {}x{} is out of range", o.n_s, o.n_t));
   Slab slab = cal.slab;
@@ -346,9 +367,13 @@ LightField BuildLightField(const std::filesystem::path& dir, const CaptureManife
                 fmt::format("a {}x{} light field of {}x{} samples", rows, cols, o.n_s, o.n_t));
 
   // Which views can be built, and why not the others.
-  std::vector<const ShotImage*> image_of(std::size_t(rows) * std::size_t(cols), nullptr);
-  for (const ShotImage& image : shot->images)
+  std::vector<const CameraImage*> image_of(std::size_t(rows) * std::size_t(cols), nullptr);
+  for (const CameraImage& image : images) {
+    if (image.row < 0 || image.col < 0 || image.row >= rows || image.col >= cols)
+      throw Error(fmt::format("{}: {} is outside the calibration's {}x{} grid", image.name,
+                              CameraLabel(image.row, image.col), rows, cols));
     image_of[std::size_t(image.row * cols + image.col)] = &image;
+  }
   std::vector<ViewJob> jobs;
   std::vector<bool> built(image_of.size(), false);
   std::vector<std::string> missing;
@@ -357,13 +382,13 @@ LightField BuildLightField(const std::filesystem::path& dir, const CaptureManife
       const std::size_t i = std::size_t(r * cols + c);
       const CalibratedCamera& camera = cal.cameras[i];
       if (!image_of[i])
-        missing.push_back(fmt::format("{}: no image in shot '{}'", CameraLabel(r, c), o.shot));
+        missing.push_back(fmt::format("{}: no image {}", CameraLabel(r, c), where));
       else if (!camera.calibrated)
         missing.push_back(
             fmt::format("{}: not calibrated ({})", CameraLabel(r, c),
                         camera.reason.empty() ? "see the calibration" : camera.reason));
       else {
-        jobs.push_back({r, c, &camera, dir / image_of[i]->file});
+        jobs.push_back({r, c, &camera, image_of[i]});
         built[i] = true;
       }
     }
@@ -409,6 +434,7 @@ LightField BuildLightField(const std::filesystem::path& dir, const CaptureManife
                             std::size_t((o.n_t + kStatsStride - 1) / kStatsStride);
   std::vector<ViewStats> stats(image_of.size());
   std::mutex mutex;
+  std::vector<std::string> unreadable;
   std::atomic<int> reduction_max{1};
   double decode_seconds = 0;
   tbb::parallel_for(std::size_t(0), jobs.size(), [&](std::size_t j) {
@@ -418,14 +444,28 @@ LightField BuildLightField(const std::filesystem::path& dir, const CaptureManife
     s.after.assign(cells, Vec3::Zero());
     s.before.assign(cells, Vec3::Zero());
     double decode = 0;
-    const int reduction =
-        BuildView(job, lf.st_sampling(job.row, job.col), lf.st_offset(job.row, job.col), o,
-                  lf.mutable_view_data(job.row, job.col), &s, &decode);
+    int reduction = 1;
+    try {
+      reduction = BuildView(job, lf.st_sampling(job.row, job.col), lf.st_offset(job.row, job.col),
+                            o, lf.mutable_view_data(job.row, job.col), &s, &decode);
+    } catch (const Error& e) {
+      // An image that cannot be read: filled like a missing one when that is allowed.
+      if (!o.allow_missing) throw;
+      std::lock_guard lock(mutex);
+      built[std::size_t(job.row * cols + job.col)] = false;
+      unreadable.push_back(e.what());
+      s.valid.assign(cells, 0);
+      return;
+    }
     std::lock_guard lock(mutex);
     decode_seconds += decode;
     reduction_max = std::max(reduction_max.load(), reduction);
     if (o.view_done) o.view_done();
   });
+  if (std::none_of(built.begin(), built.end(), [](bool b) { return b; }))
+    throw Error(fmt::format("no camera's image {} could be read:\n  {}", where,
+                            fmt::join(unreadable, "\n  ")));
+  report.unreadable = unreadable;
   report.decode_seconds = decode_seconds;
   report.reduction_max = reduction_max;
   report.before = Spread(stats, built, true);
@@ -468,10 +508,8 @@ LightField BuildLightField(const std::filesystem::path& dir, const CaptureManife
                              {"col", camera.col},
                              {"photometry", PhotometryToJson(*camera.photometry)}});
   lf.metadata() = {{"source", "built"},
-                   {"shot", o.shot},
                    {"resampling", ToString(o.resampling)},
                    {"chroma_upsampling", ToString(o.chroma)},
-                   {"session", manifest.source},
                    {"calibration", cal.summary},
                    {"color_correction",
                     {{"applied", o.photometric_correction && !corrections.empty()},
@@ -479,6 +517,7 @@ LightField BuildLightField(const std::filesystem::path& dir, const CaptureManife
                      {"mean_colour_spread_before", spread_json(report.before)},
                      {"mean_colour_spread_after", spread_json(report.after)}}},
                    {"filled_views", filled},
+                   {"unreadable_images", unreadable},
                    {"created", fmt::format("{:%Y-%m-%dT%H:%M:%SZ}", now)}};
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (report_out) *report_out = report;

@@ -5,6 +5,7 @@
 // linear light, antialiased where the map shrinks (the image is decoded at 1/2, 1/4 or 1/8 size
 // by libjpeg-turbo's scaled decoding, then blurred for what remains). JPEG chroma subsampled by
 // the camera comes back at full resolution guided by the luma. Cameras in parallel.
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <optional>
@@ -50,6 +51,7 @@ struct ColourSpread {
 
 struct BuildReport {
   std::vector<std::string> filled;         // "camera (r, c) from (r, c), ..." for each filled view
+  std::vector<std::string> unreadable;     // images that could not be read (filled, allow_missing)
   ColourSpread before, after;              // per-camera mean colour, without and with correction
   int reduction_max = 1;                   // the largest decode reduction used
   double seconds = 0, decode_seconds = 0;  // wall; decode summed over threads
@@ -61,5 +63,22 @@ struct BuildReport {
 LightField BuildLightField(const std::filesystem::path& session_dir,
                            const CaptureManifest& manifest, const CalibrationFile& calibration,
                            const BuildOptions& options, BuildReport* report = nullptr);
+
+// A camera's image for one light field: its encoded bytes (a JPEG or PNG file's, or one frame of
+// a recording's stream), read when its view is built, and a name for messages.
+struct CameraImage {
+  int row = 0, col = 0;
+  std::string name;
+  std::function<std::vector<std::uint8_t>()> read;
+};
+
+// What BuildLightField does once it has found the shot's images: `images` holds at most one per
+// camera; a camera without one (`where` says of what: "in shot 'scene'") is missing, and with
+// options.allow_missing filled from its neighbours, as is one whose image cannot be read (the
+// report and the metadata say which and why). options.shot is not used.
+LightField BuildLightFieldFromImages(const CalibrationFile& calibration,
+                                     const std::vector<CameraImage>& images,
+                                     const std::string& where, const BuildOptions& options,
+                                     BuildReport* report = nullptr);
 
 }  // namespace lfcam

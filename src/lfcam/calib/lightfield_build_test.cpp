@@ -12,6 +12,7 @@
 #include "lfcam/calib/array_calibration.h"
 #include "lfcam/calib/calibration_file.h"
 #include "lfcam/calib/photometry.h"
+#include "lfcam/calib/test_calibrated_session.h"
 #include "lfcam/core/atomic_file.h"
 #include "lfcam/core/color.h"
 #include "lfcam/core/error.h"
@@ -31,56 +32,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class LightFieldBuildTest : public ::testing::Test {
- protected:
-  static void SetUpTestSuite() {
-    scratch_ =
-        new fs::path(fs::temp_directory_path() / ("build_test_" + std::to_string(::getpid())));
-    fs::remove_all(*scratch_);
-    fs::create_directories(*scratch_);
-    CaptureSimulationOptions o;
-    o.rows = o.cols = 3;
-    o.sensor_width = 648;
-    o.sensor_height = 486;
-    o.seed = 11;
-    session_ = new fs::path(testing::SharedTestCapture("build-3x3", o));
-    // Calibrated once for every test process of the build (a minute under the sanitizers).
-    const fs::path calibration = testing::SharedTestArtifact(
-        "build-3x3-calibration", "calibration.json", [](const fs::path& dir) {
-          const CaptureManifest manifest = ReadManifest(session());
-          const ArrayCalibration a = CalibrateArray(session(), manifest, {});
-          nlohmann::json j = CalibrationToJson(a);
-          AddPhotometryToCalibration(
-              j, EstimatePhotometry(session(), manifest, CalibrationFromJson(j, "cal"),
-                                    a.world_board));
-          fs::create_directories(dir);
-          const std::string text = JsonToText(j);
-          WriteFileAtomically(dir / "calibration.json",
-                              {reinterpret_cast<const std::uint8_t*>(text.data()), text.size()});
-        });
-    calibration_ = new CalibrationFile(ReadCalibration(calibration / "calibration.json"));
-  }
-  static void TearDownTestSuite() {
-    std::error_code ec;
-    fs::remove_all(*scratch_, ec);
-    delete scratch_;
-    delete calibration_;
-    delete session_;
-  }
-  static fs::path session() { return *session_; }
-  static BuildOptions Small() {
-    BuildOptions o;
-    o.n_s = 150;
-    o.n_t = 138;
-    return o;
-  }
-  static fs::path* scratch_;
-  static fs::path* session_;  // shared between test processes: read only
-  static CalibrationFile* calibration_;
-};
-fs::path* LightFieldBuildTest::session_ = nullptr;
-fs::path* LightFieldBuildTest::scratch_ = nullptr;
-CalibrationFile* LightFieldBuildTest::calibration_ = nullptr;
+using LightFieldBuildTest = testing::CalibratedSessionTest;
 
 // The share of a world-shot light field's samples well inside the world board's squares that are
 // black or white as the board says.

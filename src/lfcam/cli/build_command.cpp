@@ -7,6 +7,7 @@
 
 #include "lfcam/calib/calibration_file.h"
 #include "lfcam/calib/lightfield_build.h"
+#include "lfcam/calib/lightfield_video_build.h"
 #include "lfcam/cli/commands.h"
 #include "lfcam/cli/parse.h"
 #include "lfcam/core/atomic_file.h"
@@ -18,13 +19,62 @@
 
 namespace lfcam::cli {
 
+namespace {
+
+void BuildVideo(const std::string& session, const CaptureManifest& manifest,
+                const CalibrationFile& calibration, const Shot& shot, const std::string& out,
+                VideoBuildOptions v, bool quiet, bool json) {
+  const auto seconds = shot.video->seconds, fps = shot.video->fps;
+  const auto planned = v.frame_count > 0
+                           ? v.frame_count
+                           : std::int64_t(std::ceil(seconds * fps - 1e-9)) - v.first_frame;
+  ProgressBar progress("building frames", std::max<std::int64_t>(planned, 1),
+                       ProgressWanted(quiet));
+  if (const auto advance = progress.callback()) v.frame_done = [advance] { advance(1); };
+  const VideoBuildReport r =
+      BuildLightFieldVideo(session, manifest, calibration, shot.name, out, v);
+  progress.finish();
+  if (json) {
+    fmt::print(
+        "{}\n",
+        JsonToText(
+            {{"out", out},
+             {"frames", r.frames},
+             {"fps", fps},
+             {"n_s", v.build.n_s},
+             {"n_t", v.build.n_t},
+             {"seconds", r.seconds},
+             {"frames_per_second", double(r.frames) / r.seconds},
+             {"bytes", r.bytes},
+             {"bytes_per_frame", double(r.bytes) / double(r.frames)},
+             {"filled_views", r.filled_views},
+             {"spread_us",
+              {{"median", r.spread.median_us}, {"p95", r.spread.p95_us}, {"max", r.spread.max_us}}},
+             {"problems", r.problems}},
+            2));
+    return;
+  }
+  fmt::print(
+      "built {} light field frames of {}x{} views of {}x{} samples in {:.1f} s ({:.2f} frames "
+      "a second); {} camera frames filled from their neighbours\n",
+      r.frames, calibration.rows, calibration.cols, v.build.n_s, v.build.n_t, r.seconds,
+      double(r.frames) / r.seconds, r.filled_views);
+  fmt::print("  sync spread over the recording: median {:.1f} us, max {:.1f} us\n",
+             r.spread.median_us, r.spread.max_us);
+  for (const auto& p : r.problems) fmt::print(stderr, "lfcam: warning: {}\n", p);
+  fmt::print("wrote {} ({}, {} a frame)\n", out, HumanBytes(double(r.bytes)),
+             HumanBytes(double(r.bytes) / double(r.frames)));
+}
+
+}  // namespace
+
 void AddBuildCommand(CLI::App& app) {
   auto* command =
       app.add_subcommand("build", "Build the light field of a calibrated capture session");
   struct Flags {
     std::string session, calibration, out, st_res = "1248x1152", st_domain, compression = "none",
                                            shot = "scene", resampling = "linear", chroma = "guided",
-                                           st_windows = "shared";
+                                           st_windows = "shared", frames;
     bool allow_missing = false, no_color = false, json = false, quiet = false;
   };
   auto flags = std::make_shared<Flags>();
@@ -43,8 +93,13 @@ void AddBuildCommand(CLI::App& app) {
                    "together they cover what every camera saw; format version 4)")
       ->capture_default_str();
   command->add_option("--compress", flags->compression, "none or zstd")->capture_default_str();
-  command->add_option("--shot", flags->shot, "The session's shot to build (scene, or world)")
+  command
+      ->add_option("--shot", flags->shot,
+                   "The session's shot to build: scene, world, or a recording (rec_00: a light "
+                   "field video, .lfv)")
       ->capture_default_str();
+  command->add_option("--frames", flags->frames,
+                      "A recording: its light field frames FIRST:COUNT (default: all)");
   command
       ->add_option(
           "--resampling", flags->resampling,
@@ -64,7 +119,7 @@ void AddBuildCommand(CLI::App& app) {
                     "Do not apply the calibration's per-module gain and vignetting correction");
   command->add_flag("--json", flags->json, "Print a summary as JSON on stdout");
   command->add_flag("--quiet", flags->quiet, "No progress bar (it is drawn only on a terminal)");
-  command->callback([flags] {
+  command->callback([flags, command] {
     BuildOptions o;
     std::tie(o.n_s, o.n_t) = ParseSize("--st-res", flags->st_res, kMaxStSamplesPerSide);
     if (!flags->st_domain.empty()) o.st_domain = ParseStDomain("--st-domain", flags->st_domain);
@@ -80,6 +135,29 @@ void AddBuildCommand(CLI::App& app) {
     RequireWritableOutput(flags->out, "--out");
     const CaptureManifest manifest = ReadManifest(flags->session);
     const CalibrationFile calibration = ReadCalibration(flags->calibration);
+    for (const Shot& s : manifest.shots)
+      if (s.name == flags->shot && s.kind == ShotKind::kVideo) {
+        VideoBuildOptions v;
+        v.build = o;
+        if (command->count("--st-res") == 0)
+          std::tie(v.build.n_s, v.build.n_t) = DefaultVideoStSamples(s.video->width);
+        if (command->count("--compress") == 0)
+          v.write = {Compression::kZstd, 1};
+        else
+          v.write = w;
+        if (!flags->frames.empty()) {
+          long long a = 0, b = 0;
+          char x = 0;
+          if (std::sscanf(flags->frames.c_str(), "%lld:%lld%c", &a, &b, &x) != 2 || a < 0 || b < 1)
+            throw UsageError(fmt::format(
+                "--frames '{}': expected FIRST:COUNT, FIRST >= 0, COUNT >= 1", flags->frames));
+          v.first_frame = a;
+          v.frame_count = b;
+        }
+        return BuildVideo(flags->session, manifest, calibration, s, flags->out, v,
+                          flags->quiet || flags->json, flags->json);
+      }
+    if (!flags->frames.empty()) throw UsageError("--frames: the shot is not a recording");
     ProgressBar progress("building views", std::int64_t(calibration.rows) * calibration.cols,
                          ProgressWanted(flags->quiet || flags->json));
     if (const auto advance = progress.callback()) o.view_done = [advance] { advance(1); };

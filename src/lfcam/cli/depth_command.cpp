@@ -13,6 +13,7 @@
 #include "lfcam/core/error.h"
 #include "lfcam/core/json_input.h"
 #include "lfcam/core/lightfield_file.h"
+#include "lfcam/core/lightfield_video_file.h"
 #include "lfcam/core/progress.h"
 #include "lfcam/depth/depth_set.h"
 #include "lfcam/depth/disparity_map.h"
@@ -103,7 +104,7 @@ void AddDepthCommand(CLI::App& app) {
         throw UsageError(fmt::format("--out {}: a depth map is a .png", f->out));
       RequireWritableOutput(f->out, "--out");
     }
-    const LightField lf = ReadLightField(f->input);
+    const LightField lf = ReadLightFieldFrame(f->input);
     const auto& d = lf.dims();
     if (d.view_count() < 2)
       throw Error(fmt::format("{}: depth needs at least two views; it has {}x{}", f->input, d.rows,

@@ -10,6 +10,7 @@
 #include "lfcam/cli/parse.h"
 #include "lfcam/core/error.h"
 #include "lfcam/core/lightfield_file.h"
+#include "lfcam/core/lightfield_video_file.h"
 #include "lfcam/io/lightfield_export.h"
 
 namespace lfcam::cli {
@@ -33,7 +34,7 @@ void AddExportCommand(CLI::App& app) {
     if (!f->depth.empty() && format == ExportFormat::kPngViews)
       throw UsageError("--depth goes with --format colmap (points3D.txt) or nerf (sparse_pc.ply)");
     RequireNewOrEmptyFolder("--out", f->out);
-    const LightField lf = ReadLightField(f->input);
+    const LightField lf = ReadLightFieldFrame(f->input);
     std::optional<DepthSet> depth;
     if (!f->depth.empty()) depth = ReadDepthSet(f->depth, lf);
     const ExportReport report = ExportLightField(lf, format, f->out, depth ? &*depth : nullptr);

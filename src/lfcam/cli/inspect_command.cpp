@@ -13,6 +13,7 @@
 #include "lfcam/core/json_input.h"
 #include "lfcam/core/lightfield_compare.h"
 #include "lfcam/core/lightfield_file.h"
+#include "lfcam/core/lightfield_video_file.h"
 #include "lfcam/core/limits.h"
 
 namespace lfcam::cli {
@@ -80,21 +81,42 @@ void AddInfoCommand(CLI::App& app) {
     bool json = false, verify = false;
   };
   auto flags = std::make_shared<Flags>();
-  info->add_option("lightfield", flags->input, "Light field file (.lf)")->required();
+  info->add_option("lightfield", flags->input, "Light field file (.lf) or video (.lfv)")
+      ->required();
   info->add_flag("--json", flags->json, "Machine-readable output (JSON on stdout)");
   info->add_flag("--verify", flags->verify,
                  "Also read every view and check its checksum (exit 1 if any is corrupt)");
   info->callback([flags] {
-    const LightFieldHeader h = ReadLightFieldHeader(flags->input);
+    const LightFieldVideo video(flags->input);
+    if (video.frame_count() == 0)
+      throw Error(fmt::format("{}: a light field video with no frame yet{}", flags->input,
+                              video.complete() ? "" : " (still being written?)"));
+    const LightFieldHeader h = video.FrameHeader(0);
     double verify_ms = -1;
     if (flags->verify) {
       const auto start = std::chrono::steady_clock::now();
-      const LightField lf = ReadLightField(flags->input);
+      for (std::size_t k = 0; k < video.frame_count(); ++k) (void)video.ReadFrame(k);
       verify_ms =
           std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
               .count();
     }
     auto j = InfoJson(h);
+    nlohmann::json video_json;
+    if (video.is_video()) {
+      const auto& vh = video.header();
+      const double duration = double(video.frame_count()) / vh.fps;
+      video_json = {{"frames", video.frame_count()},
+                    {"frames_planned", vh.frames_planned},
+                    {"complete", video.complete()},
+                    {"fps", vh.fps},
+                    {"duration_s", duration},
+                    {"start_unix_ns", vh.start_unix_ns},
+                    {"file_bytes", video.file_bytes()},
+                    {"bytes_per_frame", double(video.file_bytes()) / double(video.frame_count())},
+                    {"metadata", vh.metadata}};
+      j["video"] = video_json;
+      j["file_bytes"] = video.file_bytes();
+    }
     // Reaching here with --verify means every view was read and its checksum matched: a failed
     // check throws, and the command exits 1 (with {"error": ...} under --json).
     if (flags->verify) {
@@ -107,6 +129,37 @@ void AddInfoCommand(CLI::App& app) {
     }
     const Slab& s = h.slab;
     fmt::print("{}\n", flags->input);
+    if (video.is_video()) {
+      const auto& vh = video.header();
+      fmt::print(
+          "  video         {} frames at {:g} fps ({:.2f} s){}; {:.1f} MB, {:.1f} MB a frame\n",
+          video.frame_count(), vh.fps, double(video.frame_count()) / vh.fps,
+          video.complete() ? ""
+                           : fmt::format(" of {} planned: still being written, or its "
+                                         "build stopped",
+                                         vh.frames_planned),
+          double(video.file_bytes()) / 1e6,
+          double(video.file_bytes()) / 1e6 / double(video.frame_count()));
+      const nlohmann::json& sync = vh.metadata.value("sync_report", nlohmann::json::object());
+      if (sync.contains("spread_us")) {
+        const auto& sp = sync["spread_us"];
+        fmt::print(
+            "  sync          {} ({}): spread median {:.1f} us, max {:.1f} us over {} frames\n",
+            vh.metadata.value("sync", "?"), vh.metadata.value("recording", "?"),
+            sp.value("median", 0.0), sp.value("max", 0.0), sp.value("frames", 0));
+        std::int64_t missing = 0;
+        for (const auto& c : sync.value("cameras", nlohmann::json::array()))
+          missing += c.value("missing", std::int64_t(0));
+        fmt::print(
+            "                {} camera frames missing (filled from neighbours; each "
+            "frame's metadata names them){}\n",
+            missing,
+            sync.value("problems", nlohmann::json::array()).empty()
+                ? ""
+                : fmt::format("; {} camera problems (--json)", sync["problems"].size()));
+      }
+      fmt::print("  frame 0:\n");
+    }
     fmt::print("  light field   {} x {} views of {} x {} st samples, RGB {}\n", h.dims.rows,
                h.dims.cols, h.dims.n_s, h.dims.n_t, ToString(h.sample_type));
     fmt::print("  size          {:.1f} MB of samples, {:.1f} MB on disk ({})\n",
@@ -150,7 +203,8 @@ void AddInfoCommand(CLI::App& app) {
                  h.measured_poses.size(),
                  h.measured_poses.front().intrinsics ? " (render --as-camera R,C)" : "");
     if (flags->verify)
-      fmt::print("  verified      all views read and checked in {:.0f} ms\n", verify_ms);
+      fmt::print("  verified      all views{} read and checked in {:.0f} ms\n",
+                 video.is_video() ? " of every frame" : "", verify_ms);
   });
 }
 

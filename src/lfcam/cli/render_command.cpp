@@ -17,6 +17,7 @@
 #include "lfcam/core/error.h"
 #include "lfcam/core/image_io.h"
 #include "lfcam/core/lightfield_file.h"
+#include "lfcam/core/lightfield_video_file.h"
 #include "lfcam/core/limits.h"
 #include "lfcam/core/progress.h"
 #include "lfcam/depth/depth_set.h"
@@ -49,6 +50,7 @@ void AddRenderCommand(CLI::App& app) {
   auto* render = app.add_subcommand("render", "Render a light field through the virtual camera");
   struct Flags {
     std::string input, out, hit_mask, depth;
+    int frame = 0;
     CameraFlags camera;
     BackendFlags backend;
     int threads = 0, repeat = 1;
@@ -56,7 +58,11 @@ void AddRenderCommand(CLI::App& app) {
     bool quiet = false, reference = false, antialias = false;
   };
   auto flags = std::make_shared<Flags>();
-  render->add_option("lightfield", flags->input, "Light field file (.lf)")->required();
+  render->add_option("lightfield", flags->input, "Light field file (.lf) or video (.lfv)")
+      ->required();
+  render->add_option("--frame", flags->frame, "A video's light field frame to render (from 0)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 1 << 30));
   render->add_option("--out", flags->out, "Image to write (.png or .jpg)")->required();
   flags->camera.AddTo(*render, /*rig_cameras=*/true);
   render
@@ -133,7 +139,7 @@ void AddRenderCommand(CLI::App& app) {
     }
     const Backend backend = flags->backend.Validate(options);
     const std::unique_ptr<FrameRenderer> renderer = BackendFlags::Open(backend);
-    const LightField lf = ReadLightField(flags->input);
+    const LightField lf = ReadLightFieldFrame(flags->input, std::size_t(flags->frame));
     const VirtualCamera camera = flags->camera.MakeCamera(lf);
     DepthSet depth;
     if (options.interpolation == Interpolation::kDepth) {

@@ -94,16 +94,22 @@ auto WithContext(const std::string& file, F&& f) {
   }
 }
 
-ParsedFile ParseHeader(const InputFile& fd) {
-  const std::string& name = fd.name();
-  if (fd.size() < kPreambleBytes)
-    throw Error(fmt::format("{}: too short to be a light field ({} bytes)", name, fd.size()));
+ParsedFile ParseHeader(const InputFile& fd, const FileRegion& region) {
+  const std::string& name = region.name;
+  // The region's size stands for the file's below: a light field inside a video frame.
+  struct {
+    std::uint64_t bytes;
+    std::uint64_t size() const { return bytes; }
+  } file{region.size};
+  const std::uint64_t base = region.offset;
+  if (file.size() < kPreambleBytes)
+    throw Error(fmt::format("{}: too short to be a light field ({} bytes)", name, file.size()));
   std::array<std::uint8_t, kPreambleBytes> pre{};
-  fd.read_exactly(pre.data(), pre.size(), 0);
+  fd.read_exactly(pre.data(), pre.size(), base);
   if (!std::equal(kMagic.begin(), kMagic.end(), pre.begin()))
     throw Error(fmt::format("{}: not an lfcam light field (bad magic bytes)", name));
   ParsedFile parsed;
-  parsed.header.file_bytes = fd.size();
+  parsed.header.file_bytes = file.size();
   parsed.header.version = GetLe<std::uint32_t>(&pre[8]);
   if (parsed.header.version < kOldestLightFieldFormatVersion ||
       parsed.header.version > kLightFieldFormatVersion)
@@ -115,15 +121,15 @@ ParsedFile ParseHeader(const InputFile& fd) {
   parsed.data_offset = GetLe<std::uint64_t>(&pre[32]);
   if (header_bytes == 0 || header_bytes > kMaxHeaderBytes)
     throw Error(fmt::format("{}: header size {} is absurd", name, header_bytes));
-  if (kPreambleBytes + header_bytes > fd.size())
+  if (kPreambleBytes + header_bytes > file.size())
     throw Error(fmt::format("{}: truncated: header needs {} bytes, file has {}", name,
-                            kPreambleBytes + header_bytes, fd.size()));
+                            kPreambleBytes + header_bytes, file.size()));
   if (parsed.data_offset < kPreambleBytes + header_bytes ||
-      parsed.data_offset % kLightFieldAlignment != 0 || parsed.data_offset > fd.size())
+      parsed.data_offset % kLightFieldAlignment != 0 || parsed.data_offset > file.size())
     throw Error(fmt::format("{}: data offset {} does not fit the file ({} bytes)", name,
-                            parsed.data_offset, fd.size()));
+                            parsed.data_offset, file.size()));
   std::string text(header_bytes, '\0');
-  fd.read_exactly(text.data(), text.size(), kPreambleBytes);
+  fd.read_exactly(text.data(), text.size(), base + kPreambleBytes);
   if (Checksum(text.data(), text.size()) != header_xxh3)
     throw Error(fmt::format("{}: header checksum mismatch (the header is corrupt)", name));
 
@@ -167,7 +173,7 @@ ParsedFile ParseHeader(const InputFile& fd) {
     if (!views.is_array() || views.size() != h.dims.view_count())
       throw Error(fmt::format("view table has {} entries, dims need {}", views.size(),
                               h.dims.view_count()));
-    const std::uint64_t data_bytes = fd.size() - parsed.data_offset;
+    const std::uint64_t data_bytes = file.size() - parsed.data_offset;
     std::uint64_t next_free = 0;
     for (std::size_t i = 0; i < views.size(); ++i) {
       const auto& v = views[i];
@@ -269,8 +275,12 @@ std::shared_ptr<Mapping> MapFile(const InputFile& fd) {
 
 }  // namespace
 
-void WriteLightField(const LightField& lf, const std::filesystem::path& path,
-                     const LightFieldWriteOptions& options) {
+namespace {
+
+// The file's bytes, in order, to `out` (write, pad_to): an AtomicFileWriter, or memory.
+template <typename Out>
+void EmitLightField(const LightField& lf, const std::string& name,
+                    const LightFieldWriteOptions& options, Out& out) {
   const auto& dims = lf.dims();
   const std::size_t n_views = dims.view_count();
   const std::size_t view_bytes = lf.view_bytes();
@@ -284,15 +294,15 @@ void WriteLightField(const LightField& lf, const std::filesystem::path& path,
       records[i] = {i * view_bytes, view_bytes, Checksum(view, view_bytes)};
       return;
     }
-    auto& out = compressed[i];
-    out.resize(ZSTD_compressBound(view_bytes));
+    auto& packed = compressed[i];
+    packed.resize(ZSTD_compressBound(view_bytes));
     const std::size_t n =
-        ZSTD_compress(out.data(), out.size(), view, view_bytes, options.zstd_level);
+        ZSTD_compress(packed.data(), packed.size(), view, view_bytes, options.zstd_level);
     if (ZSTD_isError(n))
-      throw Error(fmt::format("{}: zstd failed on {}: {}", path.string(), ViewName(dims, i),
-                              ZSTD_getErrorName(n)));
-    out.resize(n);
-    records[i] = {0, n, Checksum(out.data(), n)};
+      throw Error(
+          fmt::format("{}: zstd failed on {}: {}", name, ViewName(dims, i), ZSTD_getErrorName(n)));
+    packed.resize(n);
+    records[i] = {0, n, Checksum(packed.data(), n)};
   });
   if (options.compression == Compression::kZstd) {
     std::uint64_t offset = 0;
@@ -352,7 +362,6 @@ void WriteLightField(const LightField& lf, const std::filesystem::path& path,
   PutLe<std::uint64_t>(&pre[24], Checksum(text.data(), text.size()));
   PutLe<std::uint64_t>(&pre[32], data_offset);
 
-  AtomicFileWriter out(path);
   out.write(pre.data(), pre.size());
   out.write(text.data(), text.size());
   out.pad_to(data_offset);
@@ -360,24 +369,62 @@ void WriteLightField(const LightField& lf, const std::filesystem::path& path,
     out.write(lf.data(), lf.total_bytes());
   else
     for (const auto& c : compressed) out.write(c.data(), c.size());
+}
+
+struct MemoryOut {
+  std::vector<std::uint8_t> bytes;
+  void write(const void* data, std::size_t size) {
+    const auto* p = static_cast<const std::uint8_t*>(data);
+    bytes.insert(bytes.end(), p, p + size);
+  }
+  void pad_to(std::uint64_t offset) {
+    if (bytes.size() < offset) bytes.resize(offset, 0);
+  }
+};
+
+}  // namespace
+
+void WriteLightField(const LightField& lf, const std::filesystem::path& path,
+                     const LightFieldWriteOptions& options) {
+  AtomicFileWriter out(path);
+  EmitLightField(lf, path.string(), options, out);
   out.commit();
+}
+
+std::vector<std::uint8_t> EncodeLightField(const LightField& lf, const std::string& name,
+                                           const LightFieldWriteOptions& options) {
+  MemoryOut out;
+  out.bytes.reserve(options.compression == Compression::kNone ? lf.total_bytes() + 65536
+                                                              : lf.total_bytes() / 2);
+  EmitLightField(lf, name, options, out);
+  return std::move(out.bytes);
 }
 
 LightFieldHeader ReadLightFieldHeader(const std::filesystem::path& path) {
   const InputFile fd(path);
-  return ParseHeader(fd).header;
+  return ParseHeader(fd, {0, fd.size(), fd.name()}).header;
+}
+
+LightFieldHeader ReadLightFieldHeader(const InputFile& fd, const FileRegion& region) {
+  return ParseHeader(fd, region).header;
 }
 
 LightField ReadLightField(const std::filesystem::path& path, const LightFieldReadOptions& options) {
   const InputFile fd(path);
-  const ParsedFile parsed = ParseHeader(fd);
+  return ReadLightField(fd, {0, fd.size(), fd.name()}, options);
+}
+
+LightField ReadLightField(const InputFile& fd, const FileRegion& region,
+                          const LightFieldReadOptions& options) {
+  const ParsedFile parsed = ParseHeader(fd, region);
+  const std::uint64_t base = region.offset;
   const auto& h = parsed.header;
   const std::size_t view_bytes = h.dims.samples_per_view() * 3 * BytesPerChannel(h.sample_type);
   const std::size_t total = view_bytes * h.dims.view_count();
   // Decoded (zstd) or read samples take memory; mapped ones do not.
   if (h.compression == Compression::kZstd || !options.memory_map)
     RequireMemory(double(total),
-                  fmt::format("{}: reading {} of samples", fd.name(), HumanBytes(double(total))));
+                  fmt::format("{}: reading {} of samples", region.name, HumanBytes(double(total))));
 
   // The stored bytes, in place (mapped) or read into memory.
   std::shared_ptr<Mapping> mapping;
@@ -386,14 +433,14 @@ LightField ReadLightField(const std::filesystem::path& path, const LightFieldRea
   SampleBuffer samples;
   if (options.memory_map) {
     mapping = MapFile(fd);
-    data = static_cast<const std::uint8_t*>(mapping->address) + parsed.data_offset;
+    data = static_cast<const std::uint8_t*>(mapping->address) + base + parsed.data_offset;
   } else if (h.compression == Compression::kNone) {
     samples = SampleBuffer::Allocate(total);
-    fd.read_exactly(samples.mutable_data(), total, parsed.data_offset);
+    fd.read_exactly(samples.mutable_data(), total, base + parsed.data_offset);
     data = samples.data();
   } else {
-    read_copy.resize(fd.size() - parsed.data_offset);
-    fd.read_exactly(read_copy.data(), read_copy.size(), parsed.data_offset);
+    read_copy.resize(region.size - parsed.data_offset);
+    fd.read_exactly(read_copy.data(), read_copy.size(), base + parsed.data_offset);
     data = read_copy.data();
   }
 
@@ -401,11 +448,11 @@ LightField ReadLightField(const std::filesystem::path& path, const LightFieldRea
     const ViewRecord& r = parsed.views[i];
     if (options.verify_checksums && Checksum(data + r.offset, r.stored_bytes) != r.xxh3)
       throw Error(
-          fmt::format("{}: {} is corrupt (checksum mismatch)", fd.name(), ViewName(h.dims, i)));
+          fmt::format("{}: {} is corrupt (checksum mismatch)", region.name, ViewName(h.dims, i)));
     if (h.compression == Compression::kZstd) {
       const auto content = ZSTD_getFrameContentSize(data + r.offset, r.stored_bytes);
       if (content != view_bytes)
-        throw Error(fmt::format("{}: {} does not hold a zstd frame of {} bytes", fd.name(),
+        throw Error(fmt::format("{}: {} does not hold a zstd frame of {} bytes", region.name,
                                 ViewName(h.dims, i), view_bytes));
     }
   };
@@ -422,7 +469,7 @@ LightField ReadLightField(const std::filesystem::path& path, const LightFieldRea
       const std::size_t n =
           ZSTD_decompress(out + i * view_bytes, view_bytes, data + r.offset, r.stored_bytes);
       if (ZSTD_isError(n) || n != view_bytes)
-        throw Error(fmt::format("{}: {} does not decompress: {}", fd.name(), ViewName(h.dims, i),
+        throw Error(fmt::format("{}: {} does not decompress: {}", region.name, ViewName(h.dims, i),
                                 ZSTD_isError(n) ? ZSTD_getErrorName(n) : "wrong size"));
     });
   }

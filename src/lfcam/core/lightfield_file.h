@@ -5,7 +5,10 @@
 #include <cstdint>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
 
+#include "lfcam/core/input_file.h"
 #include "lfcam/core/lightfield.h"
 
 namespace lfcam {
@@ -53,5 +56,18 @@ struct LightFieldHeader {
   std::uint64_t stored_sample_bytes = 0;
 };
 LightFieldHeader ReadLightFieldHeader(const std::filesystem::path& path);
+
+// A light field stored inside a larger file (a frame of a light field video,
+// core/lightfield_video_file.h): `size` bytes from `offset`, named `name` in errors.
+struct FileRegion {
+  std::uint64_t offset = 0, size = 0;
+  std::string name;
+};
+LightField ReadLightField(const InputFile& file, const FileRegion& region,
+                          const LightFieldReadOptions& options = {});
+LightFieldHeader ReadLightFieldHeader(const InputFile& file, const FileRegion& region);
+// The bytes WriteLightField writes, in memory (`name` in errors).
+std::vector<std::uint8_t> EncodeLightField(const LightField& lf, const std::string& name,
+                                           const LightFieldWriteOptions& options = {});
 
 }  // namespace lfcam

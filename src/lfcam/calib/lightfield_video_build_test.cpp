@@ -1,0 +1,144 @@
+// Building a light field video from a recording of the small realistic array (3x3 simulated
+// modules, calibrated from their 648x486 stills, recording at 324x243): every light field frame
+// built, each missing camera frame filled and named, and a frame of the moving scene as good as
+// a still built of the same instant's images.
+#include "lfcam/calib/lightfield_video_build.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "lfcam/calib/test_calibrated_session.h"
+#include "lfcam/core/image_io.h"
+#include "lfcam/core/lightfield_compare.h"
+#include "lfcam/core/lightfield_video_file.h"
+#include "lfcam/sim/capture_simulation.h"
+#include "lfcam/sim/recording_clock.h"
+
+namespace lfcam {
+namespace {
+
+namespace fs = std::filesystem;
+using LightFieldVideoBuildTest = testing::CalibratedSessionTest;
+
+constexpr std::int64_t kStart = 1'800'000'000'000'000'000;
+constexpr int kWidth = 324, kHeight = 243;
+
+// The session's manifest with a recording of `seconds` at `fps` added, its streams written into
+// `dir` as simulated nodes (the stills' seed, so the same modules) write them.
+CaptureManifest AddRecording(const CaptureManifest& stills, const fs::path& dir, double seconds,
+                             double fps, double drop_rate, bool sync = true) {
+  CaptureManifest m = stills;
+  CaptureSimulationOptions o;
+  o.rows = o.cols = 3;
+  o.sensor_width = kWidth;
+  o.sensor_height = kHeight;
+  o.seed = 11;
+  const Scene scene = MakeScene("paper");
+  const SimulatedArray array(scene, o);
+  Shot shot(ShotKind::kVideo, "rec_00");
+  shot.video = VideoShot{fps, seconds, kWidth, kHeight, sync ? "on" : "off", kStart, 1};
+  fs::create_directories(dir / "video/rec_00");
+  for (int c = 0; c < 9; ++c) {
+    RecordingClockOptions clock;
+    clock.fps = fps;
+    clock.drop_rate = drop_rate;
+    clock.sync = sync;
+    clock.seed = 5;
+    ShotImage image(c / 3, c % 3,
+                    fmt::format("video/rec_00/cam_{:02d}_{:02d}.mjpeg", c / 3, c % 3));
+    std::ofstream stream(dir / image.file, std::ios::binary);
+    SimulatedArray::ModuleCache cache;
+    std::uint64_t offset = 0;
+    for (const RecordedFrame& f : SimulateNodeFrames(c, seconds, clock)) {
+      const auto jpeg = EncodeJpeg(
+          array.ExposeAt(*array.module_at(c / 3, c % 3), f.exposure_start, f.sequence, cache), 95);
+      stream.write(reinterpret_cast<const char*>(jpeg.data()), std::streamsize(jpeg.size()));
+      image.frames.push_back({f.sequence, offset, jpeg.size(),
+                              kStart + std::llround(f.wall_clock * 1e9),
+                              std::llround(f.sensor_timestamp * 1e9)});
+      offset += jpeg.size();
+    }
+    shot.images.push_back(std::move(image));
+  }
+  m.shots.push_back(std::move(shot));
+  return m;
+}
+
+TEST_F(LightFieldVideoBuildTest, EveryFrameIsBuiltAndAMissingCameraFrameIsFilledAndNamed) {
+  const fs::path dir = *scratch_ / "video";
+  const CaptureManifest m = AddRecording(ReadManifest(session()), dir, 0.5, 10, 0.15);
+  VideoBuildOptions o;
+  o.build = Small();
+  o.build.n_s /= 2;
+  o.build.n_t /= 2;
+  const VideoBuildReport r =
+      BuildLightFieldVideo(dir, m, *calibration_, "rec_00", dir / "v.lfv", o);
+  EXPECT_EQ(r.frames, 5);
+  const LightFieldVideo video(dir / "v.lfv");
+  ASSERT_EQ(video.frame_count(), 5u);
+  EXPECT_TRUE(video.complete());
+  EXPECT_EQ(video.header().fps, 10);
+  std::int64_t filled = 0;
+  for (std::size_t k = 0; k < 5; ++k) {
+    const LightField lf = video.ReadFrame(k);
+    EXPECT_EQ(lf.dims().n_s, o.build.n_s);
+    EXPECT_EQ(lf.metadata()["frame"], k);
+    filled += std::int64_t(lf.metadata()["filled_views"].size());
+    EXPECT_NEAR(double(video.frame(k).time_ns - kStart), double(k) * 1e8, 1e5);
+  }
+  // Dropped frames (15% of them) are each filled once, and the report counts the same.
+  const FrameAlignment a = AlignFrames(m.shots.back(), 3, 3);
+  std::int64_t missing = 0;
+  for (const CameraSync& s : a.cameras) missing += s.missing;
+  EXPECT_GT(missing, 0);
+  EXPECT_EQ(filled, missing);
+  EXPECT_EQ(r.filled_views, missing);
+  EXPECT_EQ(video.header().metadata["recording"], "rec_00");
+}
+
+// The target of issue 24: a frame of the moving scene within 1 dB of a still light field built
+// of the same instant's images, both against the light field the ideal sensor records then.
+TEST_F(LightFieldVideoBuildTest, AFrameIsAsGoodAsAStillOfTheSameInstant) {
+  // The still: every camera exposed at 1.1 s exactly (the ball in view), built the same way.
+  CaptureSimulationOptions s;
+  s.rows = s.cols = 3;
+  s.sensor_width = kWidth;
+  s.sensor_height = kHeight;
+  s.seed = 11;
+  const Scene scene = MakeScene("paper");
+  const SimulatedArray array(scene, s);
+  std::vector<CameraImage> images;
+  for (int c = 0; c < 9; ++c) {
+    SimulatedArray::ModuleCache cache;
+    const auto jpeg =
+        EncodeJpeg(array.ExposeAt(*array.module_at(c / 3, c % 3), 1.1, 11, cache), 95);
+    images.push_back({c / 3, c % 3, "still", [jpeg] { return jpeg; }});
+  }
+  const BuildOptions build = Small();
+  const LightField still = BuildLightFieldFromImages(
+      ScaledCalibration(*calibration_, kWidth, kHeight), images, "at 1.1 s", build);
+  // Light field frame 11 (1.1 s) of a recording with sync and of one without.
+  double psnr[2] = {0, 0};
+  for (const bool sync : {true, false}) {
+    const fs::path dir = *scratch_ / (sync ? "video-sync" : "video-free");
+    const CaptureManifest m = AddRecording(ReadManifest(session()), dir, 1.2, 10, 0.0, sync);
+    VideoBuildOptions o;
+    o.build = build;
+    o.first_frame = 11;
+    o.frame_count = 1;
+    BuildLightFieldVideo(dir, m, *calibration_, "rec_00", dir / "v.lfv", o);
+    const LightField frame = LightFieldVideo(dir / "v.lfv").ReadFrame(0);
+    psnr[sync ? 0 : 1] = CompareLightFields(frame, still).all.psnr_db;
+  }
+  // With sync the cameras exposed within tens of microseconds of 1.1 s: the same light field
+  // (measured 56.3 dB). Free-running, up to half a frame period apart (50 ms: the ball moves
+  // 20 mm, the bead 110 mm): measured 25.9 dB, the moving things in other places per view.
+  EXPECT_GT(psnr[0], 50.0);
+  EXPECT_LT(psnr[1], psnr[0] - 5.0);
+  RecordProperty("psnr_sync_db", std::to_string(psnr[0]));
+  RecordProperty("psnr_free_running_db", std::to_string(psnr[1]));
+}
+
+}  // namespace
+}  // namespace lfcam
