@@ -89,13 +89,15 @@ DecodedRegion DecodeRegion(std::span<const std::uint8_t> bytes, const std::strin
 }
 
 // Resamples one camera's image into its view. Returns the decode reduction used.
-int BuildView(const ViewJob& job, const StSampling& sampling, StOffset window,
-              const BuildOptions& options, std::uint8_t* view, ViewStats* stats,
-              double* decode_seconds) {
+// Where each st sample of a view falls in its camera's image: the map (in the pixels of the image
+// decoded at 1/reduction), its footprint and the part of the image it reads. It depends on the
+// camera and the sampling only, so a video makes it once per camera.
+ViewMap MakeViewMap(const CalibratedCamera& camera, const StSampling& sampling,
+                    const BuildOptions& options) {
   const int n_s = options.n_s, n_t = options.n_t;
   const ViewWindow& st = sampling.window;
-  const CameraIntrinsics& k = job.camera->intrinsics;
-  const Rigid3 camera_from_world = job.camera->world_from_camera.inverse();
+  const CameraIntrinsics& k = camera.intrinsics;
+  const Rigid3 camera_from_world = camera.world_from_camera.inverse();
   const Mat3& r = camera_from_world.rotation;
   // Camera-frame point of st position (s, t): s * a_s + t * a_t + a_0.
   const Vec3 a_s = r * (st.width_mm * st.x_axis);
@@ -108,35 +110,25 @@ int BuildView(const ViewJob& job, const StSampling& sampling, StOffset window,
     const Vec2 n = k.distortion.Apply(Vec2(q.x() / q.z(), q.y() / q.z()));
     return Vec2(k.fx * n.x() + k.cx, k.fy * n.y() + k.cy);
   };
+  ViewMap m;
   // The map's footprint at the view's centre, in full-resolution pixels per st sample.
   const Vec2 c = pixel_of(0.5 * n_s, 0.5 * n_t);
-  const double footprint = std::max((pixel_of(0.5 * n_s + 1, 0.5 * n_t) - c).norm(),
-                                    (pixel_of(0.5 * n_s, 0.5 * n_t + 1) - c).norm());
-  int reduction = 1;
-  while (reduction < 8 && 2.0 * reduction <= footprint) reduction *= 2;
-
-  const std::vector<std::uint8_t> bytes = job.image->read();
-  const std::string& name = job.image->name;
-  ImageHeader header;
-  try {
-    header = ProbeImageHeader(bytes);
-  } catch (const Error& e) {
-    throw Error(fmt::format("{} ({}): {}", name, CameraLabel(job.row, job.col), e.what()));
-  }
-  if (header.width != k.width || header.height != k.height)
-    throw Error(fmt::format("{} ({}): the image is {}x{}, but the calibration is for {}x{} images",
-                            name, CameraLabel(job.row, job.col), header.width, header.height,
-                            k.width, k.height));
-  const cv::Size scaled((k.width + reduction - 1) / reduction,
-                        (k.height + reduction - 1) / reduction);
+  m.footprint = std::max((pixel_of(0.5 * n_s + 1, 0.5 * n_t) - c).norm(),
+                         (pixel_of(0.5 * n_s, 0.5 * n_t + 1) - c).norm());
+  while (m.reduction < 8 && 2.0 * m.reduction <= m.footprint) m.reduction *= 2;
+  const int reduction = m.reduction;
+  m.scaled =
+      cv::Size((k.width + reduction - 1) / reduction, (k.height + reduction - 1) / reduction);
+  const cv::Size scaled = m.scaled;
 
   // The map, in the scaled image's pixels, and the part of the image it reads.
-  cv::Mat map_x(n_t, n_s, CV_32FC1), map_y(n_t, n_s, CV_32FC1);
+  m.map_x.create(n_t, n_s, CV_32FC1);
+  m.map_y.create(n_t, n_s, CV_32FC1);
   float x_lo = 1e30f, x_hi = -1e30f, y_lo = 1e30f, y_hi = -1e30f;
   const float scale = 1.0f / float(reduction), shift = 0.5f / float(reduction) - 0.5f;
   for (int l = 0; l < n_t; ++l) {
-    float* mx = map_x.ptr<float>(l);
-    float* my = map_y.ptr<float>(l);
+    float* mx = m.map_x.ptr<float>(l);
+    float* my = m.map_y.ptr<float>(l);
     for (int kk = 0; kk < n_s; ++kk) {
       const Vec2 p = pixel_of(kk, l);
       mx[kk] = float(p.x()) * scale + shift;
@@ -150,14 +142,41 @@ int BuildView(const ViewJob& job, const StSampling& sampling, StOffset window,
     }
   }
   // A margin for the interpolation kernel (Lanczos reaches 4 pixels) and the prefilter.
-  const int margin = 5 + int(std::ceil(footprint / reduction));
-  const cv::Rect wanted =
+  const int margin = 5 + int(std::ceil(m.footprint / reduction));
+  m.wanted =
       x_hi < x_lo
           ? cv::Rect()
           : cv::Rect(
                 cv::Point(int(std::floor(x_lo)) - margin, int(std::floor(y_lo)) - margin),
                 cv::Point(int(std::ceil(x_hi)) + margin + 1, int(std::ceil(y_hi)) + margin + 1)) &
                 cv::Rect(cv::Point(0, 0), scaled);
+  return m;
+}
+
+// Resamples one camera's image into its view through its map. Returns the decode reduction used.
+int BuildView(const ViewJob& job, ViewMap& view_map, StOffset window, const BuildOptions& options,
+              std::uint8_t* view, ViewStats* stats, double* decode_seconds) {
+  const int n_s = options.n_s, n_t = options.n_t;
+  const CameraIntrinsics& k = job.camera->intrinsics;
+  const int reduction = view_map.reduction;
+  const double footprint = view_map.footprint;
+  const cv::Size scaled = view_map.scaled;
+  const cv::Rect wanted = view_map.wanted;
+  cv::Mat& map_x = view_map.map_x;
+  cv::Mat& map_y = view_map.map_y;
+
+  const std::vector<std::uint8_t> bytes = job.image->read();
+  const std::string& name = job.image->name;
+  ImageHeader header;
+  try {
+    header = ProbeImageHeader(bytes);
+  } catch (const Error& e) {
+    throw Error(fmt::format("{} ({}): {}", name, CameraLabel(job.row, job.col), e.what()));
+  }
+  if (header.width != k.width || header.height != k.height)
+    throw Error(fmt::format("{} ({}): the image is {}x{}, but the calibration is for {}x{} images",
+                            name, CameraLabel(job.row, job.col), header.width, header.height,
+                            k.width, k.height));
   const auto start = std::chrono::steady_clock::now();
   const DecodedRegion region = DecodeRegion(bytes, name, reduction, scaled, wanted, options.chroma);
   *decode_seconds +=
@@ -354,8 +373,9 @@ LightField BuildLightField(const std::filesystem::path& dir, const CaptureManife
 LightField BuildLightFieldFromImages(const CalibrationFile& cal,
                                      const std::vector<CameraImage>& images,
                                      const std::string& where, const BuildOptions& o,
-                                     BuildReport* report_out) {
+                                     BuildReport* report_out, std::vector<ViewMap>* maps) {
   const auto start = std::chrono::steady_clock::now();
+  if (maps && maps->size() != cal.cameras.size()) maps->assign(cal.cameras.size(), ViewMap{});
   BuildReport report;
   if (o.n_s < 1 || o.n_t < 1 || o.n_s > kMaxStSamplesPerSide || o.n_t > kMaxStSamplesPerSide)
     throw Error(fmt::format("st resolution {}x{} is out of range", o.n_s, o.n_t));
@@ -446,8 +466,11 @@ LightField BuildLightFieldFromImages(const CalibrationFile& cal,
     double decode = 0;
     int reduction = 1;
     try {
-      reduction = BuildView(job, lf.st_sampling(job.row, job.col), lf.st_offset(job.row, job.col),
-                            o, lf.mutable_view_data(job.row, job.col), &s, &decode);
+      ViewMap local;
+      ViewMap* map = maps ? &(*maps)[std::size_t(job.row * cols + job.col)] : &local;
+      if (map->map_x.empty()) *map = MakeViewMap(*job.camera, lf.st_sampling(job.row, job.col), o);
+      reduction = BuildView(job, *map, lf.st_offset(job.row, job.col), o,
+                            lf.mutable_view_data(job.row, job.col), &s, &decode);
     } catch (const Error& e) {
       // An image that cannot be read: filled like a missing one when that is allowed.
       if (!o.allow_missing) throw;

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <opencv2/core.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -72,13 +73,26 @@ struct CameraImage {
   std::function<std::vector<std::uint8_t>()> read;
 };
 
+// Where a view's st samples fall in its camera's image (computed from the calibration and the
+// sampling alone): what a video's frames share.
+struct ViewMap {
+  cv::Mat map_x, map_y;  // CV_32FC1, n_t x n_s: pixels of the image decoded at 1/reduction
+  int reduction = 1;
+  double footprint = 0;  // full-resolution pixels per st sample at the view's centre
+  cv::Size scaled;       // the image's size at 1/reduction
+  cv::Rect wanted;       // the part of it the map reads, with a margin
+};
+
 // What BuildLightField does once it has found the shot's images: `images` holds at most one per
 // camera; a camera without one (`where` says of what: "in shot 'scene'") is missing, and with
 // options.allow_missing filled from its neighbours, as is one whose image cannot be read (the
-// report and the metadata say which and why). options.shot is not used.
+// report and the metadata say which and why). options.shot is not used. With `maps`, each
+// camera's map is made once and kept there for the next call with the same calibration and
+// options (a video's frames).
 LightField BuildLightFieldFromImages(const CalibrationFile& calibration,
                                      const std::vector<CameraImage>& images,
                                      const std::string& where, const BuildOptions& options,
-                                     BuildReport* report = nullptr);
+                                     BuildReport* report = nullptr,
+                                     std::vector<ViewMap>* maps = nullptr);
 
 }  // namespace lfcam

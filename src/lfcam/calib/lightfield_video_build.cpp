@@ -99,6 +99,7 @@ VideoBuildReport BuildLightFieldVideo(const std::filesystem::path& dir,
   LightFieldVideoWriter writer(out, header);
   // Frame k is compressed and written while frame k + 1 is built: the two stages share the
   // cores, and neither waits on the other's serial parts.
+  std::vector<ViewMap> maps;  // each camera's, made with the first frame
   std::future<void> writing;
   const auto finish_writing = [&] {
     if (writing.valid()) writing.get();
@@ -122,7 +123,7 @@ VideoBuildReport BuildLightFieldVideo(const std::filesystem::path& dir,
     }
     BuildReport frame_report;
     LightField lf = BuildLightFieldFromImages(
-        scaled, images, fmt::format("in light field frame {}", k), build, &frame_report);
+        scaled, images, fmt::format("in light field frame {}", k), build, &frame_report, &maps);
     report.filled_views += std::int64_t(frame_report.filled.size());
     lf.metadata()["recording"] = shot_name;
     lf.metadata()["frame"] = k;
