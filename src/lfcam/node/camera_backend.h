@@ -59,6 +59,10 @@ class CameraBackend {
   // default: this camera records no video.
   virtual void Record(const RecordRequest& request, const FrameSink& sink,
                       const std::atomic<bool>& stop);
+  // How long before the start time Record must be called for the camera to record from it.
+  virtual std::chrono::milliseconds RecordLead(const VideoRecordInfo&) const {
+    return std::chrono::milliseconds(0);
+  }
   // A small JPEG for aiming and focusing, at most `max_width` pixels wide.
   virtual std::string Preview(int max_width) = 0;
 };

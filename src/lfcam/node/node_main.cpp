@@ -68,6 +68,17 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--rpicam-program", rpicam.program,
                  "rpicam: the program for {program} (default: rpicam-still, else libcamera-still)");
+  app.add_option("--rpicam-video-command", rpicam.video_command,
+                 "rpicam: the video command template (docs/hardware.md)")
+      ->capture_default_str();
+  app.add_option("--rpicam-video-program", rpicam.video_program,
+                 "rpicam: the program for a video's {program} (default: rpicam-vid, else "
+                 "libcamera-vid)");
+  app.add_option("--rpicam-sync-frames", rpicam.sync_warmup_frames,
+                 "rpicam: frames the sync server counts before the clients follow (rpicam-apps' "
+                 "--sync-frames)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 10000));
   app.add_option("--rpicam-warmup-ms", rpicam.warmup_ms,
                  "rpicam: wait after starting the camera before the first trigger")
       ->capture_default_str();

@@ -7,7 +7,10 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
+#include <cstdio>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <thread>
@@ -15,6 +18,7 @@
 #include "lfcam/core/error.h"
 #include "lfcam/core/input_file.h"
 #include "lfcam/node/jpeg_preview.h"
+#include "lfcam/node/rpicam_video.h"
 
 extern char** environ;
 
@@ -42,6 +46,8 @@ class RpicamCamera final : public CameraBackend {
   explicit RpicamCamera(RpicamOptions options) : options_(std::move(options)) {
     if (options_.program.empty())
       options_.program = FindOnPath({"rpicam-still", "libcamera-still"});
+    if (options_.video_program.empty())
+      options_.video_program = FindOnPath({"rpicam-vid", "libcamera-vid"});
     std::error_code ec;
     fs::create_directories(options_.work_folder, ec);
     if (ec)
@@ -57,7 +63,35 @@ class RpicamCamera final : public CameraBackend {
       return {false, "rpicam", "neither rpicam-still nor libcamera-still is on PATH"};
     if (pid_ > 0 && !Running())
       return {false, options_.program, fmt::format("the camera process exited ({})", exit_)};
-    return {true, options_.program, pid_ > 0 ? "running, settings locked" : "not started"};
+    return {true, options_.program,
+            fmt::format("{}; video: {}", pid_ > 0 ? "running, settings locked" : "not started",
+                        VideoAbility())};
+  }
+
+  // What recording can do here: rpicam-vid with libcamera's sync (rpicam-apps 1.6 and later), or
+  // without it (a scheduled start only), or none.
+  std::string VideoAbility() {
+    if (options_.video_program.empty()) return "none (no rpicam-vid or libcamera-vid on PATH)";
+    return SyncSupported() ? options_.video_program + " with --sync"
+                           : options_.video_program +
+                                 " without --sync (rpicam-apps before 1.6): recordings start at a "
+                                 "scheduled time only";
+  }
+
+  // Whether the video program knows --sync (asked once: its --help).
+  bool SyncSupported() {
+    if (!sync_supported_) {
+      std::string help;
+      const std::string command = "'" + options_.video_program + "' --help 2>&1";
+      if (std::FILE* pipe = ::popen(command.c_str(), "r")) {
+        char buffer[4096];
+        for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;)
+          help.append(buffer, n);
+        ::pclose(pipe);
+      }
+      sync_supported_ = help.find("--sync") != std::string::npos;
+    }
+    return *sync_supported_;
   }
 
   void Configure(const CaptureSettings& settings) override {
@@ -111,6 +145,88 @@ class RpicamCamera final : public CameraBackend {
         fmt::format("rpicam: no frame from {} within {} ms", options_.program, timeout.count()));
   }
 
+  std::chrono::milliseconds RecordLead(const VideoRecordInfo& video) const override {
+    const double frames = video.sync == "off" ? 0 : options_.sync_warmup_frames;
+    return std::chrono::milliseconds(options_.warmup_ms + std::int64_t(1000 * frames / video.fps));
+  }
+
+  void Record(const RecordRequest& request, const FrameSink& sink,
+              const std::atomic<bool>& stop) override {
+    if (!configured_) throw Error("rpicam: the camera is not configured yet");
+    if (options_.video_program.empty())
+      throw Error("rpicam: neither rpicam-vid nor libcamera-vid is on PATH");
+    Stop();  // the stills' camera lets go of the sensor
+    const VideoRecordInfo& v = request.video;
+    const fs::path stream = options_.work_folder / "video.mjpeg";
+    const fs::path metadata = options_.work_folder / "video.json";
+    std::error_code ec;
+    fs::remove(stream, ec);
+    fs::remove(metadata, ec);
+    CaptureSettings s = settings_;
+    s.width = v.width;
+    s.height = v.height;
+    // Start the camera early enough that it records from the start time, and let it run a few
+    // frames past the end.
+    const auto lead = RecordLead(v);
+    const std::int64_t start = request.start_unix_ns;
+    const std::int64_t launch = start - std::int64_t(lead.count()) * 1'000'000;
+    while (!stop && WallNs() < launch)
+      std::this_thread::sleep_for(std::chrono::milliseconds(std::min<std::int64_t>(
+          50, std::max<std::int64_t>(1, (launch - WallNs()) / 1'000'000))));
+    if (stop) return;
+    VideoCommandValues values;
+    values.fps = v.fps;
+    values.metadata = metadata.string();
+    // Without libcamera's sync (older rpicam-apps) every node starts at the scheduled time.
+    values.sync = SyncSupported() ? v.sync : "off";
+    const double period_s = 1.0 / v.fps;
+    values.timeout_ms = std::int64_t(
+        std::ceil((double(start - WallNs()) / 1e9 + v.seconds + 3 * period_s) * 1000));
+    Spawn(ExpandCameraCommand(options_.video_command, options_.video_program, s, stream.string(),
+                              &values));
+    const auto deadline = std::chrono::steady_clock::now() +
+                          std::chrono::milliseconds(values.timeout_ms + 10'000);
+    while (Running()) {
+      if (stop || std::chrono::steady_clock::now() > deadline) {
+        Stop();
+        break;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    if (!fs::is_regular_file(stream, ec))
+      throw Error(fmt::format("rpicam: {} wrote no video ({})", options_.video_program, exit_));
+    const auto bytes = ReadFileBytes(stream, std::uint64_t(1) << 40, "video stream");
+    const std::string_view all(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+    const auto jpegs = SplitMjpeg(all, stream.string());
+    const auto text = ReadFileBytes(metadata, std::uint64_t(1) << 32, "video metadata");
+    const auto times = ParseRpicamMetadata(
+        {reinterpret_cast<const char*>(text.data()), text.size()}, metadata.string());
+    const std::size_t n = std::min(jpegs.size(), times.size());
+    const std::vector<RpicamFrameTime> paired(times.begin(),
+                                              times.begin() + std::ptrdiff_t(n));
+    const std::vector<std::int64_t> sequence = SequenceFromSensorTimes(paired, v.fps);
+    // The recording's frames: those whose exposures start within [T, T + seconds), each on the
+    // grid to within half a period.
+    const auto half = std::int64_t(period_s * 0.5e9);
+    const std::int64_t end = start + std::int64_t(v.seconds * 1e9);
+    std::int64_t first = -1;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (paired[i].wall_clock_ns < start - half || paired[i].wall_clock_ns >= end - half)
+        continue;
+      if (first < 0) first = sequence[i];
+      CapturedFrame f;
+      f.sequence = sequence[i] - first;
+      f.wall_clock_ns = paired[i].wall_clock_ns;
+      f.sensor_ns = paired[i].sensor_ns;
+      f.jpeg.assign(all.substr(jpegs[i].first, jpegs[i].second));
+      sink(std::move(f));
+    }
+    if (first < 0)
+      throw Error(fmt::format("rpicam: {} recorded {} frames, none within the recording's time "
+                              "(is the clock right?)",
+                              options_.video_program, n));
+  }
+
   std::string Preview(int max_width) override {
     Prepare({"preview", "preview", "preview"});
     Fire();
@@ -133,8 +249,16 @@ class RpicamCamera final : public CameraBackend {
     // Frames left from an earlier run would be mistaken for new ones.
     std::error_code ec;
     for (const fs::path& f : Frames()) fs::remove(f, ec);
-    const std::vector<std::string> args =
-        ExpandCameraCommand(options_.command, options_.program, settings_, Output());
+    Spawn(ExpandCameraCommand(options_.command, options_.program, settings_, Output()));
+  }
+
+  static std::int64_t WallNs() {
+    return std::chrono::duration_cast<std::chrono::nanoseconds>(
+               std::chrono::system_clock::now().time_since_epoch())
+        .count();
+  }
+
+  void Spawn(const std::vector<std::string>& args) {
     std::vector<char*> argv;
     for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
     argv.push_back(nullptr);
@@ -177,14 +301,21 @@ class RpicamCamera final : public CameraBackend {
   std::string exit_;
   std::chrono::steady_clock::time_point started_;
   std::set<fs::path> before_;
+  std::optional<bool> sync_supported_;
 };
 
 }  // namespace
 
 std::vector<std::string> ExpandCameraCommand(const std::string& command_template,
                                              const std::string& program, const CaptureSettings& s,
-                                             const std::string& output) {
+                                             const std::string& output,
+                                             const VideoCommandValues* video) {
+  const VideoCommandValues none;
+  const VideoCommandValues& v = video ? *video : none;
   const std::pair<const char*, std::string> values[] = {
+      {"{fps}", fmt::format("{}", v.fps)},
+      {"{timeout_ms}", std::to_string(v.timeout_ms)},
+      {"{metadata}", v.metadata},
       {"{program}", program},
       {"{width}", std::to_string(s.width)},
       {"{height}", std::to_string(s.height)},
@@ -198,6 +329,14 @@ std::vector<std::string> ExpandCameraCommand(const std::string& command_template
   std::vector<std::string> args;
   std::stringstream words(command_template);
   for (std::string word; words >> word;) {
+    if (word == "{sync}") {
+      if (!video) throw Error("camera command: {sync} belongs to a video command");
+      if (v.sync != "off") {
+        args.push_back("--sync");
+        args.push_back(v.sync);
+      }
+      continue;
+    }
     std::string expanded;
     for (std::size_t i = 0; i < word.size();) {
       if (word[i] != '{') {
@@ -207,7 +346,7 @@ std::vector<std::string> ExpandCameraCommand(const std::string& command_template
       const auto close = word.find('}', i);
       const std::string key = word.substr(i, close == std::string::npos ? close : close - i + 1);
       const auto it = std::find_if(std::begin(values), std::end(values),
-                                   [&](const auto& v) { return key == v.first; });
+                                   [&](const auto& entry) { return key == entry.first; });
       if (it == std::end(values))
         throw Error(
             fmt::format("camera command: unknown placeholder '{}' in '{}'", key, command_template));
