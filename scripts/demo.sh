@@ -11,16 +11,19 @@
 #            process per camera, on loopback, playing simulated modules) driven by
 #            `lfcam capture` (configure, 14 board poses, world board, scene), instead of
 #            `lfcam simulate capture` writing the session directly (docs/hardware.md)
+#   --video: light field video instead (scripts/demo-video.sh: 100 nodes record the moving
+#            scene, the host aligns the frames, lfcam builds and renders the video)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 quick=0 capture=0
 for arg in "$@"; do
   case "$arg" in
+    --video) shift; exec scripts/demo-video.sh "$@" ;;
     --quick) quick=1 ;;
     --capture) capture=1 ;;
-    -h|--help) sed -n '2,14p' "$0"; exit 0 ;;
-    *) echo "demo.sh: unknown argument '$arg' (try --quick or --capture)" >&2; exit 2 ;;
+    -h|--help) sed -n '2,16p' "$0"; exit 0 ;;
+    *) echo "demo.sh: unknown argument '$arg' (try --quick, --capture or --video)" >&2; exit 2 ;;
   esac
 done
 
