@@ -9,6 +9,7 @@
 #include <fstream>
 
 #include "lfcam/calib/test_calibrated_session.h"
+#include "lfcam/core/error.h"
 #include "lfcam/core/image_io.h"
 #include "lfcam/core/lightfield_compare.h"
 #include "lfcam/core/lightfield_video_file.h"
@@ -138,6 +139,48 @@ TEST_F(LightFieldVideoBuildTest, AFrameIsAsGoodAsAStillOfTheSameInstant) {
   EXPECT_LT(psnr[1], psnr[0] - 5.0);
   RecordProperty("psnr_sync_db", std::to_string(psnr[0]));
   RecordProperty("psnr_free_running_db", std::to_string(psnr[1]));
+}
+
+// A stream shorter than its frames (truncated, or a manifest that lies) is refused with its
+// camera named; a frame that is not a JPEG is filled like a missing one, and named.
+TEST_F(LightFieldVideoBuildTest, BadStreamsAreNamed) {
+  const fs::path dir = *scratch_ / "video-bad";
+  const CaptureManifest m = AddRecording(ReadManifest(session()), dir, 0.3, 10, 0.0);
+  VideoBuildOptions o;
+  o.build = Small();
+  const ShotImage& victim = m.shots.back().images[4];  // camera (1, 1)
+  const fs::path stream = dir / victim.file;
+  const auto size = fs::file_size(stream);
+  // Frame 1's first bytes: no longer a JPEG.
+  {
+    std::fstream f(stream, std::ios::in | std::ios::out | std::ios::binary);
+    f.seekp(std::streamoff(victim.frames[1].offset));
+    f.write("garbage!", 8);
+  }
+  BuildLightFieldVideo(dir, m, *calibration_, "rec_00", dir / "v.lfv", o);
+  const LightField frame = LightFieldVideo(dir / "v.lfv").ReadFrame(1);
+  ASSERT_EQ(frame.metadata()["unreadable_images"].size(), 1u);
+  EXPECT_NE(frame.metadata()["unreadable_images"][0].get<std::string>().find("camera (1, 1)"),
+            std::string::npos);
+  EXPECT_EQ(frame.metadata()["filled_views"].size(), 1u);
+  EXPECT_EQ(LightFieldVideo(dir / "v.lfv").ReadFrame(0).metadata()["filled_views"].size(), 0u);
+  // Cut: refused before anything is written, the camera named.
+  fs::resize_file(stream, size - 100);
+  fs::remove(dir / "v.lfv");
+  try {
+    BuildLightFieldVideo(dir, m, *calibration_, "rec_00", dir / "v.lfv", o);
+    ADD_FAILURE() << "a truncated stream was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("camera (1, 1)"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("truncated"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(fs::exists(dir / "v.lfv"));
+  // Not a recording; a recording's mode another aspect ratio than the calibration's.
+  EXPECT_THROW(BuildLightFieldVideo(dir, m, *calibration_, "scene", dir / "v.lfv", o), Error);
+  CaptureManifest wide = m;
+  wide.shots.back().video->width = 320;
+  wide.shots.back().video->height = 180;
+  EXPECT_THROW(BuildLightFieldVideo(dir, wide, *calibration_, "rec_00", dir / "v.lfv", o), Error);
 }
 
 }  // namespace

@@ -330,12 +330,12 @@ struct NodeAgent::Impl {
     if (lead > std::int64_t(120) * 1'000'000'000)
       return Refuse(res, {400, "request", "the start time is more than 120 s ahead"});
     if (const auto needed = camera->RecordLead(request.video); lead < needed.count() * 1'000'000)
-      return Refuse(res, {409, "late",
-                          fmt::format("the camera needs {:.1f} s to start recording{}, the start "
-                                      "is {:.1f} s away (lfcam capture record --margin)",
-                                      double(needed.count()) / 1e3,
-                                      request.video.sync == "off" ? "" : " in sync",
-                                      double(lead) / 1e9)});
+      return Refuse(
+          res, {409, "late",
+                fmt::format("the camera needs {:.1f} s to start recording{}, the start "
+                            "is {:.1f} s away (lfcam capture record --margin)",
+                            double(needed.count()) / 1e3,
+                            request.video.sync == "off" ? "" : " in sync", double(lead) / 1e9)});
     if (double(array_settings.exposure_us) > 1e6 / request.video.fps)
       return Refuse(res, {409, "settings",
                           fmt::format("an exposure of {} us is longer than a frame at {} fps",

@@ -8,8 +8,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <cstdio>
+#include <cstring>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -171,8 +171,8 @@ class RpicamCamera final : public CameraBackend {
     const std::int64_t start = request.start_unix_ns;
     const std::int64_t launch = start - std::int64_t(lead.count()) * 1'000'000;
     while (!stop && WallNs() < launch)
-      std::this_thread::sleep_for(std::chrono::milliseconds(std::min<std::int64_t>(
-          50, std::max<std::int64_t>(1, (launch - WallNs()) / 1'000'000))));
+      std::this_thread::sleep_for(std::chrono::milliseconds(
+          std::min<std::int64_t>(50, std::max<std::int64_t>(1, (launch - WallNs()) / 1'000'000))));
     if (stop) return;
     VideoCommandValues values;
     values.fps = v.fps;
@@ -180,12 +180,12 @@ class RpicamCamera final : public CameraBackend {
     // Without libcamera's sync (older rpicam-apps) every node starts at the scheduled time.
     values.sync = SyncSupported() ? v.sync : "off";
     const double period_s = 1.0 / v.fps;
-    values.timeout_ms = std::int64_t(
-        std::ceil((double(start - WallNs()) / 1e9 + v.seconds + 3 * period_s) * 1000));
+    values.timeout_ms =
+        std::int64_t(std::ceil((double(start - WallNs()) / 1e9 + v.seconds + 3 * period_s) * 1000));
     Spawn(ExpandCameraCommand(options_.video_command, options_.video_program, s, stream.string(),
                               &values));
-    const auto deadline = std::chrono::steady_clock::now() +
-                          std::chrono::milliseconds(values.timeout_ms + 10'000);
+    const auto deadline =
+        std::chrono::steady_clock::now() + std::chrono::milliseconds(values.timeout_ms + 10'000);
     while (Running()) {
       if (stop || std::chrono::steady_clock::now() > deadline) {
         Stop();
@@ -202,8 +202,7 @@ class RpicamCamera final : public CameraBackend {
     const auto times = ParseRpicamMetadata(
         {reinterpret_cast<const char*>(text.data()), text.size()}, metadata.string());
     const std::size_t n = std::min(jpegs.size(), times.size());
-    const std::vector<RpicamFrameTime> paired(times.begin(),
-                                              times.begin() + std::ptrdiff_t(n));
+    const std::vector<RpicamFrameTime> paired(times.begin(), times.begin() + std::ptrdiff_t(n));
     const std::vector<std::int64_t> sequence = SequenceFromSensorTimes(paired, v.fps);
     // The recording's frames: those whose exposures start within [T, T + seconds), each on the
     // grid to within half a period.
@@ -211,8 +210,7 @@ class RpicamCamera final : public CameraBackend {
     const std::int64_t end = start + std::int64_t(v.seconds * 1e9);
     std::int64_t first = -1;
     for (std::size_t i = 0; i < n; ++i) {
-      if (paired[i].wall_clock_ns < start - half || paired[i].wall_clock_ns >= end - half)
-        continue;
+      if (paired[i].wall_clock_ns < start - half || paired[i].wall_clock_ns >= end - half) continue;
       if (first < 0) first = sequence[i];
       CapturedFrame f;
       f.sequence = sequence[i] - first;
@@ -222,9 +220,10 @@ class RpicamCamera final : public CameraBackend {
       sink(std::move(f));
     }
     if (first < 0)
-      throw Error(fmt::format("rpicam: {} recorded {} frames, none within the recording's time "
-                              "(is the clock right?)",
-                              options_.video_program, n));
+      throw Error(
+          fmt::format("rpicam: {} recorded {} frames, none within the recording's time "
+                      "(is the clock right?)",
+                      options_.video_program, n));
   }
 
   std::string Preview(int max_width) override {

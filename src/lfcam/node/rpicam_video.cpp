@@ -11,7 +11,7 @@
 namespace lfcam {
 
 std::vector<std::pair<std::size_t, std::size_t>> SplitMjpeg(std::string_view s,
-                                                           const std::string& where) {
+                                                            const std::string& where) {
   std::vector<std::pair<std::size_t, std::size_t>> out;
   std::size_t at = 0;
   while (true) {
@@ -56,8 +56,8 @@ std::vector<RpicamFrameTime> ParseRpicamMetadata(std::string_view text, const st
     RpicamFrameTime t;
     t.sensor_ns = JsonInteger(j[i], "SensorTimestamp", 0, INT64_MAX, w);
     t.wall_clock_ns = JsonInteger(j[i], "FrameWallClock", 0, INT64_MAX, w);
-    if (!out.empty() && (t.sensor_ns <= out.back().sensor_ns ||
-                         t.wall_clock_ns <= out.back().wall_clock_ns))
+    if (!out.empty() &&
+        (t.sensor_ns <= out.back().sensor_ns || t.wall_clock_ns <= out.back().wall_clock_ns))
       throw Error(fmt::format("{}: its times are not after frame {}'s", w, i - 1));
     out.push_back(t);
   }

@@ -21,7 +21,7 @@ struct RpicamFrameTime {
 // frames (a frame cut short by the end of the file) are left out. Throws lfcam::Error naming
 // `where` for a stream with no whole JPEG.
 std::vector<std::pair<std::size_t, std::size_t>> SplitMjpeg(std::string_view stream,
-                                                           const std::string& where);
+                                                            const std::string& where);
 
 // The per-frame times of an rpicam-apps JSON metadata file: an array of objects (a last one cut
 // short by a camera process that was stopped is left out). Throws lfcam::Error naming `where` and

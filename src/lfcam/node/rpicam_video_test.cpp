@@ -48,14 +48,16 @@ TEST(RpicamVideo, SplitsTheStreamAndPairsItsFramesWithTheirTimes) {
 }
 
 TEST(RpicamVideo, TheBackendRecordsThroughRpicamVidAndKeepsTheRecordingsFrames) {
-  const fs::path dir = fs::temp_directory_path() / ("lfcam_rpicam_vid_" + std::to_string(::getpid()));
+  const fs::path dir =
+      fs::temp_directory_path() / ("lfcam_rpicam_vid_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
   // The stand-in: from its start, one frame a period for --timeout ms, each with its times; its
   // arguments saved for the test to read.
   const fs::path fake = dir / "fake-rpicam-vid";
   std::ofstream(fake) << R"(#!/bin/bash
-echo "$@" > ")" << (dir / "args").string() << R"("
+echo "$@" > ")" << (dir / "args").string()
+                      << R"("
 while [ $# -gt 0 ]; do
   case $1 in
     --output) out=$2 ;; --metadata) meta=$2 ;; --framerate) fps=$2 ;; --timeout) ms=$2 ;;
@@ -96,7 +98,8 @@ echo "]" >> "$meta"
   r.start_unix_ns = now + 600'000'000;
   std::vector<CapturedFrame> frames;
   std::atomic<bool> stop{false};
-  camera->Record(r, [&](CapturedFrame&& f) { frames.push_back(std::move(f)); }, stop);
+  camera->Record(
+      r, [&](CapturedFrame&& f) { frames.push_back(std::move(f)); }, stop);
   // The stand-in started 300 ms early and wrote a frame every 50 ms: the recording keeps the
   // ten whose times fall in the half second from the start, numbered from 0.
   ASSERT_GE(frames.size(), 9u);

@@ -97,6 +97,13 @@ FrameAlignment AlignFrames(const Shot& shot, int rows, int cols, const Alignment
   const double shift = phase / (2 * std::numbers::pi) * period;
   a.tau0_ns = v.start_unix_ns + std::llround(shift);
   const auto count = std::int64_t(std::ceil(v.seconds * v.fps - 1e-9));
+  // One slot per camera and frame: a bound on what a manifest can make it allocate (100
+  // cameras for 2 hours at 60 fps).
+  if (double(count) * double(n) > 5e7)
+    throw Error(
+        fmt::format("recording '{}': {} frames of {} cameras is more than this host "
+                    "aligns at once (5e7 camera frames)",
+                    shot.name, count, n));
   a.frames.resize(std::size_t(std::max<std::int64_t>(count, 0)));
   for (std::size_t k = 0; k < a.frames.size(); ++k) {
     a.frames[k].time_ns = a.tau0_ns + std::llround(double(k) * period);

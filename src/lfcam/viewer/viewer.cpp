@@ -17,6 +17,7 @@
 #include "lfcam/core/error.h"
 #include "lfcam/core/image_io.h"
 #include "lfcam/core/lightfield_file.h"
+#include "lfcam/core/lightfield_video_file.h"
 #include "lfcam/depth/depth_set.h"
 #include "lfcam/render/focus_probe.h"
 #include "lfcam/viewer/control_windows.h"
@@ -480,7 +481,8 @@ class Viewer {
 
 void RunViewer(const ViewerOptions& options) {
   // Everything that can be wrong with the inputs is found before a window opens.
-  LightField lf = ReadLightField(options.light_field);
+  // A light field video opens at its first frame (playing it is issue 25's).
+  LightField lf = ReadLightFieldFrame(options.light_field);
   if (!options.script.empty()) ReadViewerScript(options.script);
   if (!options.view_file.empty()) ReadViewFile(options.view_file);
   DepthSet depth;
