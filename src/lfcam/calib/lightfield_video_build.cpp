@@ -75,7 +75,7 @@ VideoBuildReport BuildLightFieldVideo(const std::filesystem::path& dir,
     per_camera.push_back(std::move(j));
   }
   LightFieldVideoHeader header;
-  header.fps = video.fps;
+  header.fps = video.fps * alignment.groups;  // staggered: the groups' frames interleaved
   header.frames_planned = count;
   header.start_unix_ns = alignment.frames[std::size_t(first)].time_ns;
   header.metadata = {{"source", "built"},
@@ -84,6 +84,8 @@ VideoBuildReport BuildLightFieldVideo(const std::filesystem::path& dir,
                      {"first_frame", first},
                      {"video_mode", {video.width, video.height}},
                      {"sync", video.sync},
+                     {"groups", alignment.groups},
+                     {"camera_fps", video.fps},
                      {"sync_report",
                       {{"spread_us",
                         {{"median", report.spread.median_us},
@@ -131,6 +133,15 @@ VideoBuildReport BuildLightFieldVideo(const std::filesystem::path& dir,
     lf.metadata()["spread_us"] =
         frame.spread_ns ? nlohmann::json(double(*frame.spread_ns) / 1e3) : nlohmann::json();
     lf.metadata()["session"] = manifest.source;
+    if (alignment.groups > 1) {
+      // Staggered: the frame holds one group's cameras; the others' views are filled.
+      nlohmann::json held = nlohmann::json::array();
+      for (std::size_t c = 0; c < frame.frame_of_camera.size(); ++c)
+        if (frame.frame_of_camera[c] >= 0) held.push_back({int(c) / cal.cols, int(c) % cal.cols});
+      lf.metadata()["group"] = frame.group;
+      lf.metadata()["groups"] = alignment.groups;
+      lf.metadata()["cameras_held"] = std::move(held);
+    }
     finish_writing();
     writing = std::async(std::launch::async,
                          [&writer, &o, &report,

@@ -16,7 +16,8 @@ namespace {
 std::vector<std::int64_t> MissingFrames(const FrameAlignment& a, std::size_t c) {
   std::vector<std::int64_t> out;
   for (std::size_t k = 0; k < a.frames.size(); ++k)
-    if (a.frames[k].frame_of_camera[c] < 0) out.push_back(std::int64_t(k));
+    if (a.frames[k].frame_of_camera[c] < 0 && a.frames[k].group == a.camera_group[c])
+      out.push_back(std::int64_t(k));
   return out;
 }
 
@@ -57,9 +58,11 @@ nlohmann::json RecordingReportToJson(const RecordingReport& r) {
     const LightFieldFrame& f = a.frames[k];
     nlohmann::json missing = nlohmann::json::array();
     for (std::size_t c = 0; c < f.frame_of_camera.size(); ++c)
-      if (f.frame_of_camera[c] < 0) missing.push_back({int(c) / a.cols, int(c) % a.cols});
+      if (f.frame_of_camera[c] < 0 && a.camera_group[c] == f.group)
+        missing.push_back({int(c) / a.cols, int(c) % a.cols});
     frames.push_back(
         {{"frame", k},
+         {"group", f.group},
          {"time_ns", f.time_ns},
          {"cameras", f.cameras},
          {"spread_us", f.spread_ns ? nlohmann::json(double(*f.spread_ns) / 1e3) : nlohmann::json()},
@@ -93,6 +96,7 @@ nlohmann::json RecordingReportToJson(const RecordingReport& r) {
           {"fps", r.video.fps},
           {"seconds", r.video.seconds},
           {"sync", r.video.sync},
+          {"groups", a.groups},
           {"size", {r.video.width, r.video.height}},
           {"frames", a.frames.size()},
           {"tau0_unix_ns", a.tau0_ns},
@@ -119,10 +123,15 @@ std::string RecordingReportText(const RecordingReport& r) {
     outside += s.outside;
   }
   std::string out = fmt::format(
-      "recording {}: {}x{} cameras, {:g} fps for {:g} s at {}x{}, sync {}: {} light field "
+      "recording {}: {}x{} cameras, {:g} fps for {:g} s at {}x{}, sync {}{}: {} light field "
       "frames\n",
       r.shot, a.rows, a.cols, r.video.fps, r.video.seconds, r.video.width, r.video.height,
-      r.video.sync, a.frames.size());
+      r.video.sync,
+      a.groups > 1 ? fmt::format(", staggered in {} groups ({:g} light field frames a second, "
+                                 "each of one group)",
+                                 a.groups, a.groups * r.video.fps)
+                   : "",
+      a.frames.size());
   if (r.spread.frames > 0)
     out += fmt::format(
         "spread (latest minus earliest exposure start, by the nodes' clocks): median {:.1f} us, "
@@ -192,7 +201,7 @@ cv::Mat RecordingReportPicture(const RecordingReport& r) {
       if (f.frame_of_camera[c] >= 0)
         scale_us = std::max(scale_us, std::abs(double(f.offset_ns[c]) / 1e3));
   text(fmt::format("each camera's frames against the array's times (a row per camera; blue "
-                   "early, red late, to {:.0f} us; black: missing)",
+                   "early, red late, to {:.0f} us; black: missing; grey: another group's frame)",
                    scale_us),
        {left, r0 - 10}, 0.45, ink);
   const double row_h = double(rows_h) / double(std::max<std::size_t>(a.cameras.size(), 1));
@@ -202,6 +211,7 @@ cv::Mat RecordingReportPicture(const RecordingReport& r) {
     for (std::size_t k = 0; k < a.frames.size(); ++k) {
       const int i = a.frames[k].frame_of_camera[c];
       cv::Scalar colour(0, 0, 0);
+      if (a.frames[k].group != a.camera_group[c]) colour = cv::Scalar(225, 225, 225);
       if (i >= 0) {
         const double v = std::clamp(double(a.frames[k].offset_ns[c]) / 1e3 / scale_us, -1.0, 1.0);
         colour = v < 0 ? cv::Scalar(255, 255 * (1 + v), 255 * (1 + v))

@@ -2,8 +2,10 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <thread>
 
 #include "lfcam/capture/array_status.h"
@@ -37,6 +39,8 @@ void RequireOptions(const RecordOptions& o) {
     throw Error(fmt::format("a recording of {} s is not in (0, 3600]", o.seconds));
   if (o.width < 16 || o.height < 16 || o.width > 16384 || o.height > 16384)
     throw Error(fmt::format("a video mode of {}x{} is out of range", o.width, o.height));
+  if (o.stagger < 1 || o.stagger > 64)
+    throw Error(fmt::format("--stagger {} is not 1..64 groups", o.stagger));
 }
 
 }  // namespace
@@ -118,16 +122,24 @@ SessionReport RecordSession(const ArrayConfig& array, const SharedKey& key, cons
   const std::int64_t t0 = HostClockUnixNs() + std::int64_t(margin_s * 1e9);
   const std::int64_t end = t0 + std::int64_t(options.seconds * 1e9);
 
+  const int groups = options.stagger;
+  const bool groups_in_file = std::any_of(array.nodes.begin(), array.nodes.end(),
+                                          [](const ArrayNode& n) { return n.group != 0; });
+  const double stagger_step_ns = 1e9 / (options.fps * groups);
   std::vector<ShotImage> images(array.nodes.size());
   RunConcurrently(array.nodes.size(), kMaxRequestThreads, [&](std::size_t i) {
     const ArrayNode& n = array.nodes[i];
     const std::string role = !options.sync ? "off" : i == server ? "server" : "client";
+    const int group = groups == 1      ? 0
+                      : groups_in_file ? n.group % groups
+                                       : (n.row + n.col) % groups;
+    const auto stagger_ns = std::int64_t(std::llround(group * stagger_step_ns));
     ShotImage& image = images[i];
     image.row = n.row;
     image.col = n.col;
     image.file = folder + "/" + StreamFileName(n.row, n.col);
-    image.capture = {
-        {"node", n.address}, {"capture_id", id}, {"requested_unix_ns", t0}, {"sync", role}};
+    image.capture = {{"node", n.address}, {"capture_id", id}, {"requested_unix_ns", t0},
+                     {"sync", role},      {"group", group},   {"stagger_ns", stagger_ns}};
     if (!status[i].ready()) {
       image.status = ImageStatus::kMissing;
       image.capture["reason"] =
@@ -145,7 +157,7 @@ SessionReport RecordSession(const ArrayConfig& array, const SharedKey& key, cons
                                    {"width", options.width},
                                    {"height", options.height},
                                    {"sync", role},
-                                   {"stagger_ns", 0}}},
+                                   {"stagger_ns", stagger_ns}}},
                                  {"settings", SettingsToJson(array.settings)},
                                  {"max_clock_offset_ms", array.max_clock_offset_ms}});
       image.status = ImageStatus::kCaptured;
@@ -167,13 +179,9 @@ SessionReport RecordSession(const ArrayConfig& array, const SharedKey& key, cons
     return std::pair(a.row, a.col) < std::pair(b.row, b.col);
   });
   Shot shot{ShotKind::kVideo, shot_name, {}, images};
-  shot.video = VideoShot{options.fps,
-                         options.seconds,
-                         options.width,
-                         options.height,
-                         options.sync ? "on" : "off",
-                         t0,
-                         1};
+  shot.video = VideoShot{
+      options.fps, options.seconds, options.width, options.height, options.sync ? "on" : "off",
+      t0,          groups};
   manifest.shots.push_back(std::move(shot));
   ManifestKeeper keeper(session, manifest);
   keeper.Flush();

@@ -22,7 +22,11 @@ struct RecordOptions {
   double seconds = 10, fps = 30;
   int width = 648, height = 486;  // the video's sensor mode (the Pi v1.3's 4x4-binned one)
   bool sync = true;               // libcamera's software sync; off: free-running, a shared start
-  double margin_s = 1.0;          // the start is this far ahead (at least 3 round trips)
+  // High-speed mode (Wilburn et al. 2004): the array in this many groups whose frame starts are
+  // 1 / (stagger * fps) apart, so that together they sample time `stagger` times as often. The
+  // groups are the array file's, or interleaved ((row + col) mod stagger) when it has none.
+  int stagger = 1;
+  double margin_s = 1.0;  // the start is this far ahead (at least 3 round trips)
   // After the recording's end, how long the nodes have to finish writing it (a simulated node
   // renders its frames slower than real time).
   double finish_timeout_s = 120;

@@ -15,6 +15,7 @@
 #include "lfcam/cli/cli_test_support.h"
 #include "lfcam/core/image_io.h"
 #include "lfcam/node/request_signature.h"
+#include "lfcam/session/frame_alignment.h"
 
 namespace lfcam {
 namespace {
@@ -111,6 +112,39 @@ TEST(RecordSession, SimulatedNodesRecordInStepAndEveryFrameComesHomeWithItsTime)
   run = Lfcam(fmt::format("capture report --session {} --shot rec_07", (dir / "session").string()));
   EXPECT_EQ(run.status, 1);
   EXPECT_NE(run.output.find("no recording 'rec_07'"), std::string::npos) << run.output;
+  fs::remove_all(dir);
+}
+
+// High-speed mode: two interleaved groups, the second's frames half a period later; together
+// twice the light field frames, each of one group.
+TEST(RecordSession, StaggeredGroupsSampleTimeTwiceAsOften) {
+  const fs::path dir =
+      fs::temp_directory_path() / fmt::format("lfcam_record_stagger_{}", ::getpid());
+  SimulatedArrayOfNodes array(dir, {"--sim-drop-rate", "0"});
+  RecordOptions o;
+  o.seconds = 0.5;
+  o.fps = 10;
+  o.width = 160;
+  o.height = 120;
+  o.margin_s = 0.3;
+  o.stagger = 2;
+  const SessionReport report = RecordSession(array.config, array.nodes.key(), dir / "session", o);
+  EXPECT_TRUE(report.problems.empty()) << report.problems.front().reason;
+  const CaptureManifest m = ReadManifest(dir / "session");
+  const Shot& shot = m.shots.back();
+  EXPECT_EQ(shot.video->groups, 2);
+  for (const ShotImage& image : shot.images) {
+    const int group = (image.row + image.col) % 2;
+    EXPECT_EQ(image.capture["group"], group);
+    EXPECT_NEAR(double(image.frames[0].wall_clock_ns - shot.video->start_unix_ns), group * 50e6,
+                30e3 + 1);
+  }
+  const FrameAlignment a = AlignFrames(shot, 2, 2);
+  ASSERT_EQ(a.frames.size(), 10u);
+  for (std::size_t k = 0; k < a.frames.size(); ++k) {
+    EXPECT_EQ(a.frames[k].cameras, 2) << k;
+    EXPECT_NEAR(double(a.frames[k].time_ns - a.frames[0].time_ns), double(k) * 50e6, 1e5);
+  }
   fs::remove_all(dir);
 }
 

@@ -384,6 +384,13 @@ void AddRecord(CLI::App& capture) {
       ->capture_default_str();
   command->add_flag("--no-sync", f->no_sync,
                     "Free-running cameras (a shared start time only; no libcamera sync)");
+  command
+      ->add_option("--stagger", f->o.stagger,
+                   "High-speed mode: N groups of cameras whose frames start 1/(N fps) apart, "
+                   "together sampling time N times as often (the array file's groups, else "
+                   "interleaved)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 64));
   command->add_option("--margin", f->o.margin_s, "Seconds from now to the start")
       ->capture_default_str()
       ->check(CLI::Range(0.05, 60.0));

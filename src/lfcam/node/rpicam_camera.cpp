@@ -155,8 +155,13 @@ class RpicamCamera final : public CameraBackend {
     if (!configured_) throw Error("rpicam: the camera is not configured yet");
     if (options_.video_program.empty())
       throw Error("rpicam: neither rpicam-vid nor libcamera-vid is on PATH");
-    Stop();  // the stills' camera lets go of the sensor
     const VideoRecordInfo& v = request.video;
+    if (v.stagger_ns != 0)
+      throw Error(
+          "rpicam: a staggered recording needs each group's frames offset from the sync "
+          "server's, which libcamera's software sync does not do (docs/hardware.md, high-speed "
+          "mode)");
+    Stop();  // the stills' camera lets go of the sensor
     const fs::path stream = options_.work_folder / "video.mjpeg";
     const fs::path metadata = options_.work_folder / "video.json";
     std::error_code ec;

@@ -115,6 +115,15 @@ echo "]" >> "$meta"
   EXPECT_NE(args.find("--codec mjpeg"), std::string::npos) << args;
   EXPECT_NE(args.find("--width 648 --height 486"), std::string::npos) << args;
   EXPECT_EQ(args.find("--sync"), std::string::npos) << args;  // sync off
+  // High-speed mode needs a phase offset libcamera's sync does not have: refused, saying so.
+  r.video.stagger_ns = 16'666'667;
+  try {
+    camera->Record(
+        r, [](CapturedFrame&&) {}, stop);
+    ADD_FAILURE() << "a staggered recording was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("staggered"), std::string::npos) << e.what();
+  }
   fs::remove_all(dir);
 }
 

@@ -63,13 +63,26 @@ FrameAlignment AlignFrames(const Shot& shot, int rows, int cols, const Alignment
   a.cols = cols;
   a.fps = v.fps;
   const double period = 1e9 / v.fps;
+  const int groups = std::max(1, v.groups);
+  a.groups = groups;
   const std::size_t n = std::size_t(rows) * std::size_t(cols);
   std::vector<const ShotImage*> camera(n, nullptr);
+  a.camera_group.assign(n, 0);
   for (const auto* list : {&shot.images, &shot.pending})
-    for (const ShotImage& image : *list)
-      if (image.row >= 0 && image.col >= 0 && image.row < rows && image.col < cols &&
-          !image.frames.empty())
-        camera[std::size_t(image.row * cols + image.col)] = &image;
+    for (const ShotImage& image : *list) {
+      if (image.row < 0 || image.col < 0 || image.row >= rows || image.col >= cols) continue;
+      const std::size_t c = std::size_t(image.row * cols + image.col);
+      // Staggered: the camera's group (its frames start group / (groups * fps) later).
+      if (image.capture.is_object() && image.capture.contains("group") &&
+          image.capture["group"].is_number_integer())
+        a.camera_group[c] = int(
+            std::clamp<std::int64_t>(image.capture["group"].get<std::int64_t>(), 0, groups - 1));
+      if (!image.frames.empty()) camera[c] = &image;
+    }
+  // Where camera c's frames stand on the array's grid: its group's offset.
+  const auto group_offset = [&](std::size_t c) {
+    return double(a.camera_group[c]) * period / groups;
+  };
 
   // Cameras at another rate are left out of everything; the phase the others share is the
   // camera phase nearest all of theirs (a circular median: one camera off does not move it).
@@ -86,7 +99,8 @@ FrameAlignment AlignFrames(const Shot& shot, int rows, int cols, const Alignment
       s.problem = fmt::format("records at {:.3f} fps, the array at {:g}: left out", *s.fps, v.fps);
       continue;
     }
-    phases.push_back(CameraPhase(camera[c]->frames, v.start_unix_ns, period));
+    phases.push_back(
+        CameraPhase(camera[c]->frames, v.start_unix_ns + std::llround(group_offset(c)), period));
   }
   double phase = 0, best = std::numeric_limits<double>::infinity();
   for (const double p : phases) {
@@ -96,7 +110,7 @@ FrameAlignment AlignFrames(const Shot& shot, int rows, int cols, const Alignment
   }
   const double shift = phase / (2 * std::numbers::pi) * period;
   a.tau0_ns = v.start_unix_ns + std::llround(shift);
-  const auto count = std::int64_t(std::ceil(v.seconds * v.fps - 1e-9));
+  const auto count = std::int64_t(std::ceil(v.seconds * v.fps - 1e-9)) * groups;
   // One slot per camera and frame: a bound on what a manifest can make it allocate (100
   // cameras for 2 hours at 60 fps).
   if (double(count) * double(n) > 5e7)
@@ -106,7 +120,8 @@ FrameAlignment AlignFrames(const Shot& shot, int rows, int cols, const Alignment
                     shot.name, count, n));
   a.frames.resize(std::size_t(std::max<std::int64_t>(count, 0)));
   for (std::size_t k = 0; k < a.frames.size(); ++k) {
-    a.frames[k].time_ns = a.tau0_ns + std::llround(double(k) * period);
+    a.frames[k].time_ns = a.tau0_ns + std::llround(double(k) * period / groups);
+    a.frames[k].group = int(k % std::size_t(groups));
     a.frames[k].frame_of_camera.assign(n, -1);
     a.frames[k].offset_ns.assign(n, 0);
   }
@@ -125,8 +140,9 @@ FrameAlignment AlignFrames(const Shot& shot, int rows, int cols, const Alignment
     if (s.left_out) continue;
     std::vector<double> offsets;
     for (std::size_t i = 0; i < frames.size(); ++i) {
-      const double along = double(frames[i].wall_clock_ns - a.tau0_ns) / period;
-      const auto k = std::int64_t(std::floor(along + 0.5));
+      // Its slot on its group's grid, and the light field frame that slot is.
+      const double along = (double(frames[i].wall_clock_ns - a.tau0_ns) - group_offset(c)) / period;
+      const auto k = std::int64_t(std::floor(along + 0.5)) * groups + a.camera_group[c];
       if (k < 0 || k >= std::int64_t(a.frames.size())) {
         ++s.outside;
         continue;
@@ -157,6 +173,7 @@ FrameAlignment AlignFrames(const Shot& shot, int rows, int cols, const Alignment
   for (LightFieldFrame& frame : a.frames) {
     std::int64_t lo = INT64_MAX, hi = INT64_MIN;
     for (std::size_t c = 0; c < n; ++c) {
+      if (a.camera_group[c] != frame.group) continue;  // staggered: another group's frame
       const int i = frame.frame_of_camera[c];
       if (i < 0) {
         ++a.cameras[c].missing;
@@ -169,9 +186,7 @@ FrameAlignment AlignFrames(const Shot& shot, int rows, int cols, const Alignment
     }
     if (frame.cameras >= 2) frame.spread_ns = hi - lo;
   }
-  // Cameras with no frames, or left out, were counted missing everywhere above already.
-  for (std::size_t c = 0; c < n; ++c)
-    if (!camera[c] || a.cameras[c].left_out) a.cameras[c].missing = std::int64_t(a.frames.size());
+  // Cameras with no frames, or left out, were counted missing in all their frames above.
   for (const CameraSync& s : a.cameras)
     if (!s.problem.empty())
       a.problems.push_back(fmt::format("camera ({}, {}): {}", s.row, s.col, s.problem));

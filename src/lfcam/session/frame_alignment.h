@@ -3,10 +3,12 @@
 // cameras' frames grouped by their wall-clock times. Light field frame k stands at time
 // tau_k = tau_0 + k / fps on the array's wall clock; from each camera it takes the frame nearest
 // tau_k within half a frame period. A camera with no frame there is missing from light field
-// frame k (a dropped frame, a node that stopped); one with two is duplicated (the later one is
+// frame k (a dropped frame, a node that stopped); one with two is duplicated (the farther one is
 // left out). The frame's spread is the latest minus the earliest wall-clock time it holds: its
 // sync error as the clocks say, reported, never hidden. tau_0 is the start asked plus the phase
-// the frames share (with sync, the server's; free-running, their circular mean).
+// the frames share (the cameras' phases' circular median). A staggered recording
+// (VideoShot::groups = N, each camera's group in its capture record) has N light field frames a
+// period, 1 / (N fps) apart, frame k holding the cameras of group k mod N.
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -27,6 +29,7 @@ struct AlignmentOptions {
 
 struct LightFieldFrame {
   std::int64_t time_ns = 0;  // tau_k
+  int group = 0;             // staggered: the group of cameras it holds (k mod groups)
   // Per camera (row-major over the grid), the index of its frame in ShotImage::frames, or -1.
   std::vector<int> frame_of_camera;
   // Per camera, its frame's wall-clock time minus tau_k (0 where it has none).
@@ -39,7 +42,7 @@ struct CameraSync {
   int row = 0, col = 0;
   std::int64_t recorded = 0;    // frames the camera delivered
   std::int64_t dropped = 0;     // gaps in its sequence numbers
-  std::int64_t missing = 0;     // light field frames it has no frame in
+  std::int64_t missing = 0;     // light field frames of its group it has no frame in
   std::int64_t duplicates = 0;  // frames of it that fell in a slot another of its frames took
   std::int64_t outside = 0;     // frames before the first or after the last light field frame
   std::optional<double> median_offset_us;  // its frames' wall-clock times minus tau_k
@@ -50,7 +53,9 @@ struct CameraSync {
 
 struct FrameAlignment {
   int rows = 0, cols = 0;
-  double fps = 0;
+  double fps = 0;  // each camera's; the light field frames come groups * fps a second
+  int groups = 1;  // staggered recordings: the groups of cameras, each in every groups-th frame
+  std::vector<int> camera_group;  // per camera (row-major), from its capture record's "group"
   std::int64_t tau0_ns = 0;
   std::vector<LightFieldFrame> frames;
   std::vector<CameraSync> cameras;    // row-major over the grid
