@@ -109,6 +109,16 @@ TEST(RecordSession, SimulatedNodesRecordInStepAndEveryFrameComesHomeWithItsTime)
   EXPECT_LE(report_json["spread_us"]["max"].get<double>(), 60.0 + 1e-3);
   EXPECT_EQ(report_json["per_frame"][9]["cameras"], 4);
   EXPECT_TRUE(fs::is_regular_file(dir / "sync.png"));
+  // Beside the nodes' health, how each recording kept in step.
+  const fs::path array_file = array.nodes.WriteArrayFile(320, 240);
+  run = Lfcam(fmt::format("capture status {} --session {} --json", array_file.string(),
+                          (dir / "session").string()));
+  ASSERT_EQ(run.status, 0) << run.output;
+  const auto status_json = nlohmann::json::parse(run.output);
+  EXPECT_EQ(status_json["nodes"].size(), 4u);
+  ASSERT_EQ(status_json["recordings"].size(), 1u);
+  EXPECT_EQ(status_json["recordings"][0]["shot"], "rec_00");
+  EXPECT_FALSE(status_json["recordings"][0].contains("per_frame"));
   run = Lfcam(fmt::format("capture report --session {} --shot rec_07", (dir / "session").string()));
   EXPECT_EQ(run.status, 1);
   EXPECT_NE(run.output.find("no recording 'rec_07'"), std::string::npos) << run.output;

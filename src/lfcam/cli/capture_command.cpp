@@ -164,8 +164,8 @@ void AddStatus(CLI::App& capture) {
     for (const Shot& s : manifest.shots)
       if (s.kind == ShotKind::kVideo) recordings.push_back(MakeRecordingReport(manifest, s.name));
     if (flags->json) {
-      nlohmann::json j = {{"nodes", ReportsToJson(reports)},
-                          {"recordings", nlohmann::json::array()}};
+      nlohmann::json j = ReportsToJson(reports);
+      j["recordings"] = nlohmann::json::array();
       for (const RecordingReport& r : recordings) {
         nlohmann::json one = RecordingReportToJson(r);
         one.erase("per_frame");
