@@ -195,7 +195,11 @@ SessionReport RecordSession(const ArrayConfig& array, const SharedKey& key, cons
   std::vector<std::int64_t> counted(images.size(), 0);
   std::vector<int> silent(images.size(), 0);
   std::vector<std::string> last_error(images.size());
-  const std::int64_t deadline = end + std::int64_t(options.finish_timeout_s * 1e9);
+  // A node stops being waited for once the recording has ended and it has delivered no new frame
+  // for finish_timeout_s (a real node finishes within a frame or two of the end; a simulated one
+  // renders its frames slower than real time, and is waited for as long as it makes progress).
+  const auto stall = std::int64_t(options.finish_timeout_s * 1e9);
+  std::vector<std::int64_t> progressed(images.size(), end);
   auto update = [&](const ShotImage& image, auto&& change) {
     keeper.Update([&](CaptureManifest& m) {
       for (ShotImage& p : m.shots.back().pending)
@@ -203,7 +207,7 @@ SessionReport RecordSession(const ArrayConfig& array, const SharedKey& key, cons
     });
   };
   SleepUntilHostNs(t0);
-  while (!waiting.empty() && HostClockUnixNs() < deadline) {
+  while (!waiting.empty()) {
     std::vector<char> finished(waiting.size(), 0);
     RunConcurrently(waiting.size(), kMaxRequestThreads, [&](std::size_t w) {
       const std::size_t i = waiting[w];
@@ -213,10 +217,23 @@ SessionReport RecordSession(const ArrayConfig& array, const SharedKey& key, cons
         NodeRecording r = AskRecording(client, id, false);
         silent[i] = 0;
         if (r.status != "recording") r = AskRecording(client, id, true);
-        if (options.progress && r.frame_count > counted[i])
-          options.progress(r.frame_count - counted[i]);
+        if (r.frame_count > counted[i]) {
+          if (options.progress) options.progress(r.frame_count - counted[i]);
+          progressed[i] = std::max(progressed[i], HostClockUnixNs());
+        }
         counted[i] = r.frame_count;
-        if (r.status == "recording") return;
+        if (r.status == "recording") {
+          if (HostClockUnixNs() - progressed[i] > stall) {
+            update(image, [&](ShotImage& p) {
+              p.capture["reason"] = fmt::format(
+                  "still recording, no new frame for {:.0f} s after the recording's end (`lfcam "
+                  "capture fetch` asks again)",
+                  options.finish_timeout_s);
+            });
+            finished[w] = 1;
+          }
+          return;
+        }
         update(image, [&](ShotImage& p) {
           ApplyRecording(p, r);
           if (r.status == "failed") {
@@ -244,12 +261,6 @@ SessionReport RecordSession(const ArrayConfig& array, const SharedKey& key, cons
     waiting = std::move(still);
     if (!waiting.empty()) std::this_thread::sleep_for(std::chrono::milliseconds(500));
   }
-  for (const std::size_t i : waiting)
-    update(images[i], [&](ShotImage& p) {
-      p.capture["reason"] = fmt::format("still recording {:.0f} s after the recording's end{}",
-                                        options.finish_timeout_s,
-                                        last_error[i].empty() ? "" : " (" + last_error[i] + ")");
-    });
   keeper.Flush();
   report.capture_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start_clock).count();

@@ -27,9 +27,10 @@ struct RecordOptions {
   // groups are the array file's, or interleaved ((row + col) mod stagger) when it has none.
   int stagger = 1;
   double margin_s = 1.0;  // the start is this far ahead (at least 3 round trips)
-  // After the recording's end, how long the nodes have to finish writing it (a simulated node
-  // renders its frames slower than real time).
-  double finish_timeout_s = 120;
+  // After the recording's end, how long a node may go without delivering a new frame before the
+  // host stops waiting for it (a simulated node renders its frames slower than real time: it is
+  // waited for as long as it makes progress).
+  double finish_timeout_s = 30;
   bool fetch = true;
   FetchOptions fetch_options;
   ProgressCallback progress;  // frames recorded, over the array

@@ -148,7 +148,10 @@ struct NodeAgent::Impl {
     CameraProbe probe;
     {
       std::unique_lock lock(camera_mutex, std::try_to_lock);
-      probe = lock.owns_lock() ? camera->Probe() : CameraProbe{true, camera->name(), "capturing"};
+      probe = lock.owns_lock()
+                  ? camera->Probe()
+                  : CameraProbe{true, camera->name(),
+                                RecordingStatus().is_string() ? "recording" : "capturing"};
     }
     std::lock_guard lock(settings_mutex);
     return {
@@ -557,6 +560,8 @@ struct NodeAgent::Impl {
                    const std::string w = req.get_param_value("width");
                    width = std::clamp(std::atoi(w.c_str()), 16, 1024);
                  }
+                 if (RecordingStatus().is_string())
+                   return Refuse(res, {409, "busy", "the camera is recording"});
                  std::string jpeg;
                  {
                    std::lock_guard lock(camera_mutex);
