@@ -200,9 +200,9 @@ cv::Mat RecordingReportPicture(const RecordingReport& r) {
     for (std::size_t c = 0; c < a.cameras.size(); ++c)
       if (f.frame_of_camera[c] >= 0)
         scale_us = std::max(scale_us, std::abs(double(f.offset_ns[c]) / 1e3));
-  text(fmt::format("each camera's frames against the array's times (a row per camera; blue "
-                   "early, red late, to {:.0f} us; black: missing; grey: another group's frame)",
-                   scale_us),
+  text(fmt::format("a row per camera: its frames against the array's times (blue early, red "
+                   "late, to {:.0f} us; black: missing{})",
+                   scale_us, a.groups > 1 ? "; grey: another group's" : ""),
        {left, r0 - 10}, 0.45, ink);
   const double row_h = double(rows_h) / double(std::max<std::size_t>(a.cameras.size(), 1));
   for (std::size_t c = 0; c < a.cameras.size(); ++c) {
