@@ -25,18 +25,23 @@ using LightFieldVideoBuildTest = testing::CalibratedSessionTest;
 constexpr std::int64_t kStart = 1'800'000'000'000'000'000;
 constexpr int kWidth = 324, kHeight = 243;
 
-// The session's manifest with a recording of `seconds` at `fps` added, its streams written into
-// `dir` as simulated nodes (the stills' seed, so the same modules) write them.
-CaptureManifest AddRecording(const CaptureManifest& stills, const fs::path& dir, double seconds,
-                             double fps, double drop_rate, bool sync = true) {
-  CaptureManifest m = stills;
+// The stills' modules (seed 11) in the video's sensor mode.
+CaptureSimulationOptions VideoModules() {
   CaptureSimulationOptions o;
   o.rows = o.cols = 3;
   o.sensor_width = kWidth;
   o.sensor_height = kHeight;
   o.seed = 11;
+  return o;
+}
+
+// The session's manifest with a recording of `seconds` at `fps` added, its streams written into
+// `dir` as simulated nodes (the stills' seed, so the same modules) write them.
+CaptureManifest AddRecording(const CaptureManifest& stills, const fs::path& dir, double seconds,
+                             double fps, double drop_rate, bool sync = true) {
+  CaptureManifest m = stills;
   const Scene scene = MakeScene("paper");
-  const SimulatedArray array(scene, o);
+  const SimulatedArray array(scene, VideoModules());
   Shot shot(ShotKind::kVideo, "rec_00");
   shot.video = VideoShot{fps, seconds, kWidth, kHeight, sync ? "on" : "off", kStart, 1};
   fs::create_directories(dir / "video/rec_00");
@@ -102,13 +107,8 @@ TEST_F(LightFieldVideoBuildTest, EveryFrameIsBuiltAndAMissingCameraFrameIsFilled
 // of the same instant's images, both against the light field the ideal sensor records then.
 TEST_F(LightFieldVideoBuildTest, AFrameIsAsGoodAsAStillOfTheSameInstant) {
   // The still: every camera exposed at 1.1 s exactly (the ball in view), built the same way.
-  CaptureSimulationOptions s;
-  s.rows = s.cols = 3;
-  s.sensor_width = kWidth;
-  s.sensor_height = kHeight;
-  s.seed = 11;
   const Scene scene = MakeScene("paper");
-  const SimulatedArray array(scene, s);
+  const SimulatedArray array(scene, VideoModules());
   std::vector<CameraImage> images;
   for (int c = 0; c < 9; ++c) {
     SimulatedArray::ModuleCache cache;

@@ -28,6 +28,8 @@ double SecondsSince(std::chrono::steady_clock::time_point start) {
 
 }  // namespace
 
+namespace {
+
 CaptureManifest NewManifest(const ArrayConfig& array) {
   CaptureManifest m;
   m.rows = array.rows;
@@ -43,6 +45,8 @@ CaptureManifest NewManifest(const ArrayConfig& array) {
               {"created", fmt::format("{:%Y-%m-%dT%H:%M:%SZ}", now)}};
   return m;
 }
+
+}  // namespace
 
 std::string ShotFolder(ShotKind kind, const std::string& name) {
   switch (kind) {
@@ -80,6 +84,29 @@ void CollectProblems(const CaptureManifest& m, SessionReport& report) {
       report.problems.push_back({i.row, i.col, s.name, ToString(i.status), reason});
     }
   }
+}
+
+int NodeGroup(const ArrayConfig& array, const ArrayNode& node, int groups) {
+  if (groups <= 1) return 0;
+  const bool in_file = std::any_of(array.nodes.begin(), array.nodes.end(),
+                                   [](const ArrayNode& n) { return n.group != 0; });
+  return in_file ? node.group % groups : (node.row + node.col) % groups;
+}
+
+void AddCamerasWithoutNodes(const ArrayConfig& array,
+                            const std::function<std::string(int, int)>& file_name,
+                            std::vector<ShotImage>& images) {
+  for (int r = 0; r < array.rows; ++r)
+    for (int c = 0; c < array.cols; ++c)
+      if (!array.node_at(r, c))
+        images.push_back({r,
+                          c,
+                          file_name(r, c),
+                          ImageStatus::kMissing,
+                          {{"reason", "no node in the array file"}}});
+  std::sort(images.begin(), images.end(), [](const auto& a, const auto& b) {
+    return std::pair(a.row, a.col) < std::pair(b.row, b.col);
+  });
 }
 
 CaptureManifest OpenSessionManifest(const ArrayConfig& array, const fs::path& session) {
@@ -248,17 +275,13 @@ SessionReport ShootSession(const ArrayConfig& array, const SharedKey& key, const
   for (const NodeReport& r : status) slowest_ms = std::max(slowest_ms, r.round_trip_ms);
   const double margin_s = std::max(options.margin_s, 3 * slowest_ms / 1000.0);
   const int groups = std::max(1, options.groups);
-  const bool groups_in_file = std::any_of(array.nodes.begin(), array.nodes.end(),
-                                          [](const ArrayNode& n) { return n.group != 0; });
   const auto trigger_start = std::chrono::steady_clock::now();
   const std::int64_t t0 = HostClockUnixNs() + std::int64_t(margin_s * 1e9);
 
   std::vector<ShotImage> images(array.nodes.size());
   RunConcurrently(array.nodes.size(), kMaxRequestThreads, [&](std::size_t i) {
     const ArrayNode& n = array.nodes[i];
-    const int group = groups == 1      ? 0
-                      : groups_in_file ? n.group % groups
-                                       : (n.row + n.col) % groups;
+    const int group = NodeGroup(array, n, groups);
     const std::int64_t at = t0 + std::int64_t(group * options.group_delay_s * 1e9);
     const std::string id = fmt::format("{}-{}", session_id, shot_name);
     ShotImage& image = images[i];
@@ -298,20 +321,8 @@ SessionReport ShootSession(const ArrayConfig& array, const SharedKey& key, const
   report.capture_s = SecondsSince(trigger_start);
   report.trigger_wait_s = margin_s;
 
-  // Cameras of the grid with no node in the array file.
-  for (int r = 0; r < array.rows; ++r)
-    for (int c = 0; c < array.cols; ++c)
-      if (!array.node_at(r, c)) {
-        ShotImage image{r,
-                        c,
-                        folder + "/" + CameraFileName(r, c),
-                        ImageStatus::kMissing,
-                        {{"reason", "no node in the array file"}}};
-        images.push_back(std::move(image));
-      }
-  std::sort(images.begin(), images.end(), [](const auto& a, const auto& b) {
-    return std::pair(a.row, a.col) < std::pair(b.row, b.col);
-  });
+  AddCamerasWithoutNodes(
+      array, [&](int r, int c) { return folder + "/" + CameraFileName(r, c); }, images);
 
   // Skew: within each group, the latest minus the earliest actual trigger time.
   for (int g = 0; g < groups; ++g) {

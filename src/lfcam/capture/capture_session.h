@@ -6,6 +6,7 @@
 // SHA-256 and status, and is rewritten (atomically) as each image arrives, so a host that dies
 // mid-fetch loses nothing: `fetch` resumes from it, partial files included.
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -70,5 +71,13 @@ std::string NextShotName(const CaptureManifest& manifest, ShotKind kind);
 std::string ShotFolder(ShotKind kind, const std::string& name);
 // The report's problems and images_ok, from the manifest.
 void CollectProblems(const CaptureManifest& manifest, SessionReport& report);
+// A node's group among `groups` (the paper's trigger groups, a recording's stagger groups): the
+// array file's, else interleaved like a checkerboard, (row + col) mod groups.
+int NodeGroup(const ArrayConfig& array, const ArrayNode& node, int groups);
+// Adds the cameras of the grid that have no node in the array file (missing, with that reason,
+// their file named by `file_name`), then sorts the images by (row, col).
+void AddCamerasWithoutNodes(const ArrayConfig& array,
+                            const std::function<std::string(int, int)>& file_name,
+                            std::vector<ShotImage>& images);
 
 }  // namespace lfcam

@@ -123,16 +123,12 @@ SessionReport RecordSession(const ArrayConfig& array, const SharedKey& key, cons
   const std::int64_t end = t0 + std::int64_t(options.seconds * 1e9);
 
   const int groups = options.stagger;
-  const bool groups_in_file = std::any_of(array.nodes.begin(), array.nodes.end(),
-                                          [](const ArrayNode& n) { return n.group != 0; });
   const double stagger_step_ns = 1e9 / (options.fps * groups);
   std::vector<ShotImage> images(array.nodes.size());
   RunConcurrently(array.nodes.size(), kMaxRequestThreads, [&](std::size_t i) {
     const ArrayNode& n = array.nodes[i];
     const std::string role = !options.sync ? "off" : i == server ? "server" : "client";
-    const int group = groups == 1      ? 0
-                      : groups_in_file ? n.group % groups
-                                       : (n.row + n.col) % groups;
+    const int group = NodeGroup(array, n, groups);
     const auto stagger_ns = std::int64_t(std::llround(group * stagger_step_ns));
     ShotImage& image = images[i];
     image.row = n.row;
@@ -167,17 +163,8 @@ SessionReport RecordSession(const ArrayConfig& array, const SharedKey& key, cons
       image.capture["reason"] = e.what();
     }
   });
-  for (int r = 0; r < array.rows; ++r)
-    for (int c = 0; c < array.cols; ++c)
-      if (!array.node_at(r, c))
-        images.push_back({r,
-                          c,
-                          folder + "/" + StreamFileName(r, c),
-                          ImageStatus::kMissing,
-                          {{"reason", "no node in the array file"}}});
-  std::sort(images.begin(), images.end(), [](const auto& a, const auto& b) {
-    return std::pair(a.row, a.col) < std::pair(b.row, b.col);
-  });
+  AddCamerasWithoutNodes(
+      array, [&](int r, int c) { return folder + "/" + StreamFileName(r, c); }, images);
   Shot shot{ShotKind::kVideo, shot_name, {}, images};
   shot.video = VideoShot{
       options.fps, options.seconds, options.width, options.height, options.sync ? "on" : "off",
