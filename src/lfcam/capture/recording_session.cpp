@@ -182,11 +182,12 @@ SessionReport RecordSession(const ArrayConfig& array, const SharedKey& key, cons
   std::vector<std::int64_t> counted(images.size(), 0);
   std::vector<int> silent(images.size(), 0);
   std::vector<std::string> last_error(images.size());
-  // A node stops being waited for once the recording has ended and it has delivered no new frame
-  // for finish_timeout_s (a real node finishes within a frame or two of the end; a simulated one
-  // renders its frames slower than real time, and is waited for as long as it makes progress).
+  // The nodes still recording stop being waited for once the recording has ended and none of
+  // them has delivered a new frame for finish_timeout_s: a real node finishes within a frame or
+  // two of the end; simulated ones render their frames slower than real time, sharing the
+  // host's cores, and are waited for as long as the array makes progress.
   const auto stall = std::int64_t(options.finish_timeout_s * 1e9);
-  std::vector<std::int64_t> progressed(images.size(), end);
+  std::atomic<std::int64_t> progressed{end};
   auto update = [&](const ShotImage& image, auto&& change) {
     keeper.Update([&](CaptureManifest& m) {
       for (ShotImage& p : m.shots.back().pending)
@@ -206,15 +207,17 @@ SessionReport RecordSession(const ArrayConfig& array, const SharedKey& key, cons
         if (r.status != "recording") r = AskRecording(client, id, true);
         if (r.frame_count > counted[i]) {
           if (options.progress) options.progress(r.frame_count - counted[i]);
-          progressed[i] = std::max(progressed[i], HostClockUnixNs());
+          const std::int64_t now = HostClockUnixNs();
+          for (std::int64_t seen = progressed; seen < now;)
+            if (progressed.compare_exchange_weak(seen, now)) break;
         }
         counted[i] = r.frame_count;
         if (r.status == "recording") {
-          if (HostClockUnixNs() - progressed[i] > stall) {
+          if (HostClockUnixNs() - progressed > stall) {
             update(image, [&](ShotImage& p) {
               p.capture["reason"] = fmt::format(
-                  "still recording, no new frame for {:.0f} s after the recording's end (`lfcam "
-                  "capture fetch` asks again)",
+                  "still recording, no new frame from any node for {:.0f} s after the "
+                  "recording's end (`lfcam capture fetch` asks again)",
                   options.finish_timeout_s);
             });
             finished[w] = 1;

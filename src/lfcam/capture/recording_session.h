@@ -27,9 +27,9 @@ struct RecordOptions {
   // groups are the array file's, or interleaved ((row + col) mod stagger) when it has none.
   int stagger = 1;
   double margin_s = 1.0;  // the start is this far ahead (at least 3 round trips)
-  // After the recording's end, how long a node may go without delivering a new frame before the
-  // host stops waiting for it (a simulated node renders its frames slower than real time: it is
-  // waited for as long as it makes progress).
+  // After the recording's end, how long the array may go without any node delivering a new frame
+  // before the host stops waiting for the nodes still recording (simulated nodes render their
+  // frames slower than real time: they are waited for as long as the array makes progress).
   double finish_timeout_s = 30;
   bool fetch = true;
   FetchOptions fetch_options;

@@ -396,8 +396,8 @@ void AddRecord(CLI::App& capture) {
       ->check(CLI::Range(0.05, 60.0));
   command
       ->add_option("--finish-timeout", f->o.finish_timeout_s,
-                   "After the end, seconds a node may go without a new frame before the host "
-                   "stops waiting for it")
+                   "After the end, seconds without a new frame from any node before the host "
+                   "stops waiting for those still recording")
       ->capture_default_str()
       ->check(CLI::Range(1.0, 86400.0));
   AddFetchFlags(command, f->o.fetch_options);
