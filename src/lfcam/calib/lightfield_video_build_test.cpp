@@ -9,6 +9,7 @@
 #include <fstream>
 
 #include "lfcam/calib/test_calibrated_session.h"
+#include "lfcam/cli/cli_test_support.h"
 #include "lfcam/core/error.h"
 #include "lfcam/core/image_io.h"
 #include "lfcam/core/lightfield_compare.h"
@@ -181,6 +182,46 @@ TEST_F(LightFieldVideoBuildTest, BadStreamsAreNamed) {
   wide.shots.back().video->width = 320;
   wide.shots.back().video->height = 180;
   EXPECT_THROW(BuildLightFieldVideo(dir, wide, *calibration_, "rec_00", dir / "v.lfv", o), Error);
+}
+
+// As a user runs it: `build --shot rec_00` writes a video, `info` describes it, `render --frame`
+// renders any of its frames and names a frame it does not have.
+TEST_F(LightFieldVideoBuildTest, TheCommandsBuildDescribeAndRenderAVideo) {
+  const fs::path dir = *scratch_ / "video-cli";
+  const CaptureManifest m = AddRecording(ReadManifest(session()), dir, 0.4, 10, 0.0);
+  const std::string text = JsonToText(ManifestToJson(m));
+  WriteFileAtomically(dir / kManifestName,
+                      {reinterpret_cast<const std::uint8_t*>(text.data()), text.size()});
+  const fs::path calibration =
+      testing::SharedTestArtifact("build-3x3-calibration", "calibration.json",
+                                  [](const fs::path&) {}) /
+      "calibration.json";
+  const std::string video = (dir / "v.lfv").string();
+  auto run = testing::Lfcam(
+      fmt::format("build {} --calibration {} --shot rec_00 --st-res 40x36 --out {} --quiet",
+                  dir.string(), calibration.string(), video));
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("built 4 light field frames"), std::string::npos) << run.output;
+  run = testing::Lfcam("info " + video + " --json");
+  ASSERT_EQ(run.status, 0) << run.output;
+  const auto info = nlohmann::json::parse(run.output);
+  EXPECT_EQ(info["video"]["frames"], 4);
+  EXPECT_EQ(info["video"]["fps"], 10.0);
+  EXPECT_EQ(info["video"]["complete"], true);
+  EXPECT_EQ(info["n_s"], 40);
+  run = testing::Lfcam(
+      fmt::format("render {} --frame 3 --size 64 --out {}", video, (dir / "f3.png").string()));
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_TRUE(fs::is_regular_file(dir / "f3.png"));
+  run = testing::Lfcam(
+      fmt::format("render {} --frame 9 --size 64 --out {}", video, (dir / "f9.png").string()));
+  EXPECT_EQ(run.status, 1);
+  EXPECT_NE(run.output.find("there is no frame 9 (4 frames)"), std::string::npos) << run.output;
+  EXPECT_FALSE(fs::exists(dir / "f9.png"));
+  run = testing::Lfcam(fmt::format("build {} --calibration {} --shot rec_00 --frames 2 --out {}",
+                                   dir.string(), calibration.string(), video));
+  EXPECT_EQ(run.status, 2) << run.output;  // bad usage
+  EXPECT_NE(run.output.find("--frames '2'"), std::string::npos) << run.output;
 }
 
 }  // namespace
