@@ -46,15 +46,21 @@ struct SimulatedArrayOfNodes {
   ArrayConfig config;
 };
 
-TEST(RecordSession, SimulatedNodesRecordInStepAndEveryFrameComesHomeWithItsTime) {
-  const fs::path dir = fs::temp_directory_path() / fmt::format("lfcam_record_{}", ::getpid());
-  SimulatedArrayOfNodes array(dir, {"--sim-drop-rate", "0"});
+// A short recording at 10 fps in a small video mode, soon.
+RecordOptions SmallRecording(double seconds) {
   RecordOptions o;
-  o.seconds = 1.0;
+  o.seconds = seconds;
   o.fps = 10;
   o.width = 160;
   o.height = 120;
   o.margin_s = 0.3;
+  return o;
+}
+
+TEST(RecordSession, SimulatedNodesRecordInStepAndEveryFrameComesHomeWithItsTime) {
+  const fs::path dir = fs::temp_directory_path() / fmt::format("lfcam_record_{}", ::getpid());
+  SimulatedArrayOfNodes array(dir, {"--sim-drop-rate", "0"});
+  RecordOptions o = SmallRecording(1.0);
   const SessionReport report = RecordSession(array.config, array.nodes.key(), dir / "session", o);
   EXPECT_EQ(report.fired, 4);
   EXPECT_TRUE(report.problems.empty()) << report.problems.front().reason;
@@ -131,12 +137,7 @@ TEST(RecordSession, StaggeredGroupsSampleTimeTwiceAsOften) {
   const fs::path dir =
       fs::temp_directory_path() / fmt::format("lfcam_record_stagger_{}", ::getpid());
   SimulatedArrayOfNodes array(dir, {"--sim-drop-rate", "0"});
-  RecordOptions o;
-  o.seconds = 0.5;
-  o.fps = 10;
-  o.width = 160;
-  o.height = 120;
-  o.margin_s = 0.3;
+  RecordOptions o = SmallRecording(0.5);
   o.stagger = 2;
   const SessionReport report = RecordSession(array.config, array.nodes.key(), dir / "session", o);
   EXPECT_TRUE(report.problems.empty()) << report.problems.front().reason;
@@ -161,12 +162,7 @@ TEST(RecordSession, StaggeredGroupsSampleTimeTwiceAsOften) {
 TEST(RecordSession, ANodeKilledMidRecordingIsNamedAndFetchCompletesItWhenItIsBack) {
   const fs::path dir = fs::temp_directory_path() / fmt::format("lfcam_record_kill_{}", ::getpid());
   SimulatedArrayOfNodes array(dir);
-  RecordOptions o;
-  o.seconds = 3.0;
-  o.fps = 10;
-  o.width = 160;
-  o.height = 120;
-  o.margin_s = 0.3;
+  RecordOptions o = SmallRecording(3.0);
   std::thread killer([&] {
     std::this_thread::sleep_for(std::chrono::milliseconds(1500));
     array.nodes.Kill(3);  // camera (1, 1), SIGKILL: no chance to close its recording
