@@ -185,7 +185,7 @@ TEST_F(LightFieldVideoBuildTest, BadStreamsAreNamed) {
 }
 
 // As a user runs it: `build --shot rec_00` writes a video, `info` describes it, `render --frame`
-// renders any of its frames and names a frame it does not have.
+// renders any of its frames (and depth estimates one) and names a frame it does not have.
 TEST_F(LightFieldVideoBuildTest, TheCommandsBuildDescribeAndRenderAVideo) {
   const fs::path dir = *scratch_ / "video-cli";
   const CaptureManifest m = AddRecording(ReadManifest(session()), dir, 0.4, 10, 0.0);
@@ -218,6 +218,10 @@ TEST_F(LightFieldVideoBuildTest, TheCommandsBuildDescribeAndRenderAVideo) {
   EXPECT_EQ(run.status, 1);
   EXPECT_NE(run.output.find("there is no frame 9 (4 frames)"), std::string::npos) << run.output;
   EXPECT_FALSE(fs::exists(dir / "f9.png"));
+  run = testing::Lfcam(
+      fmt::format("depth {} --frame 2 --quiet --out {}", video, (dir / "d2.png").string()));
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_TRUE(fs::is_regular_file(dir / "d2.png"));
   run = testing::Lfcam(fmt::format("build {} --calibration {} --shot rec_00 --frames 2 --out {}",
                                    dir.string(), calibration.string(), video));
   EXPECT_EQ(run.status, 2) << run.output;  // bad usage

@@ -51,12 +51,16 @@ void AddDepthCommand(CLI::App& app) {
   auto* command = app.add_subcommand(
       "depth", "Estimate depth maps from the light field itself (plane sweep), with confidence");
   struct Flags {
+    int frame = 0;
     std::string input, out, view, range, disparity_pfm;
     bool all = false, json = false, quiet = false;
     int reach = 0;
   };
   auto f = std::make_shared<Flags>();
-  command->add_option("lightfield", f->input, "Light field file (.lf)")->required();
+  command->add_option("lightfield", f->input, "Light field file (.lf) or video (.lfv)")->required();
+  command->add_option("--frame", f->frame, "A video's light field frame (from 0)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 1 << 30));
   command
       ->add_option("--out", f->out,
                    "Depth PNG to write (16-bit; with NAME.confidence.png and NAME.preview.png "
@@ -104,7 +108,7 @@ void AddDepthCommand(CLI::App& app) {
         throw UsageError(fmt::format("--out {}: a depth map is a .png", f->out));
       RequireWritableOutput(f->out, "--out");
     }
-    const LightField lf = ReadLightFieldFrame(f->input);
+    const LightField lf = ReadLightFieldFrame(f->input, std::size_t(f->frame));
     const auto& d = lf.dims();
     if (d.view_count() < 2)
       throw Error(fmt::format("{}: depth needs at least two views; it has {}x{}", f->input, d.rows,

@@ -19,10 +19,14 @@ void AddExportCommand(CLI::App& app) {
   auto* command = app.add_subcommand(
       "export", "Export the views and their cameras: PNGs, NeRF transforms.json or COLMAP");
   struct Flags {
+    int frame = 0;
     std::string input, format, out, depth;
   };
   auto f = std::make_shared<Flags>();
-  command->add_option("lightfield", f->input, "Light field file (.lf)")->required();
+  command->add_option("lightfield", f->input, "Light field file (.lf) or video (.lfv)")->required();
+  command->add_option("--frame", f->frame, "A video's light field frame (from 0)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 1 << 30));
   command->add_option("--format", f->format, "png-views, nerf or colmap")->required();
   command->add_option("--out", f->out, "The folder to write (new or empty)")->required();
   command->add_option("--depth", f->depth,
@@ -34,7 +38,7 @@ void AddExportCommand(CLI::App& app) {
     if (!f->depth.empty() && format == ExportFormat::kPngViews)
       throw UsageError("--depth goes with --format colmap (points3D.txt) or nerf (sparse_pc.ply)");
     RequireNewOrEmptyFolder("--out", f->out);
-    const LightField lf = ReadLightFieldFrame(f->input);
+    const LightField lf = ReadLightFieldFrame(f->input, std::size_t(f->frame));
     std::optional<DepthSet> depth;
     if (!f->depth.empty()) depth = ReadDepthSet(f->depth, lf);
     const ExportReport report = ExportLightField(lf, format, f->out, depth ? &*depth : nullptr);
