@@ -2,7 +2,9 @@
 # The main job, the way a user with an array runs it: build lfcam; take a raw capture with the
 # simulated 10x10 array of Raspberry Pi camera modules (board shots and the Fig. 11 scene);
 # calibrate the array; build the light field; and render Fig. 11 (a)-(e) from it with the
-# paper's parameters into out/demo/ (one PNG per frame and one contact sheet per sequence).
+# paper's parameters into out/demo/ (one PNG per frame and one contact sheet per sequence, and
+# each sequence as an MP4); then share it: a web page anyone opens in a browser (out/demo/web)
+# and a Looking Glass quilt (out/demo/quilt).
 # Usage: scripts/demo.sh [--quick] [--capture]
 #   default: modules of 1296x972 (binned, half the Pi v1.3's size), a 1248x1152 light field,
 #            1024x1024 frames
@@ -83,6 +85,13 @@ sheet() {
   echo "   sheet: $out/fig11${seq}_sheet.png"
 }
 
+# movie NAME FLAGS...: a sequence as an H.264 video (60 frames, 2 s), the swept parameter A:B.
+movie() {
+  local name=$1; shift
+  $lfcam render "$lf" --video "$out/$name.mp4" --size "$size" --integrator cameras-quadrilinear \
+    --frames 60 --quiet "$@" | sed 's/^/   /'
+}
+
 focus=(3400 3700 3900 4300 4700 5200)
 echo "== Fig. 11 (a): refocus with breathing, f = 500, d_l = 192, d_o = 3400 -> 5200"
 files=(); labels=""
@@ -91,6 +100,7 @@ for d in "${focus[@]}"; do
   files+=("$out/fig11a_do$d.png"); labels+="d_o $d;"
 done
 sheet a "(a) refocus with focus breathing, f 500, d_l 192" "$labels" "${files[@]}"
+movie fig11a --focal-length 500 --aperture 192 --focus-distance 3400:5200
 
 echo "== Fig. 11 (b): refocus without breathing"
 files=(); labels=""
@@ -99,6 +109,7 @@ for d in "${focus[@]}"; do
   files+=("$out/fig11b_do$d.png"); labels+="d_o $d;"
 done
 sheet b "(b) refocus without breathing, f 500, d_l 192" "$labels" "${files[@]}"
+movie fig11b --focal-length 500 --aperture 192 --focus-distance 3400:5200 --no-breathing
 
 echo "== Fig. 11 (c): depth of field, f = 444, d_o = 3900, d_l = 64 -> 512"
 files=(); labels=""
@@ -107,6 +118,7 @@ for a in 64 96 128 256 512; do
   files+=("$out/fig11c_dl$a.png"); labels+="d_l $a;"
 done
 sheet c "(c) depth of field, f 444, d_o 3900" "$labels" "${files[@]}"
+movie fig11c --focal-length 444 --focus-distance 3900 --aperture 64:512
 
 echo "== Fig. 11 (d): zoom, d_o = 3900, d_l = 192, f = 500 -> 1000"
 files=(); labels=""
@@ -115,6 +127,7 @@ for f in 500 600 700 800 900 1000; do
   files+=("$out/fig11d_f$f.png"); labels+="f $f;"
 done
 sheet d "(d) zoom, d_o 3900, d_l 192" "$labels" "${files[@]}"
+movie fig11d --focal-length 500:1000 --focus-distance 3900 --aperture 192
 
 echo "== Fig. 11 (e): moving camera, d_o = 4300, f = 700, d_l = 64"
 # The eye slides across the array, always looking at the centre of the plane of focus (4.3 m
@@ -126,9 +139,19 @@ for x in -100 -60 -20 20 60 100; do
   files+=("$out/fig11e_x$x.png"); labels+="eye x $x mm;"
 done
 sheet e "(e) moving camera, f 700, d_o 4300, d_l 64" "$labels" "${files[@]}"
+movie fig11e --focal-length 700 --focus-distance 4300 --aperture 64 \
+  --eye 200,275,3600:400,275,3600 --look-at 300,275,-700
+
+echo "== sharing: a web page anyone opens in a browser, and a Looking Glass quilt"
+rm -rf "$out/web" "$out/quilt"
+$lfcam export "$lf" --format web --out "$out/web" --focal-length 400 --focus-distance 4300 \
+  --aperture 64
+$lfcam export "$lf" --format quilt --out "$out/quilt" --focal-length 520 --focus-distance 4300 \
+  --quiet
 
 echo
-echo "Done in $(( $(date +%s) - start )) s. Frames and contact sheets are in $out/:"
-ls "$out"/*_sheet.png
+echo "Done in $(( $(date +%s) - start )) s. Frames, contact sheets and videos are in $out/:"
+ls "$out"/*_sheet.png "$out"/*.mp4
+echo "Open the light field in a browser: $out/web/index.html (any static server shares it)"
 echo "Explore the light field interactively (F1 lists the keys; docs/viewer.md):"
 echo "  $lfcam view $lf"

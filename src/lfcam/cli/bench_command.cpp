@@ -10,6 +10,8 @@
 #include <thread>
 
 #include "lfcam/cli/backend_flags.h"
+#include "lfcam/cli/bench_playback.h"
+#include "lfcam/cli/bench_video.h"
 #include "lfcam/cli/commands.h"
 #include "lfcam/cli/parse.h"
 #include "lfcam/core/atomic_file.h"
@@ -102,29 +104,38 @@ void AddBenchCommand(CLI::App& app) {
     int min_runs = 5;
     double min_seconds = 1.0;
     bool reference = false, quiet = false, users_case = false;
+    double aperture_mm = 0;
   };
   auto flags = std::make_shared<Flags>();
   bench
       ->add_option("table", flags->table,
-                   "table1 (pinhole, 768^2 to 2048^2, one thread and all cores) or table2 "
-                   "(1024^2, f 444, d_o 4000, d_l 64..256 x gamma 1..16)")
+                   "table1 (pinhole, 768^2 to 2048^2, one thread and all cores), table2 "
+                   "(1024^2, f 444, d_o 4000, d_l 64..256 x gamma 1..16) or video (`render "
+                   "--video`: Fig. 11 (a)'s 60-frame 1024^2 refocus sweep, rendered alone and "
+                   "encoded to H.264 alongside) or playback (the viewer playing the "
+                   "--lightfield VIDEO.lfv without a window: frames kept a second)")
       ->required()
-      ->check(CLI::IsMember({"table1", "table2"}));
+      ->check(CLI::IsMember({"table1", "table2", "video", "playback"}));
   bench->add_option("--lightfield", flags->lightfield,
                     "Light field to time on (default: simulate the paper's, 10x10 views of "
                     "1248x1152 samples over [-1.2, 1.2]^2, in memory: about 12 s on 2 cores)");
   bench->add_option("--json", flags->json, "Also write one record per cell to this JSON file");
+  bench
+      ->add_option("--aperture", flags->aperture_mm,
+                   "playback: the viewer's aperture d_l in mm (0: a pinhole, its first view)")
+      ->check(CLI::Range(0.0, 10000.0));
   bench->add_flag("--users-case", flags->users_case,
                   "Also time every cell on the light field a user has: the same views and samples "
                   "over `lfcam simulate lightfield`'s default st domain [0, 1]^2 (what `lfcam "
                   "build` gives a capture; the default bench's is 2.4 times finer each way), "
                   "read from a file; printed beside, with the ratio");
-  bench
-      ->add_option("--integrator", flags->integrator,
-                   "table2: lens-samples (the paper's), cameras (their limit with the "
-                   "focal-plane lookup) or cameras-quadrilinear (the limit of the paper's own "
-                   "estimator); for the limits gamma plays no part, so one cell per aperture")
-      ->capture_default_str();
+  auto* integrator_option =
+      bench
+          ->add_option("--integrator", flags->integrator,
+                       "table2: lens-samples (the paper's), cameras (their limit with the "
+                       "focal-plane lookup) or cameras-quadrilinear (the limit of the paper's own "
+                       "estimator); for the limits gamma plays no part, so one cell per aperture")
+          ->capture_default_str();
   bench
       ->add_option("--interpolation", flags->interpolation,
                    "table2 with lens-samples: quadrilinear (the paper's), focal-plane or depth "
@@ -146,7 +157,7 @@ void AddBenchCommand(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::Range(0.0, 600.0));
   bench->add_flag("--quiet", flags->quiet, "No progress bar (it is drawn only on a terminal)");
-  bench->callback([flags] {
+  bench->callback([flags, integrator_option] {
     const Integrator integrator =
         FlagValue("--integrator", [&] { return IntegratorFromString(flags->integrator); });
     const Interpolation interpolation =
@@ -172,8 +183,31 @@ void AddBenchCommand(CLI::App& app) {
     const std::unique_ptr<FrameRenderer> opened = BackendFlags::Open(backend);
     const FrameRenderer& renderer = *opened;
 
+    if (flags->table == "playback") {
+      if (flags->lightfield.empty())
+        throw UsageError("playback: --lightfield VIDEO.lfv (a light field video) is required");
+      PlaybackBenchOptions playback;
+      playback.video = flags->lightfield;
+      playback.seconds = std::max(5.0, flags->min_seconds);
+      playback.aperture_mm = flags->aperture_mm;
+      // The viewer's default: on a GPU the quadrilinear limit, on the CPU the paper's estimator.
+      playback.integrator = integrator_option->count() > 0 ? integrator
+                            : renderer.uses_gl()           ? Integrator::kCamerasQuadrilinear
+                                                           : Integrator::kLensSamples;
+      BenchPlayback(playback, renderer, render_options);
+      return;
+    }
     const LightField lf = flags->lightfield.empty() ? PaperBenchLightField(flags->quiet)
                                                     : ReadLightField(flags->lightfield);
+    if (flags->table == "video") {
+      if (flags->users_case || depth_lookup || !flags->json.empty())
+        throw UsageError("--users-case, --interpolation depth and --json: not with video");
+      // The demo's integrator unless told otherwise.
+      BenchVideo(lf, renderer,
+                 integrator_option->count() > 0 ? integrator : Integrator::kCamerasQuadrilinear,
+                 interpolation, flags->min_runs, flags->quiet);
+      return;
+    }
     DepthSet depth;
     if (depth_lookup) {
       depth = ReadDepthSet(flags->depth, lf);

@@ -11,8 +11,38 @@
 #include "lfcam/render/rig_camera.h"
 
 namespace lfcam::cli {
+namespace {
 
-void CameraFlags::AddTo(CLI::App& c, bool rig_cameras) {
+// "A:B" split at its colon (no colon: the text twice).
+std::pair<std::string, std::string> RangeEnds(const std::string& text) {
+  const std::size_t colon = text.find(':');
+  if (colon == std::string::npos) return {text, text};
+  return {text.substr(0, colon), text.substr(colon + 1)};
+}
+
+// A vector flag's value, or with a range, its start.
+Vec3 Vec3Start(const std::string& flag, const std::string& text) {
+  return ParseVec3(flag, RangeEnds(text).first);
+}
+
+}  // namespace
+
+void CameraFlags::AddTo(CLI::App& c, bool rig_cameras, bool sweeps) {
+  sweeps_ = sweeps;
+  const std::string range_help = sweeps ? "; A:B sweeps it over the video's frames" : "";
+  // A number, or with sweeps a range "A:B" (kept for sweep(); the number becomes A).
+  const auto number = [this](const std::string& flag, double* value) {
+    return [this, flag, value](const std::string& text) {
+      const auto [start, end] = RangeEnds(text);
+      *value = ParseNumbers(flag, start, 1)[0];
+      if (start != text) {
+        ParseNumbers(flag, end, 1);
+        ranges_[flag] = text;
+      } else {
+        ranges_.erase(flag);
+      }
+    };
+  };
   if (rig_cameras)
     options_["--as-camera"] = c.add_option(
         "--as-camera", as_camera,
@@ -30,22 +60,25 @@ void CameraFlags::AddTo(CLI::App& c, bool rig_cameras) {
            "--size", size,
            fmt::format("Image size in pixels: N (square) or WxH, at most {} a side", kMaxImageSide))
           ->capture_default_str();
-  options_["--eye"] =
-      c.add_option("--eye", eye, "Camera position e_c, X,Y,Z in world mm (default: array centre)");
-  options_["--look-at"] =
-      c.add_option("--look-at", look_at,
-                   "Point looked at, X,Y,Z in world mm (default: straight ahead, along -n_ca)");
+  options_["--eye"] = c.add_option(
+      "--eye", eye, "Camera position e_c, X,Y,Z in world mm (default: array centre)" + range_help);
+  options_["--look-at"] = c.add_option(
+      "--look-at", look_at,
+      "Point looked at, X,Y,Z in world mm (default: straight ahead, along -n_ca)" + range_help);
   options_["--up"] = c.add_option("--up", up, "Up direction X,Y,Z (default: v_ca)");
-  options_["--focal-length"] =
-      c.add_option("--focal-length", focal_length_mm, "Focal length f in mm (film is 56 mm)")
-          ->capture_default_str();
+  options_["--focal-length"] = c.add_option_function<std::string>(
+                                    "--focal-length", number("--focal-length", &focal_length_mm),
+                                    "Focal length f in mm (film is 56 mm)" + range_help)
+                                   ->default_str(fmt::format("{}", focal_length_mm));
   options_["--focus-distance"] =
-      c.add_option("--focus-distance", focus_distance_mm,
-                   "Focus distance d_o in mm, from the lens; must exceed f")
-          ->capture_default_str();
+      c.add_option_function<std::string>(
+           "--focus-distance", number("--focus-distance", &focus_distance_mm),
+           "Focus distance d_o in mm, from the lens; must exceed f" + range_help)
+          ->default_str(fmt::format("{}", focus_distance_mm));
   options_["--aperture"] =
-      c.add_option("--aperture", aperture_mm, "Aperture diameter d_l in mm (0 = pinhole)")
-          ->capture_default_str();
+      c.add_option_function<std::string>("--aperture", number("--aperture", &aperture_mm),
+                                         "Aperture diameter d_l in mm (0 = pinhole)" + range_help)
+          ->default_str(fmt::format("{}", aperture_mm));
   options_["--lens-rate"] =
       c.add_option(
            "--lens-rate", lens_rate,
@@ -71,16 +104,79 @@ const std::optional<ViewSettings>& CameraFlags::view() const {
   return view_;
 }
 
+CameraFlags CameraFlags::WithView(const std::string& view_path) const {
+  CameraFlags flags = *this;
+  flags.view_file = view_path;
+  flags.view_.reset();
+  flags.view_read_ = false;
+  return flags;
+}
+
+CameraSweep CameraFlags::sweep() const {
+  CameraSweep sweep;
+  const auto numbers = [&](const std::string& flag) -> std::optional<std::pair<double, double>> {
+    const auto it = ranges_.find(flag);
+    if (it == ranges_.end()) return std::nullopt;
+    const auto [a, b] = RangeEnds(it->second);
+    return std::pair{ParseNumbers(flag, a, 1)[0], ParseNumbers(flag, b, 1)[0]};
+  };
+  const auto vectors = [&](const std::string& flag,
+                           const std::string& text) -> std::optional<std::pair<Vec3, Vec3>> {
+    if (text.find(':') == std::string::npos) return std::nullopt;
+    const auto [a, b] = RangeEnds(text);
+    return std::pair{ParseVec3(flag, a), ParseVec3(flag, b)};
+  };
+  sweep.eye = vectors("--eye", eye);
+  sweep.look_at = vectors("--look-at", look_at);
+  sweep.focal_length_mm = numbers("--focal-length");
+  sweep.focus_distance_mm = numbers("--focus-distance");
+  sweep.aperture_mm = numbers("--aperture");
+  return sweep;
+}
+
 void CameraFlags::Validate() const {
   view();
+  for (const auto& [flag, text] :
+       std::map<std::string, std::string>{{"--eye", eye}, {"--look-at", look_at}, {"--up", up}}) {
+    if (text.find(':') == std::string::npos) continue;
+    if (!sweeps_ || flag == "--up")
+      throw UsageError(fmt::format("{} {}: a range A:B {}", flag, text,
+                                   sweeps_ ? "is not for --up" : "goes with --video"));
+    const auto [a, b] = RangeEnds(text);
+    ParseVec3(flag, a);
+    ParseVec3(flag, b);
+  }
+  if (!ranges_.empty() && !sweeps_)
+    throw UsageError(fmt::format("{} {}: a range A:B goes with --video", ranges_.begin()->first,
+                                 ranges_.begin()->second));
+  if (!ranges_.empty() || sweep().eye || sweep().look_at) {
+    if (!as_camera.empty()) throw UsageError("--as-camera: not with a range (A:B) swept");
+    // Every combination of the ranges' ends must make a camera.
+    const CameraSweep s = sweep();
+    const auto ends = [](const std::optional<std::pair<double, double>>& range, double value) {
+      return range ? std::vector<double>{range->first, range->second} : std::vector<double>{value};
+    };
+    CameraFlags at_end = *this;
+    at_end.ranges_.clear();
+    at_end.eye = eye.empty() ? eye : RangeEnds(eye).first;
+    at_end.look_at = look_at.empty() ? look_at : RangeEnds(look_at).first;
+    for (double f : ends(s.focal_length_mm, focal_length_mm))
+      for (double d : ends(s.focus_distance_mm, focus_distance_mm))
+        for (double a : ends(s.aperture_mm, aperture_mm)) {
+          at_end.focal_length_mm = f;
+          at_end.focus_distance_mm = d;
+          at_end.aperture_mm = a;
+          at_end.Validate();
+        }
+  }
   const std::pair<int, int> image = ParseSize("--size", size, kMaxImageSide);
   // The linear image, its hit mask and their encoded copies: about 25 bytes a pixel.
   FlagValue("--size", [&] {
     RequireMemory(25.0 * image.first * image.second,
                   fmt::format("a {}x{} image", image.first, image.second));
   });
-  if (!eye.empty()) ParseVec3("--eye", eye);
-  if (!look_at.empty()) ParseVec3("--look-at", look_at);
+  if (!eye.empty()) Vec3Start("--eye", eye);
+  if (!look_at.empty()) Vec3Start("--look-at", look_at);
   if (!up.empty()) ParseVec3("--up", up);
   if (!(focal_length_mm > 0) || !std::isfinite(focal_length_mm))
     throw UsageError(
@@ -120,8 +216,8 @@ VirtualCameraParams CameraFlags::Resolve(const ArrayPlane& array) const {
       const auto [width, height] = ParseSize("--size", size, kMaxImageSide);
       p = WithFrameSize(p, width, height);
     }
-    if (given("--eye")) p.eye = ParseVec3("--eye", eye);
-    if (given("--look-at")) p.look_at = ParseVec3("--look-at", look_at);
+    if (given("--eye")) p.eye = Vec3Start("--eye", eye);
+    if (given("--look-at")) p.look_at = Vec3Start("--look-at", look_at);
     if (given("--up")) p.up = ParseVec3("--up", up);
     if (given("--focal-length")) p.focal_length_mm = focal_length_mm;
     if (given("--focus-distance")) p.focus_distance_mm = focus_distance_mm;
@@ -132,8 +228,8 @@ VirtualCameraParams CameraFlags::Resolve(const ArrayPlane& array) const {
   }
   VirtualCameraParams p;
   std::tie(p.width, p.height) = ParseSize("--size", size, kMaxImageSide);
-  p.eye = eye.empty() ? array.center() : ParseVec3("--eye", eye);
-  p.look_at = look_at.empty() ? Vec3(p.eye - 1000.0 * array.n_ca) : ParseVec3("--look-at", look_at);
+  p.eye = eye.empty() ? array.center() : Vec3Start("--eye", eye);
+  p.look_at = look_at.empty() ? Vec3(p.eye - 1000.0 * array.n_ca) : Vec3Start("--look-at", look_at);
   p.up = up.empty() ? array.v_ca : ParseVec3("--up", up);
   p.focal_length_mm = focal_length_mm;
   p.focus_distance_mm = focus_distance_mm;

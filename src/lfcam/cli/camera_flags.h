@@ -8,6 +8,7 @@
 
 #include "lfcam/core/lightfield.h"
 #include "lfcam/core/slab.h"
+#include "lfcam/render/camera_path.h"
 #include "lfcam/render/view_file.h"
 #include "lfcam/render/virtual_camera.h"
 
@@ -24,8 +25,14 @@ struct CameraFlags {
   std::string view_file;  // --camera FILE.json: a saved view (the viewer's), flags override it
   std::string as_camera;  // --as-camera R,C: the rig's camera at grid position (R, C)
 
-  // `rig_cameras`: also --as-camera (commands that read a light field file).
-  void AddTo(CLI::App& command, bool rig_cameras = false);
+  // `rig_cameras`: also --as-camera (commands that read a light field file). `sweeps`: --eye,
+  // --look-at, --focal-length, --focus-distance and --aperture also take a range A:B, swept over
+  // a video's frames (`render --video`); the camera MakeCamera gives is the range's start.
+  void AddTo(CLI::App& command, bool rig_cameras = false, bool sweeps = false);
+  // The ranges given (empty without any). Call after Validate().
+  CameraSweep sweep() const;
+  // The same flags over another saved view (a camera path's, `render --path`).
+  CameraFlags WithView(const std::string& view_path) const;
   // The saved view (--camera), read once; none without the flag. Throws UsageError naming it.
   const std::optional<ViewSettings>& view() const;
   // Whether a flag was given on the command line (not just defaulted).
@@ -42,6 +49,8 @@ struct CameraFlags {
  private:
   VirtualCameraParams Resolve(const ArrayPlane& array) const;
   std::map<std::string, CLI::Option*> options_;
+  std::map<std::string, std::string> ranges_;  // flag -> "A:B" as given (numbers only)
+  bool sweeps_ = false;
   mutable std::optional<ViewSettings> view_;
   mutable bool view_read_ = false;
 };

@@ -1,7 +1,9 @@
 // libFuzzer target: the flag parsers (numbers, vectors, sizes) and the virtual camera flags,
-// validated and turned into a camera, with values a user could type.
+// validated and turned into a camera, with values a user could type; and the flags as
+// `render --video` parses them (ranges A:B swept), every frame's camera made.
 #include <fuzzer/FuzzedDataProvider.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -10,6 +12,7 @@
 #include "lfcam/cli/parse.h"
 #include "lfcam/core/error.h"
 #include "lfcam/core/limits.h"
+#include "lfcam/render/camera_path.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   FuzzedDataProvider in(data, size);
@@ -29,6 +32,29 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (camera.lens_samples().empty()) std::abort();
     (void)camera.pixel_direction(camera.width() - 1, camera.height() - 1);
   } catch (const lfcam::Error&) {
+  }
+  {
+    // The sweepable flags through CLI11, as `render --video` takes them.
+    lfcam::cli::CameraFlags swept;
+    CLI::App app;
+    swept.AddTo(app, /*rig_cameras=*/true, /*sweeps=*/true);
+    std::vector<std::string> args;
+    for (const char* flag :
+         {"--focus-distance", "--aperture", "--focal-length", "--eye", "--look-at"})
+      if (in.ConsumeBool()) {
+        args.push_back(flag);
+        args.push_back(in.ConsumeRandomLengthString(40));
+      }
+    std::reverse(args.begin(), args.end());  // CLI11 takes them last first
+    try {
+      app.parse(args);
+      swept.Validate();
+      const lfcam::CameraPath path =
+          lfcam::CameraPath::Sweep(swept.MakeCamera(lfcam::ArrayPlane{}).params(), swept.sweep());
+      for (int k = 0; k < 5; ++k) (void)lfcam::VirtualCamera(path.AtFrame(k, 5));
+    } catch (const CLI::Error&) {
+    } catch (const lfcam::Error&) {
+    }
   }
   const std::string text = in.ConsumeRemainingBytesAsString();
   for (const char separator : {',', 'x'}) try {

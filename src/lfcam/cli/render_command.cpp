@@ -13,6 +13,7 @@
 #include "lfcam/cli/camera_flags.h"
 #include "lfcam/cli/commands.h"
 #include "lfcam/cli/parse.h"
+#include "lfcam/cli/render_video.h"
 #include "lfcam/cli/scene_flags.h"
 #include "lfcam/core/error.h"
 #include "lfcam/core/image_io.h"
@@ -46,6 +47,33 @@ double SecondsSince(std::chrono::steady_clock::time_point start) {
 
 }  // namespace
 
+DepthSet EstimateDepthForFrames(const LightField& lf, const std::vector<VirtualCamera>& cameras,
+                                const std::string& input, bool quiet) {
+  DepthSet depth(lf.dims());
+  std::vector<bool> needed(lf.dims().view_count(), false);
+  for (const VirtualCamera& camera : cameras) {
+    const std::vector<bool> more = DepthViewsNeeded(lf, camera);
+    for (std::size_t i = 0; i < needed.size(); ++i) needed[i] = needed[i] || more[i];
+  }
+  const int count = int(std::count(needed.begin(), needed.end(), true));
+  const auto start = std::chrono::steady_clock::now();
+  ProgressBar progress("estimating depth", count, ProgressWanted(quiet));
+  const auto advance = progress.callback();
+  EstimateDepthSet(
+      lf, depth, [&](int r, int c) { return bool(needed[std::size_t(r) * lf.dims().cols + c]); },
+      {},
+      [&](int, int) {
+        if (advance) advance(1);
+      });
+  progress.finish();
+  if (!quiet)
+    fmt::print(stderr,
+               "estimated the depth of the {} views {} reads in {:.1f} s (`lfcam depth {} --all "
+               "--out DIR` keeps them for --depth DIR)\n",
+               count, cameras.size() > 1 ? "the video" : "this frame", SecondsSince(start), input);
+  return depth;
+}
+
 void AddRenderCommand(CLI::App& app) {
   auto* render = app.add_subcommand("render", "Render a light field through the virtual camera");
   struct Flags {
@@ -56,6 +84,7 @@ void AddRenderCommand(CLI::App& app) {
     int threads = 0, repeat = 1;
     std::string interpolation = "quadrilinear", integrator = "lens-samples";
     bool quiet = false, reference = false, antialias = false;
+    VideoFlags video;
   };
   auto flags = std::make_shared<Flags>();
   render->add_option("lightfield", flags->input, "Light field file (.lf) or video (.lfv)")
@@ -63,8 +92,10 @@ void AddRenderCommand(CLI::App& app) {
   render->add_option("--frame", flags->frame, "A video's light field frame to render (from 0)")
       ->capture_default_str()
       ->check(CLI::Range(0, 1 << 30));
-  render->add_option("--out", flags->out, "Image to write (.png or .jpg)")->required();
-  flags->camera.AddTo(*render, /*rig_cameras=*/true);
+  auto* out_option = render->add_option("--out", flags->out, "Image to write (.png or .jpg)");
+  flags->camera.AddTo(*render, /*rig_cameras=*/true, /*sweeps=*/true);
+  auto* video_option = flags->video.AddTo(*render);
+  out_option->excludes(video_option);
   render
       ->add_option("--threads", flags->threads,
                    "Worker threads (0 = all cores; 1 = the paper's single-threaded CPU column)")
@@ -106,7 +137,9 @@ void AddRenderCommand(CLI::App& app) {
                    "Use the scalar reference renderer (one pixel at a time, every ray in double "
                    "precision; the definition the vectorised renderer is tested against) instead "
                    "of the vectorised one");
-  render->callback([flags, integrator_option, interpolation_option] {
+  render->callback([flags, integrator_option, interpolation_option, out_option, video_option] {
+    if (out_option->count() == 0 && video_option->count() == 0)
+      throw UsageError("--out IMAGE (a frame) or --video OUT.mp4 (a video) is required");
     // Every flag and output is checked before the light field is read.
     FrameRenderOptions options;
     options.threads = flags->threads;
@@ -116,8 +149,11 @@ void AddRenderCommand(CLI::App& app) {
     options.integrator =
         FlagValue("--integrator", [&] { return IntegratorFromString(flags->integrator); });
     flags->camera.Validate();
-    // A saved view brings its integrator and lookup, unless the flags say otherwise.
-    if (const auto& view = flags->camera.view()) {
+    // A saved view (or a path's first) brings its integrator and lookup, unless the flags say
+    // otherwise.
+    const std::optional<ViewSettings> first_view =
+        flags->video.path.empty() ? flags->camera.view() : flags->video.FirstView();
+    if (const auto& view = first_view) {
       if (integrator_option->count() == 0) options.integrator = view->integrator;
       if (interpolation_option->count() == 0) options.interpolation = view->interpolation;
     }
@@ -126,6 +162,19 @@ void AddRenderCommand(CLI::App& app) {
     if (options.integrator == Integrator::kCameras && interpolation_option->count() > 0 &&
         options.interpolation == Interpolation::kQuadrilinear)
       options.integrator = Integrator::kCamerasQuadrilinear;
+    if (video_option->count() > 0) {
+      if (!flags->hit_mask.empty() || flags->repeat != 1)
+        throw UsageError(fmt::format("{}: not with --video",
+                                     flags->hit_mask.empty() ? "--repeat" : "--hit-mask"));
+      VideoRenderInput input{flags->input, flags->frame, flags->depth, flags->antialias,
+                             flags->quiet};
+      RenderVideoCommand(input, flags->video, flags->camera, options,
+                         flags->backend.Validate(options));
+      return;
+    }
+    flags->video.RequireNoVideoFlags();
+    if (!flags->camera.sweep().empty())
+      throw UsageError("a range A:B (a sweep) goes with --video OUT.mp4");
     RequireImageOutput(flags->out, "--out");
     std::error_code ec;
     if (std::filesystem::equivalent(flags->input, flags->out, ec))
@@ -145,28 +194,9 @@ void AddRenderCommand(CLI::App& app) {
     if (options.interpolation == Interpolation::kDepth) {
       if (options.integrator != Integrator::kLensSamples)
         throw UsageError("--interpolation depth goes with --integrator lens-samples");
-      if (!flags->depth.empty()) {
-        depth = ReadDepthSet(flags->depth, lf);
-      } else {
-        depth = DepthSet(lf.dims());
-        const std::vector<bool> needed = DepthViewsNeeded(lf, camera);
-        const int count = int(std::count(needed.begin(), needed.end(), true));
-        const auto start = std::chrono::steady_clock::now();
-        ProgressBar progress("estimating depth", count, ProgressWanted(flags->quiet));
-        const auto advance = progress.callback();
-        EstimateDepthSet(
-            lf, depth,
-            [&](int r, int c) { return bool(needed[std::size_t(r) * lf.dims().cols + c]); }, {},
-            [&](int, int) {
-              if (advance) advance(1);
-            });
-        progress.finish();
-        if (!flags->quiet)
-          fmt::print(stderr,
-                     "estimated the depth of the {} views this frame reads in {:.1f} s (`lfcam "
-                     "depth {} --all --out DIR` keeps them for --depth DIR)\n",
-                     count, SecondsSince(start), flags->input);
-      }
+      depth = flags->depth.empty()
+                  ? EstimateDepthForFrames(lf, {camera}, flags->input, flags->quiet)
+                  : ReadDepthSet(flags->depth, lf);
       options.depth = &depth;
       options.antialias = flags->antialias;
     } else if (!flags->depth.empty() || flags->antialias) {

@@ -143,11 +143,13 @@ cv::Mat ReadMask(const std::filesystem::path& path) {
 cv::Mat LinearToSrgb8Image(const cv::Mat& linear_rgb) {
   CV_Assert(linear_rgb.type() == CV_32FC3);
   cv::Mat out(linear_rgb.size(), CV_8UC3);
-  for (int y = 0; y < out.rows; ++y) {
-    const float* in = linear_rgb.ptr<float>(y);
-    std::uint8_t* o = out.ptr<std::uint8_t>(y);
-    for (int x = 0; x < out.cols * 3; ++x) o[x] = LinearToSrgb8(in[x]);
-  }
+  cv::parallel_for_(cv::Range(0, out.rows), [&](const cv::Range& rows) {
+    for (int y = rows.start; y < rows.end; ++y) {
+      const float* in = linear_rgb.ptr<float>(y);
+      std::uint8_t* o = out.ptr<std::uint8_t>(y);
+      for (int x = 0; x < out.cols * 3; ++x) o[x] = LinearToSrgb8Exact(in[x]);
+    }
+  });
   return out;
 }
 

@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <algorithm>
+#include <atomic>
 #include <climits>
 #include <cstdlib>
 #include <cstring>
@@ -25,6 +26,13 @@ SampleType SampleTypeFromString(const std::string& name) {
 
 std::size_t BytesPerChannel(SampleType type) { return type == SampleType::kSrgb8 ? 1 : 2; }
 
+namespace {
+std::uint64_t NextSampleBufferSerial() {
+  static std::atomic<std::uint64_t> next{1};
+  return next.fetch_add(1);
+}
+}  // namespace
+
 SampleBuffer SampleBuffer::Allocate(std::size_t size) {
   std::shared_ptr<std::uint8_t[]> owned(new std::uint8_t[size + kReadableBefore]);
   std::fill_n(owned.get(), kReadableBefore, std::uint8_t{0});
@@ -33,6 +41,7 @@ SampleBuffer SampleBuffer::Allocate(std::size_t size) {
   b.keep_alive_ = std::move(owned);
   b.size_ = size;
   b.writable_ = true;
+  b.serial_ = NextSampleBufferSerial();
   return b;
 }
 
@@ -43,6 +52,7 @@ SampleBuffer SampleBuffer::Wrap(std::shared_ptr<void> keep_alive, std::uint8_t* 
   b.data_ = data;
   b.size_ = size;
   b.writable_ = writable;
+  b.serial_ = NextSampleBufferSerial();
   return b;
 }
 

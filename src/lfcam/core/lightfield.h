@@ -62,6 +62,9 @@ class SampleBuffer {
                            bool writable);
   const std::uint8_t* data() const { return data_; }
   std::uint8_t* mutable_data();  // throws if the buffer is a read-only mapping
+  // A number no other buffer made by this process has: what a cache of the samples (the GL
+  // renderer's textures) keys on, where an address could be reused by a later buffer.
+  std::uint64_t serial() const { return serial_; }
   std::size_t size() const { return size_; }
 
  private:
@@ -69,6 +72,7 @@ class SampleBuffer {
   std::uint8_t* data_ = nullptr;
   std::size_t size_ = 0;
   bool writable_ = false;
+  std::uint64_t serial_ = 0;
 };
 
 class LightField {
@@ -90,6 +94,7 @@ class LightField {
   const std::uint8_t* view_data(int row, int col) const;
   std::uint8_t* mutable_view_data(int row, int col);
   const std::uint8_t* data() const { return samples_.data(); }
+  std::uint64_t samples_serial() const { return samples_.serial(); }  // SampleBuffer::serial
 
   // Each view's measured camera pose (a calibrated capture), row-major; empty when the views sit
   // on the slab's ideal grid (a simulated light field, a format version 1 file).

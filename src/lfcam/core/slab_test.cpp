@@ -119,6 +119,27 @@ TEST(Color, NonFiniteLinearValuesEncodeWithoutUndefinedCasts) {
   EXPECT_EQ(LinearToSrgb8(INFINITY), 255);
   EXPECT_EQ(LinearToSrgb8(2.0f), 255);
   EXPECT_EQ(LinearToSrgb8(0.0f), 0);
+  for (const float x : {std::nanf(""), -INFINITY, INFINITY, 2.0f, 0.0f, -1.0f})
+    EXPECT_EQ(LinearToSrgb8Exact(x), LinearToSrgb8(x)) << x;
+}
+
+// The bulk encoder (every image lfcam writes) is LinearToSrgb8 exactly: on every code's step
+// and its float neighbours, and on a dense sweep of [0, 1] (every 2^-24).
+TEST(Color, BulkEncodingIsExactlyLinearToSrgb8) {
+  for (int i = 0; i <= (1 << 24); ++i) {
+    const float x = float(i) / float(1 << 24);
+    ASSERT_EQ(LinearToSrgb8Exact(x), LinearToSrgb8(x)) << x;
+  }
+  for (int c = 0; c < 255; ++c) {
+    // Where the code steps from c to c + 1 (bisected here too, on doubles).
+    double lo = 0, hi = 1;
+    for (int k = 0; k < 60; ++k) {
+      const double mid = 0.5 * (lo + hi);
+      (LinearToSrgb8(float(mid)) > c ? hi : lo) = mid;
+    }
+    for (float x = std::nextafter(float(lo), 0.0f), n = 0; n < 4; ++n, x = std::nextafter(x, 2.0f))
+      ASSERT_EQ(LinearToSrgb8Exact(x), LinearToSrgb8(x)) << x;
+  }
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include "lfcam/core/error.h"
 #include "lfcam/core/image_io.h"
 #include "lfcam/core/json_input.h"
+#include "lfcam/core/staged_folder.h"
 #include "lfcam/io/sparse_points.h"
 
 namespace lfcam {
@@ -18,24 +19,6 @@ namespace lfcam {
 namespace {
 
 namespace fs = std::filesystem;
-
-// The view's samples as an 8-bit sRGB image, top row first (st rows run bottom-up).
-cv::Mat ViewImage(const LightField& lf, int row, int col) {
-  const auto& d = lf.dims();
-  cv::Mat image(d.n_t, d.n_s, CV_8UC3);
-  if (lf.sample_type() == SampleType::kSrgb8) {
-    const cv::Mat view(d.n_t, d.n_s, CV_8UC3, const_cast<std::uint8_t*>(lf.view_data(row, col)));
-    cv::flip(view, image, 0);
-    return image;
-  }
-  cv::Mat linear(d.n_t, d.n_s, CV_32FC3);
-  for (int l = 0; l < d.n_t; ++l)
-    for (int k = 0; k < d.n_s; ++k) {
-      const Eigen::Vector3f c = lf.linear_rgb(row, col, k, l);
-      linear.at<cv::Vec3f>(d.n_t - 1 - l, k) = {c.x(), c.y(), c.z()};
-    }
-  return LinearToSrgb8Image(linear);
-}
 
 std::string ViewName(int row, int col) { return fmt::format("view_{:02d}_{:02d}.png", row, col); }
 
@@ -69,11 +52,28 @@ void WriteText(const fs::path& path, const std::string& text) {
 
 }  // namespace
 
+cv::Mat ViewImage(const LightField& lf, int row, int col) {
+  const auto& d = lf.dims();
+  cv::Mat image(d.n_t, d.n_s, CV_8UC3);
+  if (lf.sample_type() == SampleType::kSrgb8) {
+    const cv::Mat view(d.n_t, d.n_s, CV_8UC3, const_cast<std::uint8_t*>(lf.view_data(row, col)));
+    cv::flip(view, image, 0);
+    return image;
+  }
+  cv::Mat linear(d.n_t, d.n_s, CV_32FC3);
+  for (int l = 0; l < d.n_t; ++l)
+    for (int k = 0; k < d.n_s; ++k) {
+      const Eigen::Vector3f c = lf.linear_rgb(row, col, k, l);
+      linear.at<cv::Vec3f>(d.n_t - 1 - l, k) = {c.x(), c.y(), c.z()};
+    }
+  return LinearToSrgb8Image(linear);
+}
+
 ExportFormat ExportFormatFromString(const std::string& name) {
   if (name == "png-views") return ExportFormat::kPngViews;
   if (name == "nerf") return ExportFormat::kNerf;
   if (name == "colmap") return ExportFormat::kColmap;
-  throw UsageError(fmt::format("--format '{}' is not png-views, nerf or colmap", name));
+  throw UsageError(fmt::format("--format '{}' is not png-views, nerf, colmap or quilt", name));
 }
 
 ViewCamera ViewAsCamera(const LightField& lf, int row, int col) {
@@ -114,20 +114,10 @@ ExportReport ExportLightField(const LightField& lf, ExportFormat format, const f
         "depth maps are exported as points for COLMAP (--format colmap) or NeRF (--format nerf)");
   if (depth && !(depth->dims() == lf.dims()))
     throw Error("the depth maps are not of this light field (another grid or st resolution)");
-  const fs::path out = out_dir.has_filename() ? out_dir : out_dir.parent_path();
+  StagedFolder folder(out_dir);
+  const fs::path& staging = folder.path();
+  const fs::path& out = folder.out();
   std::error_code ec;
-  if (fs::exists(out, ec) && (!fs::is_directory(out, ec) || !fs::is_empty(out, ec)))
-    throw Error(fmt::format("{}: exists and is not an empty folder", out.string()));
-  const fs::path staging = out.string() + fmt::format(".partial-{}", ::getpid());
-  fs::remove_all(staging, ec);
-  struct Guard {
-    fs::path path;
-    bool keep = false;
-    ~Guard() {
-      std::error_code e;
-      if (!keep) fs::remove_all(path, e);
-    }
-  } guard{staging};
   const auto& d = lf.dims();
   const std::string image_folder = format == ExportFormat::kPngViews ? "views" : "images";
   fs::create_directories(staging / image_folder, ec);
@@ -268,12 +258,7 @@ ExportReport ExportLightField(const LightField& lf, ExportFormat format, const f
     report.points = int(points.points.size());
     WriteText(staging / "sparse/0/points3D.txt", points_txt);
   }
-  if (fs::exists(out, ec)) fs::remove(out, ec);
-  fs::rename(staging, out, ec);
-  if (ec)
-    throw Error(
-        fmt::format("{}: cannot move the export into place: {}", out.string(), ec.message()));
-  guard.keep = true;
+  folder.Commit();
   return report;
 }
 

@@ -11,6 +11,7 @@
 //              world-to-camera poses, millimetres; points and their tracks from depth maps when
 //              given, io/sparse_points.h, else none) and images/.
 #include <filesystem>
+#include <opencv2/core.hpp>
 #include <string>
 
 #include "lfcam/core/geometry.h"
@@ -30,6 +31,9 @@ struct ViewCamera {
   Rigid3 world_from_camera;
 };
 ViewCamera ViewAsCamera(const LightField& lf, int row, int col);
+
+// View (row, col)'s samples as an 8-bit sRGB RGB image, top row first (st rows run bottom-up).
+cv::Mat ViewImage(const LightField& lf, int row, int col);
 
 struct ExportReport {
   int views = 0;

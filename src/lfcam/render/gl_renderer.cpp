@@ -248,7 +248,9 @@ unsigned GlRenderer::NewTextureArray(unsigned format, const LightFieldDims& d, i
 
 void GlRenderer::Upload(const LightField& lf) {
   const LightFieldDims& d = lf.dims();
-  if (views_ && uploaded_ == lf.data() && uploaded_dims_ == d) return;
+  if (views_ && uploaded_ == lf.data() && uploaded_serial_ == lf.samples_serial() &&
+      uploaded_dims_ == d)
+    return;
   if (d.n_s > limits_.max_texture_size || d.n_t > limits_.max_texture_size)
     throw Error(fmt::format(
         "the light field's views ({}x{} samples) exceed this GPU's largest texture ({} on {})",
@@ -260,18 +262,28 @@ void GlRenderer::Upload(const LightField& lf) {
   const bool srgb8 = lf.sample_type() == SampleType::kSrgb8;
   // The driver may pad each texel to four channels.
   const double bytes = double(d.samples_per_view()) * double(d.view_count()) * (srgb8 ? 4 : 8);
-  RequireGpuMemory(bytes, "the light field");
-  if (views_) glDeleteTextures(1, &views_);
-  views_ = 0;
+  // Another light field of the same shape (a video's next frame): the texture is kept, its
+  // samples replaced.
+  const bool reuse = views_ && uploaded_dims_ == d && uploaded_srgb8_ == srgb8;
   uploaded_ = nullptr;
-  views_ = NewTextureArray(srgb8 ? GL_SRGB8 : GL_RGB16F, d, GL_LINEAR, bytes, "the light field");
+  uploaded_serial_ = 0;
+  if (!reuse) {
+    RequireGpuMemory(bytes, "the light field");
+    if (views_) glDeleteTextures(1, &views_);
+    views_ = 0;
+    views_ = NewTextureArray(srgb8 ? GL_SRGB8 : GL_RGB16F, d, GL_LINEAR, bytes, "the light field");
+  } else {
+    glBindTexture(GL_TEXTURE_2D_ARRAY, views_);
+  }
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
   for (std::size_t v = 0; v < d.view_count(); ++v)
     glTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, GLint(v), d.n_s, d.n_t, 1, GL_RGB,
                     srgb8 ? GL_UNSIGNED_BYTE : GL_HALF_FLOAT, lf.data() + v * lf.view_bytes());
   CheckGl("uploading the light field");
   uploaded_ = lf.data();
+  uploaded_serial_ = lf.samples_serial();
   uploaded_dims_ = d;
+  uploaded_srgb8_ = srgb8;
 }
 
 unsigned GlRenderer::Program(int mode, bool view_windows, const GlRenderOptions& options) {
@@ -633,7 +645,7 @@ unsigned GlRenderer::Prefilter(const LightField& lf, const StPrefilter& prefilte
   for (std::size_t v = 0; v < read.size(); ++v)
     if (read[v]) layers.push_back(std::int32_t(v));
   // The same filter over the same views of the same light field: still in place.
-  const std::string key = fmt::format("{}|{}|{}|{}", fmt::ptr(uploaded_), fmt::join(taps_s, ","),
+  const std::string key = fmt::format("{}|{}|{}|{}", uploaded_serial_, fmt::join(taps_s, ","),
                                       fmt::join(taps_t, ","), fmt::join(layers, ","));
   if (key == filtered_key_) return filtered_[1];
   filtered_key_.clear();

@@ -109,8 +109,10 @@ class GlRenderer {
   std::unique_ptr<GlContext> context_;
   GlLimits limits_;
   unsigned views_ = 0;              // the light field's texture array
-  const void* uploaded_ = nullptr;  // whose samples it holds
+  const void* uploaded_ = nullptr;  // whose samples it holds (address and buffer serial)
+  std::uint64_t uploaded_serial_ = 0;
   LightFieldDims uploaded_dims_{};
+  bool uploaded_srgb8_ = false;
   unsigned output_ = 0;  // the frame, RGBA32F
   int output_width_ = 0, output_height_ = 0;
   unsigned buffers_[6] = {0, 0, 0, 0, 0, 0};  // the shader's storage buffers

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
@@ -16,6 +17,7 @@
 #include <vector>
 
 #include "lfcam/core/error.h"
+#include "lfcam/core/image_io.h"
 #include "lfcam/render/frame_renderer.h"
 #include "lfcam/render/render_test_cases.h"
 #include "lfcam/sim/depth_truth.h"
@@ -271,6 +273,36 @@ TEST(GlRenderer, RefusesViewsLargerThanTheDeviceWithItsLimit) {
   }
   // The renderer still works afterwards.
   EXPECT_GT(gl->Render(small, VirtualCamera(p), {}).rays_hit, 0);
+}
+
+// A light field video's frames: one light field after another of the same shape, each freed
+// before the next is made (so an address may come back), the texture kept and its samples
+// replaced. Each frame is its own, not the one before.
+TEST(GlRenderer, SuccessiveLightFieldsOfOneShapeEachRenderTheirOwnSamples) {
+  LFCAM_GL_OR_SKIP(gl);
+  const LightField& small = SmallPaperLightField();
+  VirtualCameraParams p;
+  p.width = 48;
+  p.height = 40;
+  p.eye = small.slab().uv.center();
+  p.look_at = p.eye - Vec3(0, 0, 1000);
+  const VirtualCamera camera(p);
+  const auto flat = [&](std::uint8_t value) {
+    LightField lf(small.dims(), SampleType::kSrgb8, small.slab());
+    std::fill_n(lf.mutable_view_data(0, 0), lf.total_bytes(), value);
+    return lf;
+  };
+  for (const std::uint8_t value : {40, 200, 40, 120}) {
+    const LightField frame = flat(value);
+    EXPECT_NE(frame.samples_serial(), small.samples_serial());
+    const RenderResult result = gl->Render(frame, camera, {});
+    const cv::Scalar mean = cv::mean(LinearToSrgb8Image(result.image));
+    EXPECT_NEAR(mean[0], value, 1.0) << "frame of " << int(value);
+  }
+  // A copy shares its samples (and their serial); the original renders as before.
+  const LightField copy = small;
+  EXPECT_EQ(copy.samples_serial(), small.samples_serial());
+  EXPECT_GT(gl->Render(small, camera, {}).rays_hit, 0);
 }
 
 TEST(GlRenderer, RefusesAWorkGroupTheDeviceCannotRun) {

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "lfcam/viewer/video_playback.h"
 #include "lfcam/viewer/view_navigation.h"
 
 namespace lfcam {
@@ -164,6 +165,51 @@ bool DrawRenderingWindow(ViewSettings& view, double& render_scale, const FrameSt
   return changed;
 }
 
+bool DrawVideoWindow(VideoPlayback& playback, const PlaybackStats& stats, bool* open) {
+  if (!*open || !playback.is_video()) return false;
+  bool changed = false;
+  const ImGuiViewport* viewport = ImGui::GetMainViewport();
+  ImGui::SetNextWindowPos(
+      ImVec2(viewport->WorkPos.x + 10, viewport->WorkPos.y + viewport->WorkSize.y - 10),
+      ImGuiCond_FirstUseEver, ImVec2(0, 1));
+  ImGui::SetNextWindowSize(ImVec2(std::min(640.0f, viewport->WorkSize.x - 20), 0),
+                           ImGuiCond_FirstUseEver);
+  if (ImGui::Begin("Video (F4)", open, ImGuiWindowFlags_NoSavedSettings)) {
+    const std::int64_t n = playback.frames();
+    if (ImGui::Button(playback.playing() ? "Pause" : "Play")) playback.Toggle();
+    ImGui::SameLine();
+    if (ImGui::Button("<")) {
+      playback.Step(-1);
+      changed = true;
+    }
+    ImGui::SameLine();
+    if (ImGui::Button(">")) {
+      playback.Step(1);
+      changed = true;
+    }
+    ImGui::SameLine();
+    bool loop = playback.loop();
+    if (ImGui::Checkbox("loop", &loop)) playback.set_loop(loop);
+    int frame = int(playback.playhead());
+    ImGui::SetNextItemWidth(-1);
+    if (ImGui::SliderInt("##timeline", &frame, 0, int(n - 1), "frame %d")) {
+      playback.Seek(frame);
+      changed = true;
+    }
+    ImGui::Text("frame %lld of %lld, %.3f s of %.3f s at %g fps", (long long)playback.playhead(),
+                (long long)n, double(playback.playhead()) / playback.fps(),
+                double(n) / playback.fps(), playback.fps());
+    if (playback.playing())
+      ImGui::Text("keeping %.1f of %g frames a second at %.0f%% resolution; %lld skipped",
+                  stats.shown_fps, playback.fps(), 100.0 * stats.shown_scale,
+                  (long long)playback.skipped());
+    ImGui::Text("decoding %.1f ms a frame", playback.decode_ms());
+    if (!playback.error().empty()) ImGui::TextWrapped("%s", playback.error().c_str());
+  }
+  ImGui::End();
+  return changed;
+}
+
 void DrawHelpOverlay(bool* open) {
   if (!*open) return;
   const ImGuiViewport* viewport = ImGui::GetMainViewport();
@@ -175,7 +221,11 @@ void DrawHelpOverlay(bool* open) {
                    ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings)) {
     static const char* const kLines[][2] = {
         {"F1", "this help"},
-        {"F2 / F3", "Camera / Rendering window"},
+        {"F2 / F3 / F4", "Camera / Rendering / Video window"},
+        {"space", "play / pause (a light field video)"},
+        {", / .", "a frame back / on"},
+        {"L", "loop on / off"},
+        {"Home", "back to the first frame"},
         {"left drag", "orbit around the point in focus"},
         {"shift+left or middle drag", "pan"},
         {"wheel", "focus distance"},

@@ -4,6 +4,7 @@
 // lookup, lens sampling rate, render scale, backend and device, milliseconds a frame, lookups a
 // pixel), and the help overlay with every key. Each draws with Dear ImGui and edits the view in
 // place.
+#include <cstdint>
 #include <map>
 #include <string>
 
@@ -16,7 +17,17 @@ namespace lfcam {
 struct PanelVisibility {
   bool camera = true;     // F2
   bool rendering = true;  // F3
+  bool video = true;      // F4 (a light field video only)
   bool help = false;      // F1
+};
+
+class VideoPlayback;
+
+// What the Video window reports about playback.
+struct PlaybackStats {
+  double shown_fps = 0;     // light field frames drawn a second, over the last second
+  double shown_scale = 1;   // the resolution they were drawn at, over the full one
+  std::int64_t shown = -1;  // the frame on screen
 };
 
 // What the Rendering window reports about the frame on screen.
@@ -46,6 +57,9 @@ bool DrawCameraWindow(ViewSettings& view, const LightField& lf, double rig_posit
 // `has_depth`: the depth lookup is offered (the viewer has the views' depth maps).
 bool DrawRenderingWindow(ViewSettings& view, double& render_scale, const FrameStats& stats,
                          bool has_depth, bool* open);
+// A light field video's controls: play/pause, loop, the timeline (drag to scrub), a frame back
+// and on, and the frame rate kept. Acts on `playback` directly; true when it changed the frame.
+bool DrawVideoWindow(VideoPlayback& playback, const PlaybackStats& stats, bool* open);
 void DrawHelpOverlay(bool* open);
 
 }  // namespace lfcam

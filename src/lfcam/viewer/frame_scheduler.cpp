@@ -23,9 +23,21 @@ VirtualCameraParams ScaledCamera(const VirtualCameraParams& camera, double scale
       p, width, std::max(16, int(std::lround(double(width) * camera.height / camera.width))));
 }
 
-FrameScheduler::FrameScheduler(const LightField& lf, const FrameRenderer& renderer,
+FrameScheduler::FrameScheduler(std::shared_ptr<const LightField> lf, const FrameRenderer& renderer,
                                FrameRenderOptions options, double budget_ms)
-    : lf_(lf), renderer_(renderer), options_(std::move(options)), budget_ms_(budget_ms) {}
+    : lf_(std::move(lf)),
+      renderer_(renderer),
+      options_(std::move(options)),
+      budget_ms_(budget_ms) {}
+
+void FrameScheduler::SetLightField(std::shared_ptr<const LightField> lf, std::int64_t index) {
+  lf_ = std::move(lf);
+  index_ = index;
+}
+
+bool FrameScheduler::Same(const ViewSettings& wanted) const {
+  return shown_view_ && shown_index_ == index_ && SameView(*shown_view_, wanted);
+}
 
 FrameScheduler::~FrameScheduler() {
   if (pending_.valid()) pending_.wait();
@@ -39,7 +51,7 @@ FrameRenderOptions FrameScheduler::OptionsFor(const ViewSettings& view) const {
 }
 
 RenderResult FrameScheduler::RenderNow(const ViewSettings& view) const {
-  return renderer_.Render(lf_, VirtualCamera(view.camera), OptionsFor(view));
+  return renderer_.Render(*lf_, VirtualCamera(view.camera), OptionsFor(view));
 }
 
 void FrameScheduler::Finish(const Job& job, RenderResult result) {
@@ -47,6 +59,7 @@ void FrameScheduler::Finish(const Job& job, RenderResult result) {
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - job.start)
           .count();
   shown_view_ = job.view;
+  shown_index_ = job.index;
   shown_scale_ = job.scale;
   parts_ = job.parts;
   parts_shown_ = job.part + 1;
@@ -79,10 +92,10 @@ void FrameScheduler::Start(const Job& job) {
   if (renderer_.uses_gl()) {
     RenderResult result;
     if (job.parts > 1) {
-      result = renderer_.Render(lf_, camera, o);  // read back, to accumulate
+      result = renderer_.Render(*job.lf, camera, o);  // read back, to accumulate
     } else {
       // In the window's context: the frame stays in the renderer's output texture.
-      result.gpu_ms = renderer_.gl()->RenderToTexture(lf_, camera, GlOptions(o));
+      result.gpu_ms = renderer_.gl()->RenderToTexture(*job.lf, camera, GlOptions(o));
       result.path = "gl (" + renderer_.gl()->device().renderer + ")";
       shown_on_gl_ = true;
     }
@@ -91,8 +104,9 @@ void FrameScheduler::Start(const Job& job) {
   }
   shown_on_gl_ = false;
   job_ = job;
-  pending_ = std::async(std::launch::async,
-                        [this, camera, o] { return renderer_.Render(lf_, camera, o); });
+  pending_ = std::async(std::launch::async, [this, camera, o, lf = job.lf] {
+    return renderer_.Render(*lf, camera, o);
+  });
 }
 
 bool FrameScheduler::Update(const ViewSettings& wanted, bool moving) {
@@ -103,11 +117,11 @@ bool FrameScheduler::Update(const ViewSettings& wanted, bool moving) {
     ready = true;
   }
   if (pending_.valid()) return ready;  // the worker is busy; the newest view comes next
-  const bool same = shown_view_ && SameView(*shown_view_, wanted);
+  const bool same = Same(wanted);
   const auto now = std::chrono::steady_clock::now();
   // The next part of an accumulating frame.
   if (same && shown_scale_ >= 1 && parts_shown_ < parts_) {
-    Start({wanted, 1.0, parts_shown_, parts_, now});
+    Start({wanted, lf_, index_, 1.0, parts_shown_, parts_, now});
     return true;
   }
   if (same && shown_scale_ >= 1) return ready;
@@ -115,7 +129,7 @@ bool FrameScheduler::Update(const ViewSettings& wanted, bool moving) {
   if (moving && full_ms_ > budget_ms_) {
     const double scale = std::clamp(std::sqrt(budget_ms_ / full_ms_), 0.125, 1.0);
     if (same && scale <= shown_scale_) return ready;  // nothing better to show yet
-    Start({wanted, scale, 0, 1, now});
+    Start({wanted, lf_, index_, scale, 0, 1, now});
     return true;
   }
   // At rest: the whole frame, in parts when it is a costly lens-samples one.
@@ -124,13 +138,12 @@ bool FrameScheduler::Update(const ViewSettings& wanted, bool moving) {
   const int lens_samples = int(camera.lens_samples().size());
   if (wanted.integrator == Integrator::kLensSamples && lens_samples > 1 && full_ms_ > budget_ms_)
     parts = std::clamp(int(std::ceil(full_ms_ / budget_ms_)), 2, std::min(lens_samples, 64));
-  Start({wanted, 1.0, 0, parts, now});
+  Start({wanted, lf_, index_, 1.0, 0, parts, now});
   return true;
 }
 
 bool FrameScheduler::converged(const ViewSettings& wanted) const {
-  return !pending_.valid() && shown_scale_ >= 1 && parts_shown_ == parts_ && shown_view_ &&
-         SameView(*shown_view_, wanted);
+  return !pending_.valid() && shown_scale_ >= 1 && parts_shown_ == parts_ && Same(wanted);
 }
 
 }  // namespace lfcam

@@ -9,6 +9,7 @@
 // of an accumulated frame are read back and added on the CPU).
 #include <chrono>
 #include <future>
+#include <memory>
 #include <optional>
 
 #include "lfcam/core/lightfield.h"
@@ -25,17 +26,28 @@ VirtualCameraParams ScaledCamera(const VirtualCameraParams& camera, double scale
 
 class FrameScheduler {
  public:
-  FrameScheduler(const LightField& lf, const FrameRenderer& renderer, FrameRenderOptions options,
-                 double budget_ms);
+  // `lf` is the light field rendered (shared: a render in flight keeps the frame it started on
+  // alive while a video moves on).
+  FrameScheduler(std::shared_ptr<const LightField> lf, const FrameRenderer& renderer,
+                 FrameRenderOptions options, double budget_ms);
   ~FrameScheduler();
   FrameScheduler(const FrameScheduler&) = delete;
   FrameScheduler& operator=(const FrameScheduler&) = delete;
 
+  // A light field video's frame `index` to render from now on (the view is then not the
+  // frame shown, whatever the camera).
+  void SetLightField(std::shared_ptr<const LightField> lf, std::int64_t index);
+  // The frame budget (ms): frames costlier than this render reduced while moving.
+  void set_budget_ms(double budget_ms) { budget_ms_ = budget_ms; }
+
   // Called once a loop with the view wanted (at full resolution) and whether it is moving.
   // Returns true when a new frame is ready to draw.
   bool Update(const ViewSettings& wanted, bool moving);
-  // The frame shown is `wanted` at full resolution and nothing is rendering.
+  // The frame shown is `wanted` at full resolution, of the current light field frame, and
+  // nothing is rendering.
   bool converged(const ViewSettings& wanted) const;
+  // The light field video frame the shown picture was rendered from.
+  std::int64_t shown_index() const { return shown_index_; }
 
   // The frame to draw: the GL renderer's output texture, or else a CPU image (linear, top-down).
   bool on_gl() const { return shown_on_gl_; }
@@ -54,6 +66,8 @@ class FrameScheduler {
  private:
   struct Job {
     ViewSettings view;
+    std::shared_ptr<const LightField> lf;
+    std::int64_t index = 0;
     double scale = 1;
     int part = 0, parts = 1;  // lens samples [n_ls * part / parts, n_ls * (part + 1) / parts)
     std::chrono::steady_clock::time_point start;
@@ -62,7 +76,10 @@ class FrameScheduler {
   FrameRenderOptions OptionsFor(const ViewSettings& view) const;
   void Finish(const Job& job, RenderResult result);
 
-  const LightField& lf_;
+  bool Same(const ViewSettings& wanted) const;
+
+  std::shared_ptr<const LightField> lf_;
+  std::int64_t index_ = 0, shown_index_ = -1;
   const FrameRenderer& renderer_;
   FrameRenderOptions options_;
   double budget_ms_;

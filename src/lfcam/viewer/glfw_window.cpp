@@ -73,6 +73,10 @@ int GlfwKeyFromName(const std::string& name) {
   if (name == "[") return GLFW_KEY_LEFT_BRACKET;
   if (name == "]") return GLFW_KEY_RIGHT_BRACKET;
   if (name == "Esc" || name == "Escape") return GLFW_KEY_ESCAPE;
+  if (name == "Space") return GLFW_KEY_SPACE;
+  if (name == ",") return GLFW_KEY_COMMA;
+  if (name == ".") return GLFW_KEY_PERIOD;
+  if (name == "Home") return GLFW_KEY_HOME;
   throw Error("unknown key '" + name + "'");
 }
 

@@ -10,6 +10,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <deque>
 #include <memory>
 #include <opencv2/core.hpp>
 #include <thread>
@@ -24,6 +25,7 @@
 #include "lfcam/viewer/frame_display.h"
 #include "lfcam/viewer/frame_scheduler.h"
 #include "lfcam/viewer/glfw_window.h"
+#include "lfcam/viewer/video_playback.h"
 #include "lfcam/viewer/view_navigation.h"
 #include "lfcam/viewer/viewer_script.h"
 
@@ -34,9 +36,9 @@ using Clock = std::chrono::steady_clock;
 
 class Viewer {
  public:
-  Viewer(const ViewerOptions& options, LightField lf, DepthSet depth)
+  Viewer(const ViewerOptions& options, std::unique_ptr<VideoPlayback> playback, DepthSet depth)
       : options_(options),
-        lf_(std::move(lf)),
+        playback_(std::move(playback)),
         depth_(std::move(depth)),
         window_(options.width, options.height, "lfcam view: " + options.light_field) {
     IMGUI_CHECKVERSION();
@@ -55,15 +57,16 @@ class Viewer {
     render_options.workgroup_x = options.workgroup_x;
     render_options.workgroup_y = options.workgroup_y;
     if (depth_.count() > 0) render_options.depth = &depth_;
-    scheduler_ =
-        std::make_unique<FrameScheduler>(lf_, *renderer_, render_options, options.frame_budget_ms);
+    scheduler_ = std::make_unique<FrameScheduler>(playback_->current(), *renderer_, render_options,
+                                                  options.frame_budget_ms);
+    scheduler_->SetLightField(playback_->current(), playback_->current_index());
     render_scale_ = options.render_scale;
     if (!options.view_file.empty()) {
       view_ = ReadViewFile(options.view_file);
     } else {
-      view_.camera = StartingView(lf_, view_.camera.width, view_.camera.height);
-      rig_position_[0] = 0.5 * (lf_.dims().rows - 1);  // where StartingView stands
-      rig_position_[1] = 0.5 * (lf_.dims().cols - 1);
+      view_.camera = StartingView(lf(), view_.camera.width, view_.camera.height);
+      rig_position_[0] = 0.5 * (lf().dims().rows - 1);  // where StartingView stands
+      rig_position_[1] = 0.5 * (lf().dims().cols - 1);
       // A smooth out-of-focus blur (the focal-plane limit, Integrator::kCameras, shows a lattice
       // of the cameras' copies there): on the GPU the paper's estimator's limit, noise-free; on
       // the CPU the paper's estimator itself, which stays responsive (reduced frames while the
@@ -96,20 +99,40 @@ class Viewer {
       glfwPollEvents();
       FitViewToFramebuffer();
       HandleInput();
+      AdvanceVideo();
       // A script command runs when the one before it is done (wait: the frame converged).
-      while (next < script.size() && !waiting_ && frames_left_ == 0) {
+      while (next < script.size() && !waiting_ && wait_frame_ < 0 && frames_left_ == 0) {
         if (!RunCommand(script[next++])) return;
         FitViewToFramebuffer();
+        AdvanceVideo();
       }
       if (waiting_ && scheduler_->converged(view_) && !moving()) waiting_ = false;
+      if (wait_frame_ >= 0 && scheduler_->shown_index() == wait_frame_) wait_frame_ = -1;
       if (frames_left_ > 0) --frames_left_;
       DrawFrame();
-      if (!script.empty() && next >= script.size() && !waiting_ && frames_left_ == 0) return;
+      if (!script.empty() && next >= script.size() && !waiting_ && wait_frame_ < 0 &&
+          frames_left_ == 0)
+        return;
     }
   }
 
  private:
-  bool moving() const { return Clock::now() - last_change_ < std::chrono::milliseconds(250); }
+  const LightField& lf() const { return *playback_->current(); }
+
+  // A playing video counts as moving: on the CPU its frames render reduced when a full one would
+  // not fit the frame period (resolution drops before frames do).
+  bool moving() const {
+    return playback_->playing() || Clock::now() - last_change_ < std::chrono::milliseconds(250);
+  }
+
+  // The video's clock moves the playhead; a new frame goes to the scheduler.
+  void AdvanceVideo() {
+    const double period_ms = 1000.0 / std::max(1e-3, playback_->fps());
+    scheduler_->set_budget_ms(playback_->playing() ? std::min(options_.frame_budget_ms, period_ms)
+                                                   : options_.frame_budget_ms);
+    if (playback_->Tick())
+      scheduler_->SetLightField(playback_->current(), playback_->current_index());
+  }
 
   void Changed() { last_change_ = Clock::now(); }
 
@@ -145,7 +168,7 @@ class Viewer {
   void ClickToFocus(double x, double y) {
     double fx = 0, fy = 0;
     FilmPosition(x, y, &fx, &fy);
-    const FocusProbe probe = ProbeFocusDistance(lf_, VirtualCamera(view_.camera), fx, fy);
+    const FocusProbe probe = ProbeFocusDistance(lf(), VirtualCamera(view_.camera), fx, fy);
     if (!probe.found) {
       stats_.status = fmt::format("focus: no camera sees ({:.0f}, {:.0f})", x, y);
     } else {
@@ -168,7 +191,7 @@ class Viewer {
     } else {
       // A drag across the window swings the eye across about the array's width: a light field
       // is seen from near its array only.
-      const ArrayPlane& array = lf_.slab().uv;
+      const ArrayPlane& array = lf().slab().uv;
       const double radians_per_pixel = std::max(array.width_mm(), array.height_mm()) /
                                        view_.camera.focus_distance_mm / std::max(1, WindowWidth());
       SetView(Orbit(view_.camera, dx * radians_per_pixel, -dy * radians_per_pixel));
@@ -211,11 +234,29 @@ class Viewer {
       case GLFW_KEY_F3:
         panels_.rendering = !panels_.rendering;
         break;
+      case GLFW_KEY_F4:
+        panels_.video = !panels_.video;
+        break;
+      case GLFW_KEY_SPACE:
+        playback_->Toggle();
+        break;
+      case GLFW_KEY_COMMA:
+        playback_->Step(-1);
+        break;
+      case GLFW_KEY_PERIOD:
+        playback_->Step(1);
+        break;
+      case GLFW_KEY_L:
+        playback_->set_loop(!playback_->loop());
+        break;
+      case GLFW_KEY_HOME:
+        playback_->Seek(0);
+        break;
       case GLFW_KEY_F12:
         Screenshot(fmt::format("{}_{:03d}.png", options_.screenshot_prefix, ++screenshots_));
         break;
       case GLFW_KEY_R:
-        SetView(ResetToArrayCentre(p, lf_.slab().uv));
+        SetView(ResetToArrayCentre(p, lf().slab().uv));
         break;
       case GLFW_KEY_Z:
         SetView(ScaleFocalLength(p, 1.1));
@@ -331,10 +372,31 @@ class Viewer {
       } else if (c.name == "camera") {
         rig_position_[0] = number(0);
         rig_position_[1] = number(1);
-        SetView(AsRigCamera(view_.camera, lf_, number(0), number(1)));
+        SetView(AsRigCamera(view_.camera, lf(), number(0), number(1)));
       } else if (c.name == "print") {
-        std::printf("%s\n", ViewToJson(view_).dump().c_str());
+        nlohmann::json j = ViewToJson(view_);
+        if (playback_->is_video())
+          j["video"] = {
+              {"frame", scheduler_->shown_index()},    {"frames", playback_->frames()},
+              {"playing", playback_->playing()},       {"skipped", playback_->skipped()},
+              {"kept_fps", playback_stats_.shown_fps}, {"scale", scheduler_->shown_scale()}};
+        std::printf("%s\n", j.dump().c_str());
         std::fflush(stdout);
+      } else if (c.name == "play") {
+        playback_->Play();
+      } else if (c.name == "pause") {
+        playback_->Pause();
+      } else if (c.name == "seek") {
+        playback_->Seek(std::int64_t(number(0)));
+      } else if (c.name == "step") {
+        playback_->Step(std::int64_t(number(0)));
+      } else if (c.name == "loop") {
+        playback_->set_loop(c.args[0] == "on");
+      } else if (c.name == "wait-frame") {
+        wait_frame_ = std::int64_t(number(0));
+        if (wait_frame_ < 0 || wait_frame_ >= playback_->frames())
+          throw Error(fmt::format("wait-frame {}: the video has {} frames", wait_frame_,
+                                  playback_->frames()));
       }
     } catch (const Error& e) {
       throw Error(where + ": " + e.what());
@@ -421,10 +483,22 @@ class Viewer {
                                  : (view_.integrator != Integrator::kLensSamples ? 1.0 : 4.0) *
                                        double(shown.rays_hit) / pixels;
     bool changed = false;
-    if (panels_.camera) changed |= DrawCameraWindow(view_, lf_, rig_position_, &panels_.camera);
+    if (scheduler_->shown_index() != last_drawn_index_) {
+      // The frame rate kept: light field frames drawn over the last second.
+      last_drawn_index_ = scheduler_->shown_index();
+      const auto now = Clock::now();
+      drawn_at_.push_back(now);
+      while (!drawn_at_.empty() && now - drawn_at_.front() > std::chrono::seconds(1))
+        drawn_at_.pop_front();
+    }
+    playback_stats_.shown_fps = double(drawn_at_.size());
+    playback_stats_.shown_scale = scheduler_->shown_scale();
+    playback_stats_.shown = scheduler_->shown_index();
+    if (panels_.camera) changed |= DrawCameraWindow(view_, lf(), rig_position_, &panels_.camera);
     if (panels_.rendering)
       changed |=
           DrawRenderingWindow(view_, render_scale_, stats_, depth_.count() > 0, &panels_.rendering);
+    if (DrawVideoWindow(*playback_, playback_stats_, &panels_.video)) AdvanceVideo();
     DrawHelpOverlay(&panels_.help);
     if (changed) Changed();
     ImGui::Render();
@@ -455,8 +529,8 @@ class Viewer {
   }
 
   const ViewerOptions& options_;
-  LightField lf_;
-  DepthSet depth_;  // empty without --depth
+  std::unique_ptr<VideoPlayback> playback_;  // a still plays as a video of one frame
+  DepthSet depth_;                           // empty without --depth
   GlfwWindow window_;
   std::unique_ptr<FrameDisplay> display_;
   std::unique_ptr<FrameRenderer> renderer_;
@@ -473,6 +547,9 @@ class Viewer {
   double press_x_ = 0, press_y_ = 0, last_x_ = 0, last_y_ = 0;
   bool waiting_ = false;
   int frames_left_ = 0;
+  std::int64_t wait_frame_ = -1, last_drawn_index_ = -1;
+  std::deque<Clock::time_point> drawn_at_;
+  PlaybackStats playback_stats_;
   int screenshots_ = 0;
   std::string capture_path_;
 };
@@ -480,14 +557,21 @@ class Viewer {
 }  // namespace
 
 void RunViewer(const ViewerOptions& options) {
-  // Everything that can be wrong with the inputs is found before a window opens.
-  // A light field video opens at its first frame (playing it is issue 25's).
-  LightField lf = ReadLightFieldFrame(options.light_field);
+  // Everything that can be wrong with the inputs is found before a window opens. A light field
+  // video opens at its first frame, paused.
+  auto playback = std::make_unique<VideoPlayback>(options.light_field);
   if (!options.script.empty()) ReadViewerScript(options.script);
   if (!options.view_file.empty()) ReadViewFile(options.view_file);
   DepthSet depth;
-  if (!options.depth_dir.empty()) depth = ReadDepthSet(options.depth_dir, lf);
-  Viewer viewer(options, std::move(lf), std::move(depth));
+  if (!options.depth_dir.empty()) {
+    if (playback->frames() > 1)
+      throw Error(
+          fmt::format("--depth {}: depth maps belong to one light field frame, and {} is a "
+                      "video of {} frames",
+                      options.depth_dir, options.light_field, playback->frames()));
+    depth = ReadDepthSet(options.depth_dir, *playback->current());
+  }
+  Viewer viewer(options, std::move(playback), std::move(depth));
   viewer.Run();
 }
 

@@ -25,14 +25,18 @@ const std::map<std::string, Arity>& Commands() {
       {"window", {2, 2, 2}}, {"set", {2, 2, 0}},        {"click", {2, 2, 2}},
       {"drag", {4, 5, 4}},   {"key", {1, 1, 0}},        {"wait", {0, 0, 0}},
       {"frames", {1, 1, 1}}, {"screenshot", {1, 1, 0}}, {"capture", {1, 1, 0}},
-      {"print", {0, 0, 0}},  {"quit", {0, 0, 0}},       {"camera", {2, 2, 2}}};
+      {"print", {0, 0, 0}},  {"quit", {0, 0, 0}},       {"camera", {2, 2, 2}},
+      {"play", {0, 0, 0}},   {"pause", {0, 0, 0}},      {"seek", {1, 1, 1}},
+      {"step", {1, 1, 1}},   {"loop", {1, 1, 0}},       {"wait-frame", {1, 1, 1}}};
   return commands;
 }
 
 // The keys a script can press (viewer/glfw_window.h: GlfwKeyFromName).
 bool IsKeyName(const std::string& k) {
-  if (k.size() == 1) return std::isalpha(static_cast<unsigned char>(k[0])) || k == "[" || k == "]";
-  if (k == "Esc" || k == "Escape") return true;
+  if (k.size() == 1)
+    return std::isalpha(static_cast<unsigned char>(k[0])) || k == "[" || k == "]" || k == "," ||
+           k == ".";
+  if (k == "Esc" || k == "Escape" || k == "Space" || k == "Home") return true;
   if (k.size() < 2 || k.size() > 3 || k[0] != 'F') return false;
   for (std::size_t i = 1; i < k.size(); ++i)
     if (!std::isdigit(static_cast<unsigned char>(k[i]))) return false;
@@ -74,8 +78,11 @@ std::vector<ScriptCommand> ParseViewerScript(const std::string& text, const std:
         throw Error(fmt::format("{}:{}: '{}': '{}' is not a number", where, number, c.name,
                                 c.args[std::size_t(k)]));
     if (c.name == "key" && !IsKeyName(c.args[0]))
-      throw Error(fmt::format("{}:{}: unknown key '{}' (F1..F25, a letter, [, ], Esc)", where,
-                              number, c.args[0]));
+      throw Error(fmt::format(
+          "{}:{}: unknown key '{}' (F1..F25, a letter, [, ], ',', '.', Space, Home, Esc)", where,
+          number, c.args[0]));
+    if (c.name == "loop" && c.args[0] != "on" && c.args[0] != "off")
+      throw Error(fmt::format("{}:{}: loop is on or off", where, number));
     script.push_back(std::move(c));
   }
   return script;

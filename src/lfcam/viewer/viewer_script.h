@@ -16,7 +16,13 @@
 //   frames N                   draw N frames
 //   screenshot PATH.png        save the frame (full quality) and PATH.json, its view
 //   capture PATH.png           save the window as it shows, the control windows included
-//   print                      print the view as JSON on standard output
+//   print                      print the view as JSON on standard output (with a video: the
+//                              frame shown, the frame count, whether it plays)
+//   play / pause               a light field video plays from the playhead, or stops
+//   seek K                     to frame K (from 0)
+//   step N                     N frames on (negative: back); pauses
+//   loop on|off                play on from the start at the end, or stop there
+//   wait-frame K               until frame K is on screen (while playing: drawn at any scale)
 //   quit
 #include <string>
 #include <vector>

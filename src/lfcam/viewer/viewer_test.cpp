@@ -13,9 +13,13 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <sstream>
 #include <string>
 
 #include "lfcam/cli/cli_test_support.h"
+#include "lfcam/cli/share_test_support.h"
+#include "lfcam/core/image_io.h"
+#include "lfcam/core/image_metrics.h"
 
 namespace lfcam {
 namespace {
@@ -303,6 +307,77 @@ TEST_F(Viewer, RefusesMissingOrCorruptFilesBeforeAnyWindow) {
 
   run = View(Path("paper.lf") + " --backend vulkan");
   EXPECT_EQ(run.status, 2) << run.output;
+}
+
+// A light field video plays: seek, play (looping), the frame shown is the file's frame; pause,
+// step, and the keys. Each screenshot is `lfcam render --frame K` of its saved view.
+TEST_F(Viewer, PlaysALightFieldVideoAndEveryFrameShownIsTheFilesFrame) {
+  const fs::path inputs = testing::SharedSharingLightFields();  // moving.lfv: 3 frames, 2 fps
+  Write("play.script",
+        "window 192 128\n"
+        "set focal-length 250\n"
+        "seek 2\n"
+        "wait\n"
+        "screenshot " +
+            Path("frame2.png") +
+            "\n"
+            "play\n"
+            "wait-frame 1\n"
+            "print\n"
+            "pause\n"
+            "step 1\n"
+            "wait\n"
+            "print\n"
+            "screenshot " +
+            Path("stepped.png") +
+            "\n"
+            "key Space\n"
+            "frames 2\n"
+            "print\n"
+            "key Space\n"
+            "key Home\n"
+            "wait\n"
+            "print\n"
+            "quit\n");
+  const CommandResult run = View((inputs / "moving.lfv").string() + " --script " +
+                                 Path("play.script") + " --window 192x128");
+  ASSERT_EQ(run.status, 0) << run.output;
+  std::vector<nlohmann::json> printed;
+  std::istringstream lines(run.output);
+  for (std::string line; std::getline(lines, line);)
+    if (!line.empty() && line[0] == '{') printed.push_back(nlohmann::json::parse(line));
+  ASSERT_EQ(printed.size(), 4u) << run.output;
+  EXPECT_EQ(printed[0]["video"]["frame"], 1) << "played on from 2, looped to 0, then 1";
+  EXPECT_EQ(printed[0]["video"]["playing"], true);
+  EXPECT_EQ(printed[0]["video"]["frames"], 3);
+  EXPECT_EQ(printed[1]["video"]["frame"], 2) << "a step on from 1";
+  EXPECT_EQ(printed[1]["video"]["playing"], false);
+  EXPECT_EQ(printed[2]["video"]["playing"], true) << "space plays";
+  EXPECT_EQ(printed[3]["video"]["frame"], 0) << "Home";
+  EXPECT_EQ(printed[3]["video"]["playing"], false) << "space again pauses";
+  // The screenshots are the file's frame 2, rendered offline through the same view.
+  for (const std::string name : {"frame2", "stepped"}) {
+    const std::string again = Path(name + "_again.png"), other = Path(name + "_other.png");
+    ASSERT_EQ(Lfcam(fmt::format("render {} --frame 2 --camera {} --out {} --quiet",
+                                (inputs / "moving.lfv").string(), Path(name + ".json"), again))
+                  .status,
+              0);
+    ASSERT_EQ(Lfcam(fmt::format("render {} --frame 0 --camera {} --out {} --quiet",
+                                (inputs / "moving.lfv").string(), Path(name + ".json"), other))
+                  .status,
+              0);
+    const cv::Mat shot = ReadImageSrgb8(Path(name + ".png"));
+    EXPECT_EQ(CompareImages(shot, ReadImageSrgb8(again)).mean_abs_error, 0.0) << name;
+    EXPECT_GT(CompareImages(shot, ReadImageSrgb8(other)).mean_abs_error, 0.2) << name;
+  }
+}
+
+TEST_F(Viewer, DepthMapsDoNotGoWithAVideo) {
+  const fs::path inputs = testing::SharedSharingLightFields();
+  const CommandResult run = View((inputs / "moving.lfv").string() + " --depth " + Path("nowhere"));
+  EXPECT_NE(run.status, 0);
+  EXPECT_NE(run.output.find("depth maps belong to one light field frame"), std::string::npos)
+      << run.output;
 }
 
 }  // namespace
