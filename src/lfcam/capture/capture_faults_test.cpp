@@ -62,7 +62,7 @@ class CaptureFaults : public ::testing::Test {
 
   ShootOptions Options(bool fetch = true) const {
     ShootOptions o;
-    o.margin_s = 0.2;
+    o.margin_s = TestTriggerMarginS(0.2);
     o.fetch = fetch;
     o.fetch_options.retries = 1;
     return o;

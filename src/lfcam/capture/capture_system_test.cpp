@@ -91,7 +91,7 @@ TEST(CaptureSystem, ASoakOfConsecutiveShotsOnAFullArrayLosesNothing) {
     for (const NodeReport& r : ConfigureArray(config, array.key())) ASSERT_TRUE(r.ready());
     ShootOptions o;
     o.kind = ShotKind::kIntrinsics;
-    o.margin_s = 0.3;
+    o.margin_s = TestTriggerMarginS(0.3);
     constexpr int kShots = 8;
     double worst_skew_ms = 0;
     for (int k = 0; k < kShots; ++k) {

@@ -53,7 +53,7 @@ RecordOptions SmallRecording(double seconds) {
   o.fps = 10;
   o.width = 160;
   o.height = 120;
-  o.margin_s = 0.3;
+  o.margin_s = TestTriggerMarginS(0.3);
   return o;
 }
 
