@@ -21,13 +21,24 @@ packages=(
   libglfw3-dev libimgui-dev xvfb xauth
   # The capture system: the node agent's HTTP API (cpp-httplib) and its signatures (OpenSSL).
   libcpp-httplib-dev libssl-dev
+  # Video files (`render --video`, quilt videos): H.264 in MP4 through FFmpeg's libraries.
+  libavcodec-dev libavformat-dev libavutil-dev libswscale-dev
   libgtest-dev libgmock-dev
   # bench/hci_score.py (the depth benchmark's metrics), run by a test.
   python3-numpy
+  # The web page `export --format web` writes: its logic's unit tests (node's test runner) and
+  # the page itself rendered in headless Chromium.
+  nodejs chromium
+  # The rollout to the array's nodes (deploy/ansible): its inventory and playbook are checked.
+  ansible-core
 )
 # bench/peer.sh: the NumPy + OpenCV peer renderer.
 if [ "${LFCAM_PEER_DEPS:-0}" = 1 ]; then
   packages+=(python3-numpy python3-opencv)
+fi
+# scripts/package.sh: the Debian packages' tools (man pages from the help, lintian).
+if [ "${LFCAM_PACKAGING_DEPS:-0}" = 1 ]; then
+  packages+=(help2man lintian dpkg-dev fakeroot file)
 fi
 # scripts/fuzz.sh: clang and its libFuzzer runtime.
 if [ "${LFCAM_FUZZ_DEPS:-0}" = 1 ]; then

@@ -13,6 +13,10 @@ fi
 scripts/install-deps.sh
 # Mesa is installed above, so the GL tests must find a GL 4.3 context: fail rather than skip.
 export LFCAM_REQUIRE_GL="${LFCAM_REQUIRE_GL:-1}"
+# Chromium is installed above too: the web page's browser test must run, not skip.
+export LFCAM_REQUIRE_BROWSER="${LFCAM_REQUIRE_BROWSER:-1}"
+# And Ansible: the rollout's inventory and playbook must be checked, not skipped.
+export LFCAM_REQUIRE_ANSIBLE="${LFCAM_REQUIRE_ANSIBLE:-1}"
 cmake --preset "$preset" >/dev/null
 cmake --build --preset "$preset"
 status=0

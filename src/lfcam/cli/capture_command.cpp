@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <memory>
 
+#include "lfcam/capture/ansible_inventory.h"
 #include "lfcam/capture/array_file.h"
 #include "lfcam/capture/array_status.h"
 #include "lfcam/capture/capture_session.h"
@@ -15,6 +16,7 @@
 #include "lfcam/capture/recording_session.h"
 #include "lfcam/cli/commands.h"
 #include "lfcam/cli/parse.h"
+#include "lfcam/core/atomic_file.h"
 #include "lfcam/core/error.h"
 #include "lfcam/core/image_io.h"
 #include "lfcam/core/json_input.h"
@@ -454,6 +456,43 @@ void AddFetch(CLI::App& capture) {
   });
 }
 
+void AddInventory(CLI::App& capture) {
+  auto* command = capture.add_subcommand(
+      "inventory",
+      "Write the array as an Ansible inventory, for the playbook that installs every node "
+      "(deploy/ansible/lfcam-node.yml)");
+  struct Flags {
+    std::string array, out, ssh_user, chrony_server, package;
+  };
+  auto f = std::make_shared<Flags>();
+  command->add_option("array", f->array, "The array file")->required();
+  command->add_option("--out", f->out, "The inventory to write (YAML; default: standard output)");
+  command->add_option("--ssh-user", f->ssh_user, "The user Ansible logs in to the nodes as");
+  command->add_option("--chrony-server", f->chrony_server,
+                      "The time server the nodes follow (the host's address on the array's LAN)");
+  command->add_option("--package", f->package,
+                      "The lfcam-node .deb the playbook installs (scripts/package.sh)");
+  command->callback([f] {
+    if (!f->out.empty()) RequireWritableOutput(f->out, "--out");
+    if (!f->package.empty() && !fs::is_regular_file(f->package))
+      throw UsageError(fmt::format("--package {}: no such file", f->package));
+    const ArrayConfig array = ReadArrayFile(f->array);
+    InventoryOptions options;
+    options.ssh_user = f->ssh_user;
+    options.chrony_server = f->chrony_server;
+    options.node_package = f->package;
+    const std::string text = AnsibleInventory(array, f->array, options);
+    if (f->out.empty()) {
+      fmt::print("{}", text);
+      return;
+    }
+    WriteFileAtomically(f->out, {reinterpret_cast<const std::uint8_t*>(text.data()), text.size()});
+    fmt::print(stderr,
+               "wrote {}: {} nodes; then: ansible-playbook -i {} deploy/ansible/lfcam-node.yml\n",
+               f->out, array.nodes.size(), f->out);
+  });
+}
+
 }  // namespace
 
 void AddCaptureCommand(CLI::App& app) {
@@ -471,6 +510,7 @@ void AddCaptureCommand(CLI::App& app) {
   AddRecord(*capture);
   AddFetch(*capture);
   AddReport(*capture);
+  AddInventory(*capture);
 }
 
 }  // namespace lfcam::cli

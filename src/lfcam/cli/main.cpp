@@ -72,7 +72,7 @@ int main(int argc, char** argv) {
   lfcam::InstallSignalCleanup();
   CLI::App app{"lfcam: capture, calibrate and render 4D light fields (An et al.'s DIY array)",
                "lfcam"};
-  app.set_version_flag("--version", "lfcam 0.1.0");
+  app.set_version_flag("--version", "lfcam " LFCAM_VERSION);
   app.footer(
       "Run `lfcam help COMMAND` for a command's flags.\n"
       "Exit status: 0 success, 1 an error in the work, 2 bad usage.");

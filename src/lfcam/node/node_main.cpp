@@ -43,7 +43,8 @@ std::string HostName() {
 
 int main(int argc, char** argv) {
   CLI::App app{"lfcam-node: the capture agent on each Raspberry Pi of an lfcam array"};
-  app.set_version_flag("--version", std::string("lfcam-node API v") + lfcam::kNodeAgentVersion);
+  app.set_version_flag("--version", std::string("lfcam-node " LFCAM_VERSION " (API v") +
+                                        lfcam::kNodeAgentVersion + ")");
   std::string listen = "0.0.0.0:8470", key_file, backend = "rpicam", port_file;
   std::string captures = "/var/lib/lfcam-node/captures", name;
   lfcam::RpicamOptions rpicam;
