@@ -25,6 +25,7 @@ function(lfcam_man_page target component name_line)
   file(MAKE_DIRECTORY ${CMAKE_BINARY_DIR}/man)
   add_custom_command(OUTPUT ${page}
     COMMAND ${LFCAM_PACKAGING}/make-manpage.sh $<TARGET_FILE:${target}> "${name_line}" ${page}
+            ${CMAKE_CROSSCOMPILING_EMULATOR}
     DEPENDS ${target} ${LFCAM_PACKAGING}/make-manpage.sh
     COMMENT "Writing the man page of ${target}")
   add_custom_target(${target}-manpage DEPENDS ${page})
@@ -60,14 +61,14 @@ if(LFCAM_NODE_ONLY)
   set(CPACK_DEBIAN_NODE_PACKAGE_SECTION net)
   set(CPACK_DEBIAN_NODE_PACKAGE_DEPENDS "adduser")
   set(CPACK_DEBIAN_NODE_PACKAGE_RECOMMENDS "rpicam-apps | libcamera-apps, chrony")
-  set(CPACK_DEBIAN_NODE_DESCRIPTION
+  string(CONCAT CPACK_DEBIAN_NODE_DESCRIPTION
       "capture agent of an lfcam light field camera array\n"
-      " lfcam-node runs on each Raspberry Pi of an lfcam camera array (one Pi per\n"
-      " camera module). It takes the photographs and video that the host's\n"
-      " `lfcam capture` asks for, at the time it asks, with the settings it locks,\n"
-      " and serves them back verified over a signed HTTP API. The package installs\n"
-      " the agent, its systemd unit and the lfcam system user; the agent starts once\n"
-      " the array's key is in /etc/lfcam/array.key.")
+      "lfcam-node runs on each Raspberry Pi of an lfcam camera array (one Pi per\n"
+      "camera module). It takes the photographs and video that the host's\n"
+      "`lfcam capture` asks for, at the time it asks, with the settings it locks,\n"
+      "and serves them back verified over a signed HTTP API. The package installs\n"
+      "the agent, its systemd unit and the lfcam system user; the agent starts once\n"
+      "the array's key is in /etc/lfcam/array.key.")
   set(CPACK_DEBIAN_NODE_PACKAGE_CONTROL_EXTRA
       ${LFCAM_PACKAGING}/debian/lfcam-node/postinst ${LFCAM_PACKAGING}/debian/lfcam-node/prerm
       ${LFCAM_PACKAGING}/debian/lfcam-node/postrm)
@@ -82,15 +83,15 @@ else()
   set(CPACK_COMPONENTS_ALL host)
   set(CPACK_DEBIAN_HOST_PACKAGE_NAME lfcam)
   set(CPACK_DEBIAN_HOST_PACKAGE_SECTION graphics)
-  set(CPACK_DEBIAN_HOST_DESCRIPTION
+  string(CONCAT CPACK_DEBIAN_HOST_DESCRIPTION
       "do-it-yourself 4D light field camera system\n"
-      " lfcam drives an array of Raspberry Pi camera modules (lfcam-node on each),\n"
-      " calibrates it into a two-plane light field L(u, v, s, t) and renders that\n"
-      " light field through a virtual camera that zooms, pans, refocuses and controls\n"
-      " depth of field, on the CPU or a GPU, offline and in an interactive viewer.\n"
-      " It records light field video, imports light fields made elsewhere, estimates\n"
-      " depth, and shares a light field as MP4 videos, a web page or Looking Glass\n"
-      " quilts. A simulator plays the array without hardware.")
+      "lfcam drives an array of Raspberry Pi camera modules (lfcam-node on each),\n"
+      "calibrates it into a two-plane light field L(u, v, s, t) and renders that\n"
+      "light field through a virtual camera that zooms, pans, refocuses and controls\n"
+      "depth of field, on the CPU or a GPU, offline and in an interactive viewer.\n"
+      "It records light field video, imports light fields made elsewhere, estimates\n"
+      "depth, and shares a light field as MP4 videos, a web page or Looking Glass\n"
+      "quilts. A simulator plays the array without hardware.")
 endif()
 # Not part of every build (help2man is a packaging tool): scripts/package.sh builds `man-pages`
 # before cpack.

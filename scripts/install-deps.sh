@@ -40,6 +40,12 @@ fi
 if [ "${LFCAM_PACKAGING_DEPS:-0}" = 1 ]; then
   packages+=(help2man lintian dpkg-dev fakeroot file)
 fi
+# scripts/package.sh: the Pis' lfcam-node cross-built for arm64 (Debian's cross toolchain and
+# multiarch :arm64 libraries) and run here under user-mode emulation.
+if [ "${LFCAM_ARM64_DEPS:-0}" = 1 ]; then
+  packages+=(g++-aarch64-linux-gnu qemu-user-static
+             libfmt-dev:arm64 libssl-dev:arm64 libjpeg62-turbo-dev:arm64 libcpp-httplib-dev:arm64)
+fi
 # scripts/fuzz.sh: clang and its libFuzzer runtime.
 if [ "${LFCAM_FUZZ_DEPS:-0}" = 1 ]; then
   packages+=(clang-14 libclang-rt-14-dev)
@@ -60,5 +66,8 @@ if [ "$(id -u)" -ne 0 ]; then
 fi
 echo "install-deps: installing ${missing[*]}"
 export DEBIAN_FRONTEND=noninteractive
+if [[ " ${missing[*]}" == *":arm64"* ]] && ! dpkg --print-foreign-architectures | grep -qx arm64; then
+  "${sudo_cmd[@]}" dpkg --add-architecture arm64
+fi
 "${sudo_cmd[@]}" apt-get update -qq
 "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null

@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
 # Builds lfcam's Debian packages with CMake's CPack (docs/packaging.md): `lfcam` from the release
-# build and `lfcam-node` from a node-only build (what the Pis run), into out/packages/, and checks
-# them with lintian (every warning fails, but those packaging/lintian-overrides explains).
+# build and `lfcam-node` from a node-only build, for this machine and cross-built for the Pis
+# (arm64, cmake/toolchains/aarch64-linux-gnu.cmake), into out/packages/; runs the arm64 agent under
+# emulation as real nodes driven by this machine's `lfcam capture` (EmulatedArm64Node.*); and
+# checks the packages with lintian (every warning fails, but those packaging/lintian-overrides
+# explains).
 # --install: then installs both with apt on this machine (as root: CI) and tries them.
 # Usage: scripts/package.sh [--install]
 set -euo pipefail
@@ -15,7 +18,7 @@ case "${1:-}" in
   *) echo "package.sh: unknown argument '$1' (try --install)" >&2; exit 2 ;;
 esac
 
-LFCAM_PACKAGING_DEPS=1 scripts/install-deps.sh
+LFCAM_PACKAGING_DEPS=1 LFCAM_ARM64_DEPS=1 scripts/install-deps.sh
 cmake --preset release >/dev/null
 cmake --build --preset release --target lfcam man-pages lfcam-changelog
 rm -rf build/release/packages
@@ -24,9 +27,19 @@ cmake -S . -B build/node -G Ninja -DLFCAM_NODE_ONLY=ON -DCMAKE_BUILD_TYPE=Releas
 cmake --build build/node --target lfcam-node man-pages lfcam-node-changelog
 rm -rf build/node/packages
 (cd build/node && cpack -G DEB >/dev/null)
+cmake -S . -B build/node-arm64 -G Ninja -DLFCAM_NODE_ONLY=ON -DCMAKE_BUILD_TYPE=Release \
+  -DCMAKE_TOOLCHAIN_FILE=cmake/toolchains/aarch64-linux-gnu.cmake --no-warn-unused-cli >/dev/null
+cmake --build build/node-arm64 --target lfcam-node man-pages lfcam-node-changelog
+rm -rf build/node-arm64/packages
+(cd build/node-arm64 && cpack -G DEB >/dev/null)
+echo "== the Pis' agent (arm64) under emulation, driven by this machine's lfcam capture"
+cmake --build --preset release --target lfcam_tests
+LFCAM_ARM64_NODE="$PWD/build/node-arm64/lfcam-node" LFCAM_REQUIRE_ARM64=1 \
+  ctest --preset release -R '^EmulatedArm64Node\.' --output-on-failure
 rm -rf out/packages
 mkdir -p out/packages
-cp build/release/packages/*.deb build/node/packages/*.deb out/packages/
+cp build/release/packages/*.deb build/node/packages/*.deb build/node-arm64/packages/*.deb \
+  out/packages/
 for deb in out/packages/*.deb; do
   echo "== $deb: $(dpkg-deb -f "$deb" Package) $(dpkg-deb -f "$deb" Version) $(dpkg-deb -f "$deb" Architecture), $(du -k "$deb" | cut -f1) KB"
   echo "   Depends: $(dpkg-deb -f "$deb" Depends)"
@@ -41,9 +54,11 @@ if [ $install -eq 1 ]; then
     command -v sudo >/dev/null || { echo "package.sh --install: needs root or sudo" >&2; exit 1; }
     sudo_cmd=(sudo)
   fi
+  arch=$(dpkg --print-architecture)
   echo "== installing with apt"
   export DEBIAN_FRONTEND=noninteractive
-  "${sudo_cmd[@]}" apt-get install -y -qq ./out/packages/lfcam_*.deb ./out/packages/lfcam-node_*.deb 2>&1 |
+  "${sudo_cmd[@]}" apt-get install -y -qq ./out/packages/lfcam_*_"$arch".deb \
+    ./out/packages/lfcam-node_*_"$arch".deb 2>&1 |
     grep -v '^debconf: ' || true
   dpkg -s lfcam lfcam-node >/dev/null
   [ "$(command -v lfcam)" = /usr/bin/lfcam ] || { echo "lfcam is not /usr/bin/lfcam" >&2; exit 1; }
@@ -63,7 +78,7 @@ if [ $install -eq 1 ]; then
   play=$(mktemp -d)
   lfcam capture keygen --out "$play/array.key" >/dev/null
   lfcam capture init --out "$play/array.json" --grid 1x1 --addresses 127.0.0.1:8470 >/dev/null
-  lfcam capture inventory "$play/array.json" --package out/packages/lfcam-node_*.deb \
+  lfcam capture inventory "$play/array.json" --package out/packages/lfcam-node_*_"$arch".deb \
     --out "$play/inventory.yml"
   for run in first second; do
     "${sudo_cmd[@]}" env ANSIBLE_HOME="$play" ANSIBLE_LOCAL_TEMP="$play" \

@@ -24,6 +24,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using testing::LocalArray;
+using testing::TestTriggerMarginS;
 
 // A JPEG of noise, about 0.4 MB: what the replay nodes serve.
 void WriteReplayImages(const fs::path& folder) {
@@ -233,7 +234,13 @@ TEST_F(CaptureFaults, AWrongClockOrDriftedSettingsAreRefusedWithTheReason) {
 TEST_F(CaptureFaults, TheHostKilledMidFetchResumesWithNothingLost) {
   StartAndConfigure({"--fault-download-rate", "250000"});
   const fs::path array_file = array_->WriteArrayFile();
-  ShootSession(array_->Config(), array_->key(), session_, Options(false));
+  // Shot with --no-fetch: the images stay on the nodes, as asked, and that is not a failure.
+  const auto shot =
+      testing::Lfcam(fmt::format("capture shoot {} --session {} --margin {} --quiet --no-fetch",
+                                 array_file.string(), session_.string(), TestTriggerMarginS(0.2)));
+  ASSERT_EQ(shot.status, 0) << shot.output;
+  EXPECT_NE(shot.output.find("4 images left on the nodes (--no-fetch)"), std::string::npos)
+      << shot.output;
   // `lfcam capture fetch` as its own process, killed part of the way.
   std::vector<std::string> args = {LFCAM_CLI_PATH,      "capture",       "fetch",
                                    array_file.string(), "--session",     session_.string(),

@@ -20,6 +20,7 @@ namespace {
 namespace fs = std::filesystem;
 using testing::Lfcam;
 using testing::LocalArray;
+using testing::TestTriggerMarginS;
 
 TEST(CaptureSystem, SimulatedNodesShootASessionThatCalibrateAndBuildAccept) {
   const fs::path dir = fs::temp_directory_path() / fmt::format("lfcam_capture_e2e_{}", ::getpid());

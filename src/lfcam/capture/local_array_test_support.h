@@ -52,6 +52,10 @@ class LocalArray {
     std::filesystem::remove_all(dir_, ec);
   }
 
+  // The command that runs a node, before its flags (default: this build's lfcam-node), e.g.
+  // {"qemu-aarch64-static", "build/node-arm64/lfcam-node"}: the Pis' agent under emulation.
+  void SetNodeCommand(std::vector<std::string> command) { command_ = std::move(command); }
+
   int size() const { return rows_ * cols_; }
   int index(int row, int col) const { return row * cols_ + col; }
   const SharedKey& key() const { return key_; }
@@ -109,22 +113,11 @@ class LocalArray {
     const std::filesystem::path home = dir_ / Name(i);
     std::filesystem::create_directories(home);
     std::filesystem::remove(home / "port");
-    std::vector<std::string> args = {LFCAM_NODE_PATH,
-                                     "--listen",
-                                     "127.0.0.1:" + std::to_string(n.port),
-                                     "--port-file",
-                                     (home / "port").string(),
-                                     "--key-file",
-                                     (dir_ / "array.key").string(),
-                                     "--captures",
-                                     (home / "captures").string(),
-                                     "--name",
-                                     Name(i),
-                                     "--quiet",
-                                     "--threads",
-                                     "2",
-                                     "--min-free-mb",
-                                     "1"};
+    std::vector<std::string> args = command_;
+    args.insert(args.end(), {"--listen", "127.0.0.1:" + std::to_string(n.port), "--port-file",
+                             (home / "port").string(), "--key-file", (dir_ / "array.key").string(),
+                             "--captures", (home / "captures").string(), "--name", Name(i),
+                             "--quiet", "--threads", "2", "--min-free-mb", "1"});
     args.insert(args.end(), backend_args_.begin(), backend_args_.end());
     args.insert(args.end(), extra.begin(), extra.end());
     std::vector<char*> argv;
@@ -138,7 +131,7 @@ class LocalArray {
     pid_t pid = 0;
     const int rc = ::posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
     posix_spawn_file_actions_destroy(&actions);
-    if (rc != 0) throw Error("cannot start " + std::string(LFCAM_NODE_PATH));
+    if (rc != 0) throw Error("cannot start " + command_.front());
     n.pid = pid;
   }
 
@@ -177,6 +170,7 @@ class LocalArray {
   std::filesystem::path dir_;
   int rows_, cols_;
   std::vector<std::string> backend_args_;
+  std::vector<std::string> command_ = {LFCAM_NODE_PATH};
   SharedKey key_;
   std::vector<Node> nodes_;
 };

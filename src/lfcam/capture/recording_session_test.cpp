@@ -23,6 +23,7 @@ namespace {
 namespace fs = std::filesystem;
 using testing::Lfcam;
 using testing::LocalArray;
+using testing::TestTriggerMarginS;
 
 std::string ReadBytes(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);

@@ -55,11 +55,20 @@ void PrintReports(const std::vector<NodeReport>& reports, bool json) {
 }
 
 // A session that is not complete exits with status 1, after the report (JSON or text).
-void FinishSession(const SessionReport& report, const fs::path& session, bool json) {
+// `fetched`: false for --no-fetch, where images the nodes took and hold are what was asked for,
+// not problems: they are counted and the command says how to bring them home.
+void FinishSession(SessionReport report, const fs::path& session, bool json, bool fetched = true) {
+  int left_on_nodes = 0;
+  if (!fetched) {
+    const auto held = [](const CameraProblem& p) { return p.status == "captured"; };
+    left_on_nodes = int(std::count_if(report.problems.begin(), report.problems.end(), held));
+    std::erase_if(report.problems, held);
+  }
   if (json) {
     nlohmann::json j = SessionReportToJson(report);
     j["session"] = session.string();
     j["complete"] = report.problems.empty();
+    j["left_on_nodes"] = left_on_nodes;
     fmt::print("{}\n", JsonToText(j, 2));
     std::fflush(stdout);
     if (!report.problems.empty()) std::exit(1);
@@ -72,8 +81,14 @@ void FinishSession(const SessionReport& report, const fs::path& session, bool js
     fmt::print(" ({:.2f} s from request to last {} taken, margin {:.2f} s)\n", report.capture_s,
                report.video ? "frame" : "image", report.trigger_wait_s);
   }
-  fmt::print("fetched {:.1f} MB in {:.2f} s; {} images in {}\n", double(report.bytes) / 1e6,
-             report.fetch_s, report.images_ok, session.string());
+  if (fetched)
+    fmt::print("fetched {:.1f} MB in {:.2f} s; {} images in {}\n", double(report.bytes) / 1e6,
+               report.fetch_s, report.images_ok, session.string());
+  else
+    fmt::print(
+        "{} {} left on the nodes (--no-fetch): `lfcam capture fetch ARRAY --session {}` "
+        "brings them home\n",
+        left_on_nodes, report.video ? "recordings" : "images", session.string());
   if (report.problems.empty()) return;
   for (const CameraProblem& p : report.problems)
     fmt::print(stderr, "  {} {} in shot '{}': {}\n", CameraLabel(p.row, p.col), p.status, p.shot,
@@ -358,7 +373,7 @@ void AddShoot(CLI::App& capture) {
       f->o.fetch_options.progress = [advance](std::int64_t) { advance(1); };
     const SessionReport report = ShootSession(array, key, f->session, f->o);
     progress.finish();
-    FinishSession(report, f->session, f->json);
+    FinishSession(report, f->session, f->json, f->o.fetch);
   });
 }
 
@@ -422,7 +437,7 @@ void AddRecord(CLI::App& capture) {
     if (!f->json)
       fmt::print("{}",
                  RecordingReportText(MakeRecordingReport(ReadManifest(f->session), report.shot)));
-    FinishSession(report, f->session, f->json);
+    FinishSession(report, f->session, f->json, f->o.fetch);
   });
 }
 

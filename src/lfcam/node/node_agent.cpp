@@ -157,6 +157,7 @@ struct NodeAgent::Impl {
     return {
         {"agent", "lfcam-node"},
         {"version", kNodeAgentVersion},
+        {"lfcam_version", LFCAM_VERSION},
         {"name", options.name},
         {"backend", camera->name()},
         {"camera", {{"present", probe.present}, {"model", probe.model}, {"detail", probe.detail}}},

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 #include <sys/statvfs.h>
+#include <sys/utsname.h>
 
 #include <chrono>
 #include <cstdio>
@@ -65,6 +66,7 @@ std::optional<ClockOffset> ChronyClockOffset() {
 
 SystemStatus ReadSystemStatus(const std::filesystem::path& folder) {
   SystemStatus s;
+  if (utsname u{}; ::uname(&u) == 0) s.machine = u.machine;
   if (std::ifstream t("/sys/class/thermal/thermal_zone0/temp"); t) {
     double milli = 0;
     if (t >> milli) s.cpu_temperature_c = milli / 1000.0;
@@ -93,7 +95,8 @@ SystemStatus ReadSystemStatus(const std::filesystem::path& folder) {
 }
 
 nlohmann::json SystemStatusToJson(const SystemStatus& s) {
-  nlohmann::json j = {{"disk_free_bytes", s.disk_free_bytes},
+  nlohmann::json j = {{"machine", s.machine},
+                      {"disk_free_bytes", s.disk_free_bytes},
                       {"cpu_temperature_c", nullptr},
                       {"throttled", nullptr},
                       {"memory_available_bytes", nullptr},

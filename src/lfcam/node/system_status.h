@@ -16,6 +16,7 @@ struct ClockOffset {
 };
 
 struct SystemStatus {
+  std::string machine;  // the instruction set it runs (uname -m): "aarch64"
   std::optional<double> cpu_temperature_c;
   std::optional<std::string> throttled;  // vcgencmd get_throttled, e.g. "0x0"
   std::uint64_t disk_free_bytes = 0;
