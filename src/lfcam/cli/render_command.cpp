@@ -13,6 +13,7 @@
 #include "lfcam/cli/camera_flags.h"
 #include "lfcam/cli/commands.h"
 #include "lfcam/cli/parse.h"
+#include "lfcam/cli/render_flags.h"
 #include "lfcam/cli/render_video.h"
 #include "lfcam/cli/scene_flags.h"
 #include "lfcam/core/error.h"
@@ -47,43 +48,16 @@ double SecondsSince(std::chrono::steady_clock::time_point start) {
 
 }  // namespace
 
-DepthSet EstimateDepthForFrames(const LightField& lf, const std::vector<VirtualCamera>& cameras,
-                                const std::string& input, bool quiet) {
-  DepthSet depth(lf.dims());
-  std::vector<bool> needed(lf.dims().view_count(), false);
-  for (const VirtualCamera& camera : cameras) {
-    const std::vector<bool> more = DepthViewsNeeded(lf, camera);
-    for (std::size_t i = 0; i < needed.size(); ++i) needed[i] = needed[i] || more[i];
-  }
-  const int count = int(std::count(needed.begin(), needed.end(), true));
-  const auto start = std::chrono::steady_clock::now();
-  ProgressBar progress("estimating depth", count, ProgressWanted(quiet));
-  const auto advance = progress.callback();
-  EstimateDepthSet(
-      lf, depth, [&](int r, int c) { return bool(needed[std::size_t(r) * lf.dims().cols + c]); },
-      {},
-      [&](int, int) {
-        if (advance) advance(1);
-      });
-  progress.finish();
-  if (!quiet)
-    fmt::print(stderr,
-               "estimated the depth of the {} views {} reads in {:.1f} s (`lfcam depth {} --all "
-               "--out DIR` keeps them for --depth DIR)\n",
-               count, cameras.size() > 1 ? "the video" : "this frame", SecondsSince(start), input);
-  return depth;
-}
-
 void AddRenderCommand(CLI::App& app) {
   auto* render = app.add_subcommand("render", "Render a light field through the virtual camera");
   struct Flags {
-    std::string input, out, hit_mask, depth;
+    std::string input, out, hit_mask;
     int frame = 0;
     CameraFlags camera;
     BackendFlags backend;
-    int threads = 0, repeat = 1;
-    std::string interpolation = "quadrilinear", integrator = "lens-samples";
-    bool quiet = false, reference = false, antialias = false;
+    RenderOptionFlags render;
+    int repeat = 1;
+    bool quiet = false;
     VideoFlags video;
   };
   auto flags = std::make_shared<Flags>();
@@ -96,78 +70,30 @@ void AddRenderCommand(CLI::App& app) {
   flags->camera.AddTo(*render, /*rig_cameras=*/true, /*sweeps=*/true);
   auto* video_option = flags->video.AddTo(*render);
   out_option->excludes(video_option);
-  render
-      ->add_option("--threads", flags->threads,
-                   "Worker threads (0 = all cores; 1 = the paper's single-threaded CPU column)")
-      ->capture_default_str()
-      ->check(CLI::Range(0, kMaxThreads));
+  flags->render.AddTo(*render);
   render->add_option("--repeat", flags->repeat, "Render this many times and report the median")
       ->check(CLI::Range(1, 1000));
   render->add_option("--hit-mask", flags->hit_mask,
                      "Also write where rays hit the slab (white) as an image; both images are "
                      "written, or neither");
   render->add_flag("--quiet", flags->quiet, "No progress bar (it is drawn only on a terminal)");
-  auto* integrator_option =
-      render->add_option("--integrator", flags->integrator,
-                         "lens-samples (the paper's: n_ls rays a pixel, with --interpolation) or "
-                         "cameras (their limit with the focal-plane lookup: every camera under the "
-                         "aperture read once, exactly weighted; noise-free, sharp on the plane of "
-                         "focus, out-of-focus objects as one copy per camera) or "
-                         "cameras-quadrilinear (= cameras --interpolation quadrilinear: the limit "
-                         "of the paper's own estimator, each camera read through its hat scaled "
-                         "to the st-plane; noise-free, the paper's smooth out-of-focus blur; CPU)");
-  integrator_option->capture_default_str();
-  auto* interpolation_option = render->add_option(
-      "--interpolation", flags->interpolation,
-      "With lens-samples: quadrilinear (the paper's; smooth out-of-focus blur, "
-      "noisy at low --lens-rate) or focal-plane (each camera read along its own ray "
-      "through the point in focus; Isaksen et al. 2000) or depth (each camera read where the "
-      "scene point the ray hits projects into it, occlusion-checked: no ghosts between cameras, "
-      "true blur at every depth; needs depth maps, --depth)");
-  interpolation_option->capture_default_str();
-  render->add_option("--depth", flags->depth,
-                     "With --interpolation depth: the views' depth maps (a folder from `lfcam "
-                     "depth --all`); without it the maps the frame needs are estimated first");
-  render->add_flag("--antialias", flags->antialias,
-                   "With --interpolation depth: spread each pixel's rays over its area on the "
-                   "film (a sensor's pixel) instead of through its centre (the paper's pixel): "
-                   "sharp edges without stair steps; a pinhole pixel casts 4 rays");
   flags->backend.AddTo(*render);
-  render->add_flag("--reference", flags->reference,
-                   "Use the scalar reference renderer (one pixel at a time, every ray in double "
-                   "precision; the definition the vectorised renderer is tested against) instead "
-                   "of the vectorised one");
-  render->callback([flags, integrator_option, interpolation_option, out_option, video_option] {
+  render->callback([flags, out_option, video_option] {
     if (out_option->count() == 0 && video_option->count() == 0)
       throw UsageError("--out IMAGE (a frame) or --video OUT.mp4 (a video) is required");
     // Every flag and output is checked before the light field is read.
-    FrameRenderOptions options;
-    options.threads = flags->threads;
-    options.reference = flags->reference;
-    options.interpolation =
-        FlagValue("--interpolation", [&] { return InterpolationFromString(flags->interpolation); });
-    options.integrator =
-        FlagValue("--integrator", [&] { return IntegratorFromString(flags->integrator); });
     flags->camera.Validate();
     // A saved view (or a path's first) brings its integrator and lookup, unless the flags say
     // otherwise.
-    const std::optional<ViewSettings> first_view =
-        flags->video.path.empty() ? flags->camera.view() : flags->video.FirstView();
-    if (const auto& view = first_view) {
-      if (integrator_option->count() == 0) options.integrator = view->integrator;
-      if (interpolation_option->count() == 0) options.interpolation = view->interpolation;
-    }
-    // The cameras integrator reads along the focal-plane lookup; asked for the quadrilinear
-    // lookup in so many words, it takes that lookup's limit.
-    if (options.integrator == Integrator::kCameras && interpolation_option->count() > 0 &&
-        options.interpolation == Interpolation::kQuadrilinear)
-      options.integrator = Integrator::kCamerasQuadrilinear;
+    FrameRenderOptions options = flags->render.Resolve(
+        flags->video.path.empty() ? flags->camera.view() : flags->video.FirstView());
     if (video_option->count() > 0) {
       if (!flags->hit_mask.empty() || flags->repeat != 1)
         throw UsageError(fmt::format("{}: not with --video",
                                      flags->hit_mask.empty() ? "--repeat" : "--hit-mask"));
-      VideoRenderInput input{flags->input, flags->frame, flags->depth, flags->antialias,
-                             flags->quiet};
+      flags->render.CheckDepthFlags(options);
+      VideoRenderInput input{flags->input, flags->frame, flags->render.depth,
+                             flags->render.antialias, flags->quiet};
       RenderVideoCommand(input, flags->video, flags->camera, options,
                          flags->backend.Validate(options));
       return;
@@ -191,17 +117,13 @@ void AddRenderCommand(CLI::App& app) {
     const LightField lf = ReadLightFieldFrame(flags->input, std::size_t(flags->frame));
     const VirtualCamera camera = flags->camera.MakeCamera(lf);
     DepthSet depth;
+    flags->render.CheckDepthFlags(options);
     if (options.interpolation == Interpolation::kDepth) {
-      if (options.integrator != Integrator::kLensSamples)
-        throw UsageError("--interpolation depth goes with --integrator lens-samples");
-      depth = flags->depth.empty()
+      depth = flags->render.depth.empty()
                   ? EstimateDepthForFrames(lf, {camera}, flags->input, flags->quiet)
-                  : ReadDepthSet(flags->depth, lf);
+                  : ReadDepthSet(flags->render.depth, lf);
       options.depth = &depth;
-      options.antialias = flags->antialias;
-    } else if (!flags->depth.empty() || flags->antialias) {
-      throw UsageError(fmt::format("{}: only with --interpolation depth",
-                                   flags->antialias ? "--antialias" : "--depth"));
+      options.antialias = flags->render.antialias;
     }
     ProgressBar progress("rendering",
                          std::int64_t(flags->repeat) * camera.width() * camera.height(),

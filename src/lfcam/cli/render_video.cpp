@@ -10,6 +10,7 @@
 
 #include "lfcam/cli/backend_flags.h"
 #include "lfcam/cli/parse.h"
+#include "lfcam/cli/render_flags.h"
 #include "lfcam/core/atomic_file.h"
 #include "lfcam/core/error.h"
 #include "lfcam/core/lightfield_video_file.h"
@@ -120,12 +121,6 @@ void RenderVideoCommand(const VideoRenderInput& input, const VideoFlags& video,
                       video.path[0], video.path[0]));
     for (const std::string& file : video.path) camera.WithView(file).Validate();
   }
-  if (options.interpolation == Interpolation::kDepth &&
-      options.integrator != Integrator::kLensSamples)
-    throw UsageError("--interpolation depth goes with --integrator lens-samples");
-  if (options.interpolation != Interpolation::kDepth && (!input.depth.empty() || input.antialias))
-    throw UsageError(fmt::format("{}: only with --interpolation depth",
-                                 input.antialias ? "--antialias" : "--depth"));
 
   const LightFieldVideo source(input.lightfield);
   if (std::size_t(input.first_frame) >= source.frame_count())

@@ -43,9 +43,4 @@ struct VideoRenderInput {
 void RenderVideoCommand(const VideoRenderInput& input, const VideoFlags& video,
                         const CameraFlags& camera, FrameRenderOptions options, Backend backend);
 
-// The depth maps every view the cameras read needs, estimated (with a progress bar and a line
-// on stderr saying how to keep them). Defined with `render`.
-DepthSet EstimateDepthForFrames(const LightField& lf, const std::vector<VirtualCamera>& cameras,
-                                const std::string& input, bool quiet);
-
 }  // namespace lfcam::cli

@@ -1,0 +1,93 @@
+// render's flags as keyword arguments (the Python module's lfcam.render): each keyword becomes
+// its flag, the flags' own code checks it, and the messages name the keyword.
+#include "lfcam/cli/keyword_arguments.h"
+
+#include <gtest/gtest.h>
+
+#include "lfcam/cli/render_flags.h"
+#include "lfcam/core/error.h"
+
+namespace lfcam::cli {
+namespace {
+
+std::string MessageOf(const std::vector<KeywordArgument>& arguments) {
+  try {
+    ParseRenderKeywords(arguments);
+  } catch (const UsageError& e) {
+    return e.what();
+  }
+  return "(accepted)";
+}
+
+TEST(KeywordArguments, EachKeywordBecomesItsFlag) {
+  const std::vector<std::string> args =
+      RenderFlagArguments({{"focal_length", 120.5},
+                           {"eye", std::vector<double>{-10, 0.25, 1e5}},
+                           {"size", std::vector<double>{640, 480}},
+                           {"no_breathing", true},
+                           {"antialias", false},
+                           {"integrator", std::string("cameras")},
+                           {"threads", 2LL},
+                           {"as_camera", std::vector<double>{1.5, 2}}});
+  EXPECT_EQ(args,
+            (std::vector<std::string>{"--focal-length=120.5", "--eye=-10,0.25,100000",
+                                      "--size=640x480", "--no-breathing", "--integrator=cameras",
+                                      "--threads=2", "--as-camera=1.5,2"}));
+}
+
+TEST(KeywordArguments, TheFlagsDefaultsAndChecksAreRenders) {
+  const auto request = ParseRenderKeywords({{"aperture", 40.0},
+                                            {"focus_distance", 3500LL},
+                                            {"eye", std::vector<double>{-28, 0, 0}},
+                                            {"integrator", std::string("cameras")},
+                                            {"interpolation", std::string("quadrilinear")}});
+  EXPECT_EQ(request->camera.aperture_mm, 40.0);
+  EXPECT_EQ(request->camera.focus_distance_mm, 3500.0);
+  EXPECT_EQ(request->camera.focal_length_mm, 500.0);  // render's default
+  EXPECT_EQ(request->camera.eye, "-28,0,0");
+  // As `lfcam render --integrator cameras --interpolation quadrilinear`: that lookup's limit.
+  EXPECT_EQ(request->options.integrator, Integrator::kCamerasQuadrilinear);
+  EXPECT_EQ(request->chosen_backend, Backend::kCpu);
+  const auto plain = ParseRenderKeywords({});
+  EXPECT_EQ(plain->options.integrator, Integrator::kLensSamples);
+  EXPECT_EQ(plain->options.interpolation, Interpolation::kQuadrilinear);
+}
+
+TEST(KeywordArguments, MistakesAreUsageErrorsNamingTheKeyword) {
+  EXPECT_NE(MessageOf({{"focal_lenght", 50.0}}).find("'focal_lenght' is not a keyword of render"),
+            std::string::npos);
+  EXPECT_NE(MessageOf({{"focal_length", -5.0}}).find("focal_length: -5 must be a positive"),
+            std::string::npos)
+      << MessageOf({{"focal_length", -5.0}});
+  EXPECT_NE(MessageOf({{"aperture", std::string("wide")}}).find("aperture"), std::string::npos);
+  EXPECT_EQ(MessageOf({{"aperture", std::string("wide")}}).find("--aperture"), std::string::npos);
+  EXPECT_NE(MessageOf({{"eye", std::vector<double>{1, 2}}}).find("eye: expected 3 numbers"),
+            std::string::npos);
+  EXPECT_NE(MessageOf({{"no_breathing", 1.0}}).find("no_breathing: expected True or False"),
+            std::string::npos);
+  EXPECT_NE(MessageOf({{"focal_length", true}}).find("focal_length: expected a value"),
+            std::string::npos);
+  EXPECT_NE(MessageOf({{"size", std::vector<double>{640.5, 480}}}).find("size: expected 2 whole"),
+            std::string::npos);
+  EXPECT_NE(MessageOf({{"aperture", 1.0}, {"aperture", 2.0}}).find("aperture: given twice"),
+            std::string::npos);
+  EXPECT_NE(MessageOf({{"integrator", std::string("magic")}}).find("integrator"),
+            std::string::npos);
+  EXPECT_NE(MessageOf({{"backend", std::string("gl")}, {"reference", true}}).find("reference"),
+            std::string::npos);
+  EXPECT_NE(MessageOf({{"antialias", true}}).find("antialias: only with interpolation depth"),
+            std::string::npos)
+      << MessageOf({{"antialias", true}});
+  EXPECT_NE(MessageOf({{"focus_distance", std::string("3000:4000")}}).find("focus_distance"),
+            std::string::npos);
+}
+
+TEST(KeywordArguments, MessagesNameKeywordsNotFlags) {
+  EXPECT_EQ(InKeywords("--focus-distance: 10 mm must exceed the focal length"),
+            "focus_distance: 10 mm must exceed the focal length");
+  EXPECT_EQ(InKeywords("--camera x.json and --as-camera"), "camera x.json and as_camera");
+  EXPECT_EQ(InKeywords("--cameras-quadrilinear"), "--cameras-quadrilinear");  // not a flag
+}
+
+}  // namespace
+}  // namespace lfcam::cli
