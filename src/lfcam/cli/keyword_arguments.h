@@ -1,10 +1,11 @@
 #pragma once
-// `render`'s flags as keyword arguments: the Python module's lfcam.render(lf, focal_length=...,
-// aperture=...). Each keyword is a flag's name without its dashes and with underscores
-// (focus_distance for --focus-distance); its value becomes the flag's text, which the command's
-// own flag code then parses and checks (ParseRenderKeywords, cli/render_flags.h), so the
-// defaults, the limits and the messages are `lfcam render`'s, with the keywords' names in them.
-#include <memory>
+// Commands' flags as keyword arguments: the Python module's lfcam.render(lf, focal_length=...)
+// and lfcam.import_views(dir, rig=...). Each keyword is a flag's name without its dashes and with
+// underscores (focus_distance for --focus-distance); its value becomes the flag's text, which
+// the command's own flag code then parses and checks (ParseRenderKeywords, cli/render_flags.h;
+// ParseImportKeywords, cli/import_flags.h), so the defaults, the limits and the messages are the
+// command's, with the keywords' names in them.
+#include <map>
 #include <string>
 #include <variant>
 #include <vector>
@@ -20,16 +21,28 @@ struct KeywordArgument {
   KeywordValue value;
 };
 
-// The keywords render() takes.
-const std::vector<std::string>& RenderKeywords();
+// What a keyword's value may be, by what its flag takes: a switch (True/False), a number, a
+// string, 3 numbers (X,Y,Z), 2 numbers (R,C), a size (N or (W, H): WxH), 4 numbers (A,B,C,D).
+enum class KeywordKind { kSwitch, kNumber, kText, kVector3, kPair, kSize, kQuad };
+
+// One function's keywords: its name (for messages) and each keyword's kind.
+struct KeywordTable {
+  std::string function;
+  std::map<std::string, KeywordKind> kinds;
+  std::vector<std::string> names() const;
+};
+
+const KeywordTable& RenderKeywordTable();  // lfcam.render: `lfcam render`'s flags
+const KeywordTable& ImportKeywordTable();  // lfcam.import_views: `lfcam import`'s
 
 // The flags' arguments for the keywords ("--focal-length=500", "--no-breathing"), in the order
-// given. Throws UsageError naming the keyword for one it does not know (listing those it does),
-// one given twice, or a value of the wrong kind.
-std::vector<std::string> RenderFlagArguments(const std::vector<KeywordArgument>& arguments);
+// given. Throws UsageError naming the keyword for one the table does not hold (listing those it
+// does), one given twice, or a value of the wrong kind.
+std::vector<std::string> FlagArguments(const KeywordTable& table,
+                                       const std::vector<KeywordArgument>& arguments);
 
 // A message of the flags' code with the keywords' names for the flags' ("--focal-length: ..."
 // -> "focal_length: ...").
-std::string InKeywords(std::string message);
+std::string InKeywords(const KeywordTable& table, std::string message);
 
 }  // namespace lfcam::cli

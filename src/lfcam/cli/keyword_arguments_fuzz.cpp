@@ -40,7 +40,8 @@ struct Reader {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   Reader in{data, size};
-  const std::vector<std::string>& known = lfcam::cli::RenderKeywords();
+  const lfcam::cli::KeywordTable& table = lfcam::cli::RenderKeywordTable();
+  const std::vector<std::string> known = table.names();
   std::vector<lfcam::cli::KeywordArgument> arguments;
   for (int k = in.Byte() % 6; k > 0 && in.size > 0; --k) {
     const std::uint8_t pick = in.Byte();
@@ -72,7 +73,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     arguments.push_back({name, value});
   }
   try {
-    std::vector<std::string> args = lfcam::cli::RenderFlagArguments(arguments);
+    std::vector<std::string> args = lfcam::cli::FlagArguments(table, arguments);
     lfcam::cli::CameraFlags camera;
     CLI::App app;
     app.allow_extras();

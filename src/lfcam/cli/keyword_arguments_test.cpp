@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include "lfcam/cli/import_flags.h"
 #include "lfcam/cli/render_flags.h"
 #include "lfcam/core/error.h"
 
@@ -21,14 +22,14 @@ std::string MessageOf(const std::vector<KeywordArgument>& arguments) {
 
 TEST(KeywordArguments, EachKeywordBecomesItsFlag) {
   const std::vector<std::string> args =
-      RenderFlagArguments({{"focal_length", 120.5},
-                           {"eye", std::vector<double>{-10, 0.25, 1e5}},
-                           {"size", std::vector<double>{640, 480}},
-                           {"no_breathing", true},
-                           {"antialias", false},
-                           {"integrator", std::string("cameras")},
-                           {"threads", 2LL},
-                           {"as_camera", std::vector<double>{1.5, 2}}});
+      FlagArguments(RenderKeywordTable(), {{"focal_length", 120.5},
+                                           {"eye", std::vector<double>{-10, 0.25, 1e5}},
+                                           {"size", std::vector<double>{640, 480}},
+                                           {"no_breathing", true},
+                                           {"antialias", false},
+                                           {"integrator", std::string("cameras")},
+                                           {"threads", 2LL},
+                                           {"as_camera", std::vector<double>{1.5, 2}}});
   EXPECT_EQ(args,
             (std::vector<std::string>{"--focal-length=120.5", "--eye=-10,0.25,100000",
                                       "--size=640x480", "--no-breathing", "--integrator=cameras",
@@ -82,11 +83,35 @@ TEST(KeywordArguments, MistakesAreUsageErrorsNamingTheKeyword) {
             std::string::npos);
 }
 
+TEST(KeywordArguments, ImportTakesImportsFlags) {
+  const auto request =
+      ParseImportKeywords("views", {{"rig", std::string("parallel")},
+                                    {"st_domain", std::vector<double>{-0.5, -0.5, 1.5, 1.5}},
+                                    {"st_res", std::vector<double>{320, 240}},
+                                    {"allow_missing", true}});
+  EXPECT_EQ(request->flags.dir, "views");
+  EXPECT_EQ(request->flags.rig, "parallel");
+  EXPECT_EQ(request->flags.st_domain, "-0.5,-0.5,1.5,1.5");
+  EXPECT_EQ(request->flags.st_res, "320x240");
+  EXPECT_TRUE(request->flags.allow_missing);
+  try {
+    ParseImportKeywords("views", {{"aperture", 1.0}});
+    ADD_FAILURE() << "import took a render keyword";
+  } catch (const UsageError& e) {
+    EXPECT_NE(std::string(e.what()).find("'aperture' is not a keyword of import_views"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(KeywordArguments, MessagesNameKeywordsNotFlags) {
-  EXPECT_EQ(InKeywords("--focus-distance: 10 mm must exceed the focal length"),
-            "focus_distance: 10 mm must exceed the focal length");
-  EXPECT_EQ(InKeywords("--camera x.json and --as-camera"), "camera x.json and as_camera");
-  EXPECT_EQ(InKeywords("--cameras-quadrilinear"), "--cameras-quadrilinear");  // not a flag
+  EXPECT_EQ(
+      InKeywords(RenderKeywordTable(), "--focus-distance: 10 mm must exceed the focal length"),
+      "focus_distance: 10 mm must exceed the focal length");
+  EXPECT_EQ(InKeywords(RenderKeywordTable(), "--camera x.json and --as-camera"),
+            "camera x.json and as_camera");
+  EXPECT_EQ(InKeywords(RenderKeywordTable(), "--cameras-quadrilinear"),
+            "--cameras-quadrilinear");  // not a flag
 }
 
 }  // namespace

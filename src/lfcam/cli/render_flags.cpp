@@ -84,17 +84,19 @@ void RenderOptionFlags::CheckDepthFlags(const FrameRenderOptions& options) const
 }
 
 std::unique_ptr<RenderRequest> ParseRenderKeywords(const std::vector<KeywordArgument>& arguments) {
+  const KeywordTable& table = RenderKeywordTable();
   auto request = std::make_unique<RenderRequest>();
-  CLI::App app("lfcam.render", "render");
+  request->parser = std::make_unique<CLI::App>("lfcam.render", "render");
+  CLI::App& app = *request->parser;
   request->camera.AddTo(app, /*rig_cameras=*/true, /*sweeps=*/false);
   request->render.AddTo(app);
   request->backend.AddTo(app);
-  std::vector<std::string> args = RenderFlagArguments(arguments);
+  std::vector<std::string> args = FlagArguments(table, arguments);
   std::reverse(args.begin(), args.end());  // CLI11 takes its arguments last first
   try {
     app.parse(args);
   } catch (const CLI::ParseError& e) {
-    throw UsageError(InKeywords(e.what()));
+    throw UsageError(InKeywords(table, e.what()));
   }
   try {
     request->camera.Validate();
@@ -102,7 +104,7 @@ std::unique_ptr<RenderRequest> ParseRenderKeywords(const std::vector<KeywordArgu
     request->render.CheckDepthFlags(request->options);
     request->chosen_backend = request->backend.Validate(request->options);
   } catch (const UsageError& e) {
-    throw UsageError(InKeywords(e.what()));
+    throw UsageError(InKeywords(table, e.what()));
   }
   return request;
 }

@@ -38,6 +38,7 @@ struct RenderOptionFlags {
 
 // What a caller of render asks for with keyword arguments (the Python module's lfcam.render).
 struct RenderRequest {
+  std::unique_ptr<CLI::App> parser;  // the flags keep pointers into it: kept with them
   CameraFlags camera;
   RenderOptionFlags render;
   BackendFlags backend;

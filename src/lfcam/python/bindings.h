@@ -8,6 +8,9 @@
 
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
+#include <vector>
+
+#include "lfcam/cli/keyword_arguments.h"
 
 namespace lfcam::python {
 
@@ -17,6 +20,7 @@ void BindLightField(py::module_& m);
 void BindRender(py::module_& m);
 void BindDepth(py::module_& m);
 void BindExport(py::module_& m);
+void BindImport(py::module_& m);
 void BindSession(py::module_& m);
 
 // An array over memory another object keeps alive (`base`): no copy. Read-only unless
@@ -29,6 +33,10 @@ py::array ArrayOver(const py::dtype& dtype, std::vector<py::ssize_t> shape,
 // `flip_rows`: the matrix's row 0 is the image's bottom row (st rows, depth maps), walked
 // backwards so that the array's row 0 is the top.
 py::array ArrayOfMat(const cv::Mat& image, bool flip_rows = false);
+
+// Python keyword arguments as keyword values; a value no flag takes is a TypeError naming the
+// keyword (keyword_values.cpp).
+std::vector<cli::KeywordArgument> KeywordArguments(const py::kwargs& kwargs);
 
 // JSON as the Python objects json.loads gives (dict, list, str, numbers, None).
 py::object ToPython(const nlohmann::json& j);

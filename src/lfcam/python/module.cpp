@@ -70,5 +70,6 @@ PYBIND11_MODULE(lfcam, m) {
   lfcam::python::BindRender(m);
   lfcam::python::BindDepth(m);
   lfcam::python::BindExport(m);
+  lfcam::python::BindImport(m);
   lfcam::python::BindSession(m);
 }

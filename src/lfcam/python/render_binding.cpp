@@ -14,38 +14,8 @@
 #include "lfcam/python/bindings.h"
 
 namespace lfcam::python {
-namespace {
 
-// A Python value as a keyword's value; anything else is a TypeError naming the keyword.
-cli::KeywordValue KeywordValueOf(const std::string& name, const py::handle& value) {
-  if (py::isinstance<py::bool_>(value)) return value.cast<bool>();
-  if (py::isinstance<py::int_>(value)) {
-    try {
-      return value.cast<long long>();
-    } catch (const py::cast_error&) {
-      throw UsageError(
-          fmt::format("{}: {} is out of range", name, py::str(value).cast<std::string>()));
-    }
-  }
-  if (py::isinstance<py::float_>(value)) return value.cast<double>();
-  if (py::isinstance<py::str>(value)) return value.cast<std::string>();
-  if (py::hasattr(value, "__fspath__"))  // pathlib.Path: a file's name
-    return py::str(value.attr("__fspath__")()).cast<std::string>();
-  if (py::isinstance<py::sequence>(value) || py::hasattr(value, "__array__")) {
-    std::vector<double> numbers;
-    for (const py::handle item : py::iter(value)) {
-      if (!py::isinstance<py::int_>(item) && !py::isinstance<py::float_>(item) &&
-          !py::hasattr(item, "__float__"))
-        throw py::type_error(fmt::format("{}: expected numbers, found {}", name,
-                                         py::str(py::type::of(item)).cast<std::string>()));
-      numbers.push_back(item.cast<double>());
-      if (numbers.size() > 16) throw UsageError(fmt::format("{}: too many numbers", name));
-    }
-    return numbers;
-  }
-  throw py::type_error(fmt::format("{}: {} is not a value render takes", name,
-                                   py::str(py::type::of(value)).cast<std::string>()));
-}
+namespace {
 
 // Renderers are opened once per backend and kept (a GL context is costly to make).
 FrameRenderer& RendererFor(Backend backend) {
@@ -63,11 +33,7 @@ void BindRender(py::module_& m) {
   m.def(
       "render",
       [](const std::shared_ptr<LightField>& lf, bool linear, const py::kwargs& kwargs) {
-        std::vector<cli::KeywordArgument> arguments;
-        for (const auto& [key, value] : kwargs) {
-          const std::string name = py::str(key).cast<std::string>();
-          arguments.push_back({name, KeywordValueOf(name, value)});
-        }
+        const std::vector<cli::KeywordArgument> arguments = KeywordArguments(kwargs);
         cv::Mat image;
         {
           py::gil_scoped_release release;
@@ -76,7 +42,7 @@ void BindRender(py::module_& m) {
             try {
               return request->camera.MakeCamera(*lf);
             } catch (const UsageError& e) {
-              throw UsageError(cli::InKeywords(e.what()));
+              throw UsageError(cli::InKeywords(cli::RenderKeywordTable(), e.what()));
             }
           }();
           FrameRenderOptions options = request->options;
@@ -106,7 +72,8 @@ reference, backend ("cpu", "gl" or "auto"), workgroup. Their defaults are render
 Returns an H x W x 3 array, top row first: uint8 sRGB, as `lfcam render` writes it, or with
 linear=True float32 linear light. Raises lfcam.UsageError naming the keyword.)");
   m.def(
-      "render_keywords", [] { return cli::RenderKeywords(); }, "The keywords lfcam.render takes.");
+      "render_keywords", [] { return cli::RenderKeywordTable().names(); },
+      "The keywords lfcam.render takes.");
 }
 
 }  // namespace lfcam::python

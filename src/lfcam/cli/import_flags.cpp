@@ -1,0 +1,206 @@
+#include "lfcam/cli/import_flags.h"
+
+#include <fmt/core.h>
+
+#include <cmath>
+#include <optional>
+
+#include "lfcam/calib/lightfield_build.h"
+#include "lfcam/cli/parse.h"
+#include "lfcam/core/error.h"
+#include "lfcam/core/limits.h"
+#include "lfcam/core/progress.h"
+#include "lfcam/io/grid_import.h"
+#include "lfcam/io/rectified_import.h"
+
+namespace lfcam::cli {
+namespace {
+
+// Which file became which view (lfcam's grid: row 0 at the bottom).
+nlohmann::json ViewFiles(const ImportedGrid& grid) {
+  nlohmann::json views = nlohmann::json::array();
+  for (const GridView& v : grid.views)
+    views.push_back({{"row", v.row}, {"col", v.col}, {"file", v.file}});
+  return views;
+}
+
+// A rectified rig: the views as they are, with the geometry said (and what was assumed).
+ImportedLightField ImportRectified(const std::string& dir, const ImportedGrid& grid,
+                                   const ImportOptions& o, bool quiet) {
+  const RectifiedGeometry geometry = ResolveRectifiedGeometry(grid, o);
+  ProgressBar progress("importing views", std::int64_t(grid.rows) * grid.cols,
+                       ProgressWanted(quiet));
+  const auto advance = progress.callback();
+  RectifiedImportReport report;
+  LightField lf = ImportRectifiedViews(
+      dir, grid, geometry,
+      [&] {
+        if (advance) advance(1);
+      },
+      &report);
+  progress.finish();
+  nlohmann::json summary = {{"naming", ToString(grid.naming)},
+                            {"rig", ToString(RigModel::kRectified)},
+                            {"rows", grid.rows},
+                            {"cols", grid.cols},
+                            {"view_width", grid.width},
+                            {"view_height", grid.height},
+                            {"pitch_mm", geometry.pitch_mm},
+                            {"focal_px", geometry.focal_px},
+                            {"st_distance_mm", geometry.zero_disparity_mm},
+                            {"zero_disparity_distance_mm", geometry.zero_disparity_mm},
+                            {"st_distance_estimated", false},
+                            {"assumed", geometry.assumed},
+                            {"n_s", lf.dims().n_s},
+                            {"n_t", lf.dims().n_t},
+                            {"filled", report.filled},
+                            {"views", ViewFiles(grid)},
+                            {"seconds", report.seconds}};
+  return {std::move(lf), std::move(summary), grid.ignored};
+}
+
+}  // namespace
+
+void ImportFlags::AddTo(CLI::App& command) {
+  command
+      .add_option("--naming", naming,
+                  "How the views are named: auto, stanford (NAME_RR_CC_Y_X_), blender-grid "
+                  "(NAME_RR_CC_Y_X_F_W), hci (input_CamNNN.png + parameters.cfg) or unit-grid "
+                  "(NAME_RR_CC: indices only, row 1 at the top); auto refuses names that parse "
+                  "several ways")
+      ->capture_default_str();
+  command
+      .add_option("--rig", rig,
+                  "auto, parallel (centred sensors: zero disparity at infinity) or rectified "
+                  "(shifted sensors: zero disparity on one plane, the st-plane; views stored "
+                  "sample for sample); auto: Blender grids parallel, the others rectified")
+      ->capture_default_str();
+  command.add_option("--st-distance", st_distance,
+                     "Distance of the st-plane from the cameras, mm. Parallel rig: default the "
+                     "description's, else the depth most of the scene lies at, estimated. "
+                     "Rectified rig: the zero-disparity plane's (default the description's or "
+                     "parameters.cfg's, else assumed and said)");
+  command.add_option("--pitch-mm", pitch_mm,
+                     "The cameras' spacing, for views named by indices alone (default 1, said)");
+  st_res_ = command.add_option(
+      "--st-res", st_res,
+      "Parallel rig: st samples per view, N_SxN_T (default: the views' sample spacing "
+      "over the st domain)");
+  st_domain_ = command.add_option(
+      "--st-domain", st_domain,
+      "Parallel rig: sampled st domain S0,T0,S1,T1 (view-window units, [0, 1]^2 being what the "
+      "central camera sees on the st-plane, the default)");
+  st_windows_ =
+      command
+          .add_option("--st-windows", st_windows,
+                      "Parallel rig: views (each view in its own window, the st domain's grid "
+                      "moved to where its camera looks: its own pixels) or shared (every view "
+                      "samples the st domain)")
+          ->capture_default_str();
+  command.add_option("--focal-px", focal_px, "The views' focal length in pixels");
+  command.add_option("--focal-mm", focal_mm,
+                     "The lens's focal length, mm (with --sensor-width-mm)");
+  command.add_option("--sensor-width-mm", sensor_width_mm, "The sensor's width, mm");
+  resampling_ = command
+                    .add_option("--resampling", resampling,
+                                "Parallel rig: linear, cubic or lanczos4 (as for build)")
+                    ->capture_default_str();
+  command.add_option("--chroma", chroma, "guided or interpolated, for JPEG views (as for build)")
+      ->capture_default_str();
+  command.add_flag("--allow-missing", allow_missing,
+                   "Fill views missing from the grid from their nearest neighbours (recorded)");
+}
+
+ImportedLightField ImportFlags::Run(bool quiet) const {
+  ImportOptions o;
+  auto positive = [](const char* flag, double value) -> std::optional<double> {
+    if (value == 0) return std::nullopt;
+    if (!(value > 0) || !std::isfinite(value))
+      throw UsageError(fmt::format("{} must be positive", flag));
+    return value;
+  };
+  o.st_distance_mm = positive("--st-distance", st_distance);
+  o.focal_px = positive("--focal-px", focal_px);
+  o.focal_mm = positive("--focal-mm", focal_mm);
+  o.sensor_width_mm = positive("--sensor-width-mm", sensor_width_mm);
+  o.pitch_mm = positive("--pitch-mm", pitch_mm);
+  std::optional<GridNaming> grid_naming;
+  if (naming != "auto")
+    grid_naming = FlagValue("--naming", [&] { return GridNamingFromString(naming); });
+  if (rig != "auto") o.rig = FlagValue("--rig", [&] { return RigModelFromString(rig); });
+  if (o.focal_mm.has_value() != o.sensor_width_mm.has_value())
+    throw UsageError("--focal-mm and --sensor-width-mm go together");
+  BuildOptions b;
+  if (!st_domain.empty()) b.st_domain = ParseStDomain("--st-domain", st_domain);
+  std::optional<std::pair<int, int>> st_size;
+  if (!st_res.empty()) st_size = ParseSize("--st-res", st_res, kMaxStSamplesPerSide);
+  b.resampling = FlagValue("--resampling", [&] { return ResamplingFromString(resampling); });
+  b.chroma = FlagValue("--chroma", [&] { return ChromaUpsamplingFromString(chroma); });
+  b.allow_missing = allow_missing;
+
+  ImportedGrid grid = ScanGridFolder(dir, allow_missing, grid_naming);
+  if (o.rig) grid.rig = *o.rig;
+  if (grid.rig == RigModel::kRectified) {
+    for (const CLI::Option* flag : {st_res_, st_domain_, resampling_, st_windows_})
+      if (flag && flag->count() > 0)
+        throw UsageError(fmt::format(
+            "{}: a rectified rig's views are stored sample for sample, not resampled (--rig "
+            "parallel resamples them)",
+            flag->get_name()));
+    return ImportRectified(dir, grid, o, quiet);
+  }
+  if (o.pitch_mm && grid.positions_known)
+    throw UsageError("--pitch-mm: the names give the cameras' positions");
+  const ImportedSession session = MakeImportedSession(dir, grid, o);
+  // By default the views' own sample spacing, each view in its own window.
+  b.view_windows = ParseStWindows("--st-windows", st_windows);
+  const StDomain& domain = b.st_domain.value_or(session.calibration.slab.st_domain);
+  std::tie(b.n_s, b.n_t) =
+      st_size.value_or(std::pair{int(std::lround(grid.width * domain.s_extent())),
+                                 int(std::lround(grid.height * domain.t_extent()))});
+  ProgressBar progress("importing views", std::int64_t(grid.rows) * grid.cols,
+                       ProgressWanted(quiet));
+  if (const auto advance = progress.callback()) b.view_done = [advance] { advance(1); };
+  BuildReport report;
+  LightField lf = BuildLightField(dir, session.manifest, session.calibration, b, &report);
+  progress.finish();
+  nlohmann::json summary = {{"naming", ToString(grid.naming)},
+                            {"rig", ToString(grid.rig)},
+                            {"rows", grid.rows},
+                            {"cols", grid.cols},
+                            {"view_width", grid.width},
+                            {"view_height", grid.height},
+                            {"pitch_mm", grid.pitch_mm},
+                            {"focal_px", session.focal_px},
+                            {"st_distance_mm", session.st_distance_mm},
+                            {"st_distance_estimated", session.st_distance_estimated},
+                            {"st_distance_estimate_mm",
+                             session.st_distance_unsnapped_mm.value_or(session.st_distance_mm)},
+                            {"st_distance_snapped", session.st_distance_unsnapped_mm.has_value()},
+                            {"samples_between_neighbours", session.samples_between_neighbours},
+                            {"n_s", lf.dims().n_s},
+                            {"n_t", lf.dims().n_t},
+                            {"filled", report.filled},
+                            {"views", ViewFiles(grid)},
+                            {"seconds", report.seconds}};
+  return {std::move(lf), std::move(summary), grid.ignored};
+}
+
+std::unique_ptr<ImportRequest> ParseImportKeywords(const std::string& dir,
+                                                   const std::vector<KeywordArgument>& arguments) {
+  const KeywordTable& table = ImportKeywordTable();
+  auto request = std::make_unique<ImportRequest>();
+  request->parser = std::make_unique<CLI::App>("lfcam.import_views", "import");
+  request->flags.AddTo(*request->parser);
+  request->flags.dir = dir;
+  std::vector<std::string> args = FlagArguments(table, arguments);
+  std::reverse(args.begin(), args.end());  // CLI11 takes its arguments last first
+  try {
+    request->parser->parse(args);
+  } catch (const CLI::ParseError& e) {
+    throw UsageError(InKeywords(table, e.what()));
+  }
+  return request;
+}
+
+}  // namespace lfcam::cli

@@ -1,0 +1,53 @@
+#pragma once
+// `import`'s flags and its work: a light field from a folder of views someone else made (the
+// Stanford archive's, a Blender camera grid's, the HCI benchmark's, plenoptic views, or any
+// described in lfcam-views.json): a rectified rig's views stored sample for sample, a parallel
+// rig's through the same resampler as `build` (docs/format.md, "Importing"). Shared by
+// `lfcam import` and the Python module's lfcam.import_views.
+#include <CLI/CLI.hpp>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "lfcam/cli/keyword_arguments.h"
+#include "lfcam/core/lightfield.h"
+
+namespace lfcam::cli {
+
+struct ImportedLightField {
+  LightField lightfield;
+  // What was imported and how (rig, naming, pitch, focal length, the st-plane, what was
+  // assumed or filled): `lfcam import --json`'s summary, without "out".
+  nlohmann::json summary;
+  std::vector<std::string> ignored;  // files in the folder that are not views
+};
+
+struct ImportFlags {
+  std::string dir;
+  std::string st_res, st_domain, resampling = "linear", chroma = "guided", naming = "auto",
+                                 rig = "auto", st_windows = "views";
+  double st_distance = 0, focal_px = 0, focal_mm = 0, sensor_width_mm = 0, pitch_mm = 0;
+  bool allow_missing = false;
+
+  // Every flag but the folder, --out, --compress and the printing ones (the command's).
+  void AddTo(CLI::App& command);
+  // Checks the flags (UsageError naming the flag) and imports `dir`, with a progress bar unless
+  // `quiet`. Throws lfcam::Error naming the file for a folder it cannot read.
+  ImportedLightField Run(bool quiet) const;
+
+ private:
+  CLI::Option *st_res_ = nullptr, *st_domain_ = nullptr, *resampling_ = nullptr,
+              *st_windows_ = nullptr;
+};
+
+// lfcam.import_views(dir, **keywords): the keywords through `lfcam import`'s own flags
+// (cli/keyword_arguments.h). Throws UsageError with the keyword's name.
+struct ImportRequest {
+  std::unique_ptr<CLI::App> parser;  // the flags keep pointers into it: kept with them
+  ImportFlags flags;
+};
+std::unique_ptr<ImportRequest> ParseImportKeywords(const std::string& dir,
+                                                   const std::vector<KeywordArgument>& arguments);
+
+}  // namespace lfcam::cli
