@@ -81,6 +81,27 @@ else()
   lfcam_package_docs(host lfcam)
   lfcam_man_page(lfcam host "capture, calibrate and render 4D light fields")
   set(CPACK_COMPONENTS_ALL host)
+  # python3-lfcam: `import lfcam` for Debian's python3 (docs/python.md).
+  if(TARGET lfcam_python)
+    install(TARGETS lfcam_python LIBRARY DESTINATION lib/python3/dist-packages COMPONENT python)
+    lfcam_package_docs(python python3-lfcam)
+    list(APPEND CPACK_COMPONENTS_ALL python)
+    set(CPACK_DEBIAN_PYTHON_PACKAGE_NAME python3-lfcam)
+    set(CPACK_DEBIAN_PYTHON_PACKAGE_SECTION python)
+    string(REGEX MATCH "^[0-9]+\\.[0-9]+" lfcam_python_version "${Python_VERSION}")
+    string(REGEX REPLACE "\\.([0-9]+)$" "" lfcam_python_major "${lfcam_python_version}")
+    math(EXPR lfcam_python_next "${CMAKE_MATCH_1} + 1")
+    set(CPACK_DEBIAN_PYTHON_PACKAGE_DEPENDS
+        "python3 (>= ${lfcam_python_version}), python3 (<< ${lfcam_python_major}.${lfcam_python_next}), python3-numpy")
+    string(CONCAT CPACK_DEBIAN_PYTHON_DESCRIPTION
+        "Python module of lfcam, the 4D light field camera system\n"
+        "import lfcam: open a light field (its views as NumPy arrays over the\n"
+        "file's own mapping, no copy), its geometry and cameras; render a view\n"
+        "through the paper's virtual camera with every flag of `lfcam render` as a\n"
+        "keyword argument; estimate depth; import folders of views; export for\n"
+        "NeRF and COLMAP; read capture sessions. Errors are Python exceptions with\n"
+        "lfcam's messages.")
+  endif()
   set(CPACK_DEBIAN_HOST_PACKAGE_NAME lfcam)
   set(CPACK_DEBIAN_HOST_PACKAGE_SECTION graphics)
   string(CONCAT CPACK_DEBIAN_HOST_DESCRIPTION

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Builds lfcam's Debian packages with CMake's CPack (docs/packaging.md): `lfcam` from the release
-# build and `lfcam-node` from a node-only build, for this machine and cross-built for the Pis
+# build (and `python3-lfcam`, the Python module) and `lfcam-node` from a node-only build, for this machine and cross-built for the Pis
 # (arm64, cmake/toolchains/aarch64-linux-gnu.cmake), into out/packages/; runs the arm64 agent under
 # emulation as real nodes driven by this machine's `lfcam capture` (EmulatedArm64Node.*); and
 # checks the packages with lintian (every warning fails, but those packaging/lintian-overrides
@@ -58,12 +58,22 @@ if [ $install -eq 1 ]; then
   echo "== installing with apt"
   export DEBIAN_FRONTEND=noninteractive
   "${sudo_cmd[@]}" apt-get install -y -qq ./out/packages/lfcam_*_"$arch".deb \
-    ./out/packages/lfcam-node_*_"$arch".deb 2>&1 |
+    ./out/packages/lfcam-node_*_"$arch".deb ./out/packages/python3-lfcam_*_"$arch".deb 2>&1 |
     grep -v '^debconf: ' || true
   dpkg -s lfcam lfcam-node >/dev/null
   [ "$(command -v lfcam)" = /usr/bin/lfcam ] || { echo "lfcam is not /usr/bin/lfcam" >&2; exit 1; }
   lfcam --version
   lfcam-node --version
+  echo "== import lfcam, from the package (not the build tree), rendering what lfcam renders"
+  try=$(mktemp -d)
+  lfcam simulate lightfield --out "$try/small.lf" --grid 3x3 --st-res 64x56 --quiet >/dev/null
+  lfcam render "$try/small.lf" --size 48 --aperture 20 --out "$try/cli.png" --quiet >/dev/null
+  (cd "$try" && env -u PYTHONPATH /usr/bin/python3 -c "
+import lfcam, numpy
+assert lfcam.__file__.startswith('/usr/lib/python3/dist-packages/'), lfcam.__file__
+image = lfcam.render(lfcam.open('small.lf'), size=48, aperture=20)
+print('python3-lfcam', lfcam.__version__, 'rendered', image.shape, 'from', lfcam.__file__)")
+  rm -rf "$try"
   for page in lfcam lfcam-node; do
     [ -s "/usr/share/man/man1/$page.1.gz" ] || { echo "no man page for $page" >&2; exit 1; }
   done
@@ -99,6 +109,6 @@ if [ $install -eq 1 ]; then
     { echo "remove lost the captures" >&2; exit 1; }
   "${sudo_cmd[@]}" apt-get purge -y -qq lfcam-node >/dev/null
   [ ! -e /var/lib/lfcam-node ] || { echo "purge left the captures" >&2; exit 1; }
-  "${sudo_cmd[@]}" apt-get purge -y -qq lfcam >/dev/null
+  "${sudo_cmd[@]}" apt-get purge -y -qq python3-lfcam lfcam >/dev/null
   echo "package.sh: installed, ran, removed and purged cleanly"
 fi

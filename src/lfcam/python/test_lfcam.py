@@ -265,3 +265,12 @@ def test_a_real_benchmark_scene_imports_and_renders():
     centre = lfcam.render(lf, as_camera=(4, 4))
     # Rendered as its own centre camera, a rectified view comes back as the photograph.
     assert np.abs(centre.astype(int) - lf.view(4, 4).astype(int)).mean() < 1.0
+
+
+def test_the_guides_example_runs(lightfield_path, capsys):
+    guide = open(os.path.join(os.environ.get("LFCAM_SOURCE_DIR", "."), "docs", "python.md")).read()
+    example = guide.split("## Refocus in five lines")[1].split("```python\n")[1].split("```")[0]
+    exec(example.replace('"paper.lf"', repr(str(lightfield_path))), {})
+    printed = capsys.readouterr().out.splitlines()
+    assert [line.split()[0] for line in printed] == ["3400", "4200", "5200"]
+    assert all("(512, 512, 3) uint8" in line for line in printed)
