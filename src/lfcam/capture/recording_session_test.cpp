@@ -164,8 +164,9 @@ TEST(RecordSession, ANodeKilledMidRecordingIsNamedAndFetchCompletesItWhenItIsBac
   const fs::path dir = fs::temp_directory_path() / fmt::format("lfcam_record_kill_{}", ::getpid());
   SimulatedArrayOfNodes array(dir);
   RecordOptions o = SmallRecording(3.0);
+  // Half way through the recording, which starts the trigger margin from now.
   std::thread killer([&] {
-    std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+    std::this_thread::sleep_for(std::chrono::duration<double>(o.margin_s + 1.5));
     array.nodes.Kill(3);  // camera (1, 1), SIGKILL: no chance to close its recording
   });
   const SessionReport report = RecordSession(array.config, array.nodes.key(), dir / "session", o);

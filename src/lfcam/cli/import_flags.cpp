@@ -24,6 +24,25 @@ nlohmann::json ViewFiles(const ImportedGrid& grid) {
   return views;
 }
 
+// The import's result with its summary: what every rig says (the grid, the views' files, the
+// samples, the time, the views filled) and `rig_fields`, what this rig's geometry says.
+ImportedLightField Imported(LightField lf, const ImportedGrid& grid, RigModel rig,
+                            const std::vector<std::string>& filled, double seconds,
+                            nlohmann::json rig_fields) {
+  rig_fields.update({{"naming", ToString(grid.naming)},
+                     {"rig", ToString(rig)},
+                     {"rows", grid.rows},
+                     {"cols", grid.cols},
+                     {"view_width", grid.width},
+                     {"view_height", grid.height},
+                     {"n_s", lf.dims().n_s},
+                     {"n_t", lf.dims().n_t},
+                     {"filled", filled},
+                     {"views", ViewFiles(grid)},
+                     {"seconds", seconds}});
+  return {std::move(lf), std::move(rig_fields), grid.ignored};
+}
+
 // A rectified rig: the views as they are, with the geometry said (and what was assumed).
 ImportedLightField ImportRectified(const std::string& dir, const ImportedGrid& grid,
                                    const ImportOptions& o, bool quiet) {
@@ -39,24 +58,13 @@ ImportedLightField ImportRectified(const std::string& dir, const ImportedGrid& g
       },
       &report);
   progress.finish();
-  nlohmann::json summary = {{"naming", ToString(grid.naming)},
-                            {"rig", ToString(RigModel::kRectified)},
-                            {"rows", grid.rows},
-                            {"cols", grid.cols},
-                            {"view_width", grid.width},
-                            {"view_height", grid.height},
-                            {"pitch_mm", geometry.pitch_mm},
-                            {"focal_px", geometry.focal_px},
-                            {"st_distance_mm", geometry.zero_disparity_mm},
-                            {"zero_disparity_distance_mm", geometry.zero_disparity_mm},
-                            {"st_distance_estimated", false},
-                            {"assumed", geometry.assumed},
-                            {"n_s", lf.dims().n_s},
-                            {"n_t", lf.dims().n_t},
-                            {"filled", report.filled},
-                            {"views", ViewFiles(grid)},
-                            {"seconds", report.seconds}};
-  return {std::move(lf), std::move(summary), grid.ignored};
+  return Imported(std::move(lf), grid, RigModel::kRectified, report.filled, report.seconds,
+                  {{"pitch_mm", geometry.pitch_mm},
+                   {"focal_px", geometry.focal_px},
+                   {"st_distance_mm", geometry.zero_disparity_mm},
+                   {"zero_disparity_distance_mm", geometry.zero_disparity_mm},
+                   {"st_distance_estimated", false},
+                   {"assumed", geometry.assumed}});
 }
 
 }  // namespace
@@ -164,26 +172,15 @@ ImportedLightField ImportFlags::Run(bool quiet) const {
   BuildReport report;
   LightField lf = BuildLightField(dir, session.manifest, session.calibration, b, &report);
   progress.finish();
-  nlohmann::json summary = {{"naming", ToString(grid.naming)},
-                            {"rig", ToString(grid.rig)},
-                            {"rows", grid.rows},
-                            {"cols", grid.cols},
-                            {"view_width", grid.width},
-                            {"view_height", grid.height},
-                            {"pitch_mm", grid.pitch_mm},
-                            {"focal_px", session.focal_px},
-                            {"st_distance_mm", session.st_distance_mm},
-                            {"st_distance_estimated", session.st_distance_estimated},
-                            {"st_distance_estimate_mm",
-                             session.st_distance_unsnapped_mm.value_or(session.st_distance_mm)},
-                            {"st_distance_snapped", session.st_distance_unsnapped_mm.has_value()},
-                            {"samples_between_neighbours", session.samples_between_neighbours},
-                            {"n_s", lf.dims().n_s},
-                            {"n_t", lf.dims().n_t},
-                            {"filled", report.filled},
-                            {"views", ViewFiles(grid)},
-                            {"seconds", report.seconds}};
-  return {std::move(lf), std::move(summary), grid.ignored};
+  return Imported(std::move(lf), grid, grid.rig, report.filled, report.seconds,
+                  {{"pitch_mm", grid.pitch_mm},
+                   {"focal_px", session.focal_px},
+                   {"st_distance_mm", session.st_distance_mm},
+                   {"st_distance_estimated", session.st_distance_estimated},
+                   {"st_distance_estimate_mm",
+                    session.st_distance_unsnapped_mm.value_or(session.st_distance_mm)},
+                   {"st_distance_snapped", session.st_distance_unsnapped_mm.has_value()},
+                   {"samples_between_neighbours", session.samples_between_neighbours}});
 }
 
 std::unique_ptr<ImportRequest> ParseImportKeywords(const std::string& dir,
