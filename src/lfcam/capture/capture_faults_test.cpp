@@ -188,9 +188,11 @@ TEST_F(CaptureFaults, AVerySlowNodeDoesNotHoldUpTheOthers) {
   EXPECT_EQ(report.images_ok, 4);
   EXPECT_TRUE(report.problems.empty());
   ExpectSessionConsistent();
-  // About one slow download's time (0.4 MB at 0.3 MB/s), not four of them.
+  // About one slow download's time (0.4 MB at 0.3 MB/s) and the rest's, not a timeout. The
+  // rest (the trigger's margin, the checks of each image) takes several times longer under
+  // AddressSanitizer (.ci/run from a fresh checkout, 2026-11-26: 5.4 s against 3.7).
   const double slow_s = double(fs::file_size(replay_ / "scene.jpg")) / 300000.0;
-  EXPECT_LT(seconds, slow_s + 2.5);
+  EXPECT_LT(seconds, slow_s + TestTriggerMarginS(2.5));
 }
 
 TEST_F(CaptureFaults, AWrongClockOrDriftedSettingsAreRefusedWithTheReason) {
