@@ -47,8 +47,9 @@ TEST(DepthOnTheBenchmark, AntinousScoresWhatDocsDepthSays) {
   std::cout << fmt::format(
       "[depth benchmark] antinous: BadPix0.07 {:.2f}%, MSEx100 {:.2f}, {:.1f} s\n", badpix, mse100,
       seconds);
-  // Floors a little above what was measured (docs/depth.md: 6.32% and 6.52).
-  EXPECT_LE(badpix, 6.8);
+  // Floors a little above what was measured (docs/depth.md: 5.55% and 6.52; without the local
+  // planes 6.32%, which the first floor fails).
+  EXPECT_LE(badpix, 6.0);
   EXPECT_LE(mse100, 7.5);
 }
 

@@ -14,6 +14,7 @@
 
 #include "lfcam/core/error.h"
 #include "lfcam/depth/cost_volume.h"
+#include "lfcam/depth/local_planes.h"
 #include "lfcam/depth/semi_global.h"
 
 namespace lfcam {
@@ -24,6 +25,8 @@ constexpr double kVolumeBytes = 1.2e9;  // the cost volume and its aggregate tog
 constexpr double kCoarseFactor = 4.0;
 constexpr float kConfident = 0.25f;     // confidence above which a sample counts for the range
 constexpr double kOutlierPixels = 0.4;  // the clean-up's threshold: nearest view's shift, samples
+constexpr double kPlaneGapPixels =
+    0.3;  // the plane fit's neighbours: nearest view's shift, samples
 
 CostVolumeOptions VolumeOptions(const PlaneSweepOptions& options, double scale) {
   CostVolumeOptions o;
@@ -180,14 +183,20 @@ DepthMap EstimateDepth(const LightField& lf, int row, int col, const PlaneSweepO
   // Unique: no other minimum more than a sample of the farthest view's shift away.
   Choice choice = Choose(aggregate, volume, options.truncation,
                          std::max(1, int(std::lround(1.0 / options.step_samples))));
+  // The nearest view's shift a plane, in samples.
+  const double per_plane = (q_near - q_far) / (labels - 1) * views.nearest_shift_per_q();
   if (options.refine_edges) {
     // The threshold: kOutlierPixels of the nearest view's shift, in planes.
-    const double per_plane = (q_near - q_far) / (labels - 1) * views.nearest_shift_per_q();
     const int radius = options.refine_radius > 0
                            ? options.refine_radius
                            : std::max(2, int(std::lround(std::min(d.n_s, d.n_t) / 70.0)));
     CleanOutliers(views.reference_rgb8(), radius, std::max(2.0, kOutlierPixels / per_plane),
                   choice.label);
+  }
+  if (options.fit_local_planes) {
+    LocalPlaneOptions fit;
+    fit.max_label_gap = kPlaneGapPixels / per_plane;
+    choice.label = FitLocalPlanes(choice.label, views.reference_rgb8(), choice.confidence, fit);
   }
   DepthMap map;
   map.row = row;

@@ -7,8 +7,9 @@
 // a sample of the farthest view's shift a step. Each plane's matching cost against every view
 // within `reach` grid steps, occlusion-aware (depth/cost_volume.h), is aggregated by semi-global
 // matching (depth/semi_global.h), the cheapest plane per sample is refined to a fraction of a
-// step (a parabola through three aggregated costs), and outliers (a sample far from the
-// weighted median of its neighbours of the same colour) take that median.
+// step (a parabola through three aggregated costs), outliers (a sample far from the
+// weighted median of its neighbours of the same colour) take that median, and each sample then
+// takes the plane through its neighbours' labels (depth/local_planes.h).
 //
 // Confidence: how far the chosen plane's own matching cost lies below the sample's mean cost
 // over all planes (1 - best / mean, against a floor): near 1 for a clear minimum, 0 where the
@@ -31,8 +32,10 @@ struct PlaneSweepOptions {
   int window_radius = 1;       // the matching window's radius in samples (a box)
   int smoothness_p1 = 16;      // semi-global matching's penalties (depth/semi_global.h)
   int smoothness_p2 = 160;
-  bool refine_edges = true;  // the weighted-median outlier clean-up
-  int refine_radius = 0;     // its radius in samples; 0: from the view's size
+  bool refine_edges = true;      // the weighted-median outlier clean-up
+  int refine_radius = 0;         // its radius in samples; 0: from the view's size
+  bool fit_local_planes = true;  // then each sample on the plane through its neighbours' labels
+                                 // (depth/local_planes.h)
 };
 
 // The depth map of view (row, col). Throws lfcam::Error when the light field has a single view
