@@ -5,6 +5,8 @@ share more than 10% off (an unknown estimate counts as off), then the mean over 
 the worst view. Both folders in the format of docs/depth.md ("Files").
 
     bench/depth_set_score.py ESTIMATE_DIR TRUTH_DIR
+
+Needs python3-numpy and python3-opencv (Debian), as bench/heldout.py does.
 """
 import json
 import os
