@@ -25,8 +25,16 @@ namespace lfcam::testing {
 // The trigger lead a test asks for. A sanitized build answers every request several times
 // slower, and a node refuses, by design, a trigger that reaches it after its time; so under
 // AddressSanitizer the same test waits longer rather than failing on the machine's load.
-inline double TestTriggerMarginS(double seconds) {
+// GCC says AddressSanitizer with __SANITIZE_ADDRESS__, clang with __has_feature.
 #if defined(__SANITIZE_ADDRESS__)
+#define LFCAM_TEST_UNDER_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define LFCAM_TEST_UNDER_ASAN 1
+#endif
+#endif
+inline double TestTriggerMarginS(double seconds) {
+#if defined(LFCAM_TEST_UNDER_ASAN)
   return 5 * seconds;
 #else
   return seconds;

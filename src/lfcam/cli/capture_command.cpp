@@ -238,7 +238,11 @@ void AddConfigure(CLI::App& capture) {
   command->add_option("--denoise", f->denoise, "off, cdn_off, cdn_fast or cdn_hq");
   command->add_option("--quality", f->quality, "JPEG quality, 1..100");
   command->callback([f] {
-    auto [array, key] = f->Load();
+    // Named, not a structured binding: the lambda below captures the array (clang 14 cannot
+    // capture a structured binding).
+    auto loaded = f->Load();
+    ArrayConfig& array = loaded.first;
+    const SharedKey& key = loaded.second;
     nlohmann::json changes = nlohmann::json::object();
     if (!f->size.empty()) {
       const auto [w, h] = ParseSize("--size", f->size, 16384);

@@ -51,10 +51,17 @@ std::vector<SimulatedModule> MakeModules(const ArrayPlane& array, int width, int
       if (defects == ModuleDefects::kRealistic) {
         // Mounting: the centre within +-1 mm along each array axis, the rotation within 1 degree
         // about each camera axis.
-        m.world_from_camera.translation += uniform(0, 1.0) * array.u_ca +
-                                           uniform(0, 1.0) * array.v_ca +
-                                           uniform(0, 1.0) * array.n_ca;
-        const Vec3 tilt(uniform(0, degree), uniform(0, degree), uniform(0, degree));
+        // Each draw its own statement: C++ leaves the order of a call's arguments (and of an
+        // overloaded operator's operands) to the compiler, and the rig must be the same
+        // whichever compiles it. The order is the one GCC has always taken (last operand first),
+        // so the simulated rigs, and the figures in docs/, are those measured before.
+        const double along_n = uniform(0, 1.0), along_v = uniform(0, 1.0),
+                     along_u = uniform(0, 1.0);
+        m.world_from_camera.translation +=
+            along_u * array.u_ca + along_v * array.v_ca + along_n * array.n_ca;
+        const double tilt_z = uniform(0, degree), tilt_y = uniform(0, degree),
+                     tilt_x = uniform(0, degree);
+        const Vec3 tilt(tilt_x, tilt_y, tilt_z);
         m.world_from_camera.rotation = ideal_rotation * RotationFromAngleAxis(tilt);
         CameraIntrinsics& c = m.intrinsics;
         const double focal_scale = uniform(1.0, 0.02);
@@ -66,7 +73,8 @@ std::vector<SimulatedModule> MakeModules(const ArrayPlane& array, int width, int
         c.distortion = {uniform(0.10, 0.03), uniform(-0.22, 0.05), uniform(0, 0.0015),
                         uniform(0, 0.0015), uniform(0.07, 0.03)};
         const double exposure = uniform(1.0, 0.15);
-        m.photometry.gain = exposure * Vec3(uniform(1.0, 0.08), 1.0, uniform(1.0, 0.08));
+        const double blue = uniform(1.0, 0.08), red = uniform(1.0, 0.08);
+        m.photometry.gain = exposure * Vec3(red, 1.0, blue);
         m.photometry.vignetting[0] = uniform(-0.30, 0.05);
         m.photometry.vignetting[1] = uniform(-0.05, 0.03);
       }

@@ -90,9 +90,12 @@ std::vector<Rigid3> IntrinsicsBoardPoses(const ArrayPlane& array, const BoardSpe
   for (int k = 0; k < count; ++k) {
     const PoseRecipe& p = kRecipes[k];
     const double distance = base * p.distance * (1 + jitter(0.05));
-    const Mat3 tilt = (Eigen::AngleAxisd((p.tilt_x + jitter(3)) * degree, Vec3::UnitX()) *
-                       Eigen::AngleAxisd((p.tilt_y + jitter(3)) * degree, Vec3::UnitY()) *
-                       Eigen::AngleAxisd(jitter(8) * degree, Vec3::UnitZ()))
+    // One draw a statement, in the order GCC has always taken them (camera_module.cpp says
+    // why).
+    const double turn = jitter(8), tilt_y = jitter(3), tilt_x = jitter(3);
+    const Mat3 tilt = (Eigen::AngleAxisd((p.tilt_x + tilt_x) * degree, Vec3::UnitX()) *
+                       Eigen::AngleAxisd((p.tilt_y + tilt_y) * degree, Vec3::UnitY()) *
+                       Eigen::AngleAxisd(turn * degree, Vec3::UnitZ()))
                           .toRotationMatrix();
     const Mat3 rotation = facing * tilt;
     const Vec3 center = array.center() - distance * array.n_ca +
