@@ -47,8 +47,9 @@ if [ "${LFCAM_ARM64_DEPS:-0}" = 1 ]; then
   packages+=(g++-aarch64-linux-gnu qemu-user-static
              libfmt-dev:arm64 libssl-dev:arm64 libjpeg62-turbo-dev:arm64 libcpp-httplib-dev:arm64)
 fi
-# scripts/fuzz.sh: clang and its libFuzzer runtime.
-if [ "${LFCAM_FUZZ_DEPS:-0}" = 1 ]; then
+# scripts/fuzz.sh and the asan preset (scripts/test.sh --preset asan): clang and its sanitizer
+# and libFuzzer runtimes.
+if [ "${LFCAM_FUZZ_DEPS:-0}" = 1 ] || [ "${LFCAM_CLANG_DEPS:-0}" = 1 ]; then
   packages+=(clang-14 libclang-rt-14-dev)
 fi
 

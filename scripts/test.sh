@@ -10,6 +10,8 @@ if [ "${1:-}" = "--preset" ]; then
   shift 2
 fi
 
+# The asan preset compiles with clang (half GCC's time with the sanitizers; docs/robustness.md).
+if [ "$preset" = asan ]; then export LFCAM_CLANG_DEPS=1; fi
 scripts/install-deps.sh
 # Mesa is installed above, so the GL tests must find a GL 4.3 context: fail rather than skip.
 export LFCAM_REQUIRE_GL="${LFCAM_REQUIRE_GL:-1}"
