@@ -22,9 +22,6 @@ extern char** environ;
 
 namespace lfcam::testing {
 
-// The trigger lead a test asks for. A sanitized build answers every request several times
-// slower, and a node refuses, by design, a trigger that reaches it after its time; so under
-// AddressSanitizer the same test waits longer rather than failing on the machine's load.
 // GCC says AddressSanitizer with __SANITIZE_ADDRESS__, clang with __has_feature.
 #if defined(__SANITIZE_ADDRESS__)
 #define LFCAM_TEST_UNDER_ASAN 1
@@ -33,6 +30,10 @@ namespace lfcam::testing {
 #define LFCAM_TEST_UNDER_ASAN 1
 #endif
 #endif
+
+// The trigger lead a test asks for. A sanitized build answers every request several times
+// slower, and a node refuses, by design, a trigger that reaches it after its time; so under
+// AddressSanitizer the same test waits longer rather than failing on the machine's load.
 inline double TestTriggerMarginS(double seconds) {
 #if defined(LFCAM_TEST_UNDER_ASAN)
   return 5 * seconds;
