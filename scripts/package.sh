@@ -35,7 +35,7 @@ rm -rf build/node-arm64/packages
 echo "== the Pis' agent (arm64) under emulation, driven by this machine's lfcam capture"
 cmake --build --preset release --target lfcam_tests
 LFCAM_ARM64_NODE="$PWD/build/node-arm64/lfcam-node" LFCAM_REQUIRE_ARM64=1 \
-  ctest --preset release -R '^EmulatedArm64Node\.' --output-on-failure
+  ctest --preset release -R '^EmulatedArm64Node$' --output-on-failure
 rm -rf out/packages
 mkdir -p out/packages
 cp build/release/packages/*.deb build/node/packages/*.deb build/node-arm64/packages/*.deb \

@@ -23,6 +23,15 @@ cmake --preset "$preset" >/dev/null
 cmake --build --preset "$preset"
 status=0
 ctest --preset "$preset" "$@" || status=$?
+# ctest runs a suite a process (cmake/TestSuites.cmake): the tests skipped inside suites that ran.
+log=build/$preset/Testing/Temporary/LastTest.log
+if [ -f "$log" ]; then
+  skipped=$(sed -n 's/^\[  SKIPPED \] \([A-Za-z0-9_/]*\.[A-Za-z0-9_/]*\)$/\1/p' "$log" | sort -u)
+  if [ -n "$skipped" ]; then
+    echo "test.sh: $(echo "$skipped" | wc -l) tests skipped (their output says why):"
+    echo "$skipped" | sed 's/^/  /'
+  fi
+fi
 if [ $status -ne 0 ] && [ "$preset" = asan ]; then
   # LeakSanitizer's tracer now and then crashes at a test's exit on a loaded machine, after the
   # test itself passed ("LeakSanitizer has encountered a fatal error", "Tracer caught signal").
