@@ -92,7 +92,10 @@ TEST(CaptureSystem, ASoakOfConsecutiveShotsOnAFullArrayLosesNothing) {
     for (const NodeReport& r : ConfigureArray(config, array.key())) ASSERT_TRUE(r.ready());
     ShootOptions o;
     o.kind = ShotKind::kIntrinsics;
-    o.margin_s = TestTriggerMarginS(0.3);
+    // A hundred agents share this machine's two cores with another test suite (ctest -j2): 0.3 s
+    // left 13 of them 4 ms late in the first shot once (2026-11-26), while the depth fidelity
+    // suite ran beside it. On an array each agent has its Pi to itself.
+    o.margin_s = TestTriggerMarginS(0.5);
     constexpr int kShots = 8;
     double worst_skew_ms = 0;
     for (int k = 0; k < kShots; ++k) {

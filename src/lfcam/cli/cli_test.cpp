@@ -26,7 +26,7 @@ using lfcam::testing::Lfcam;
 class Cli : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    // One directory per process: ctest runs each test in its own process, in parallel.
+    // One directory per process: ctest runs each suite in its own process, in parallel.
     dir_ =
         new fs::path(fs::temp_directory_path() / ("lfcam_cli_test_" + std::to_string(::getpid())));
     fs::remove_all(*dir_);

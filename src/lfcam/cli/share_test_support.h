@@ -51,7 +51,7 @@ inline std::filesystem::path SharedSharingLightFields() {
 }
 
 // A suite of the sharing commands' tests: a folder of its own for outputs (one per process: ctest
-// runs each test in its own) and the shared inputs.
+// runs each suite in its own) and the shared inputs.
 class SharingTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {

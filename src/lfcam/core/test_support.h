@@ -7,19 +7,28 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "lfcam/core/error.h"
 
 namespace lfcam::testing {
 
+// The scratch directories the running test has made (MakeScratchDir): removed when it ends
+// without failing, kept and named when it fails (src/lfcam/tests_main.cpp).
+inline std::vector<std::filesystem::path>& ScratchDirsOfTheRunningTest() {
+  static std::vector<std::filesystem::path> dirs;
+  return dirs;
+}
+
 // A fresh, empty directory for the running test: PREFIX_PID_TESTNAME in the temp directory (one
-// per process and test, since ctest runs tests in parallel processes).
+// per process and test: ctest runs suites in parallel processes).
 inline std::filesystem::path MakeScratchDir(const std::string& prefix) {
   const auto dir = std::filesystem::temp_directory_path() /
                    (prefix + "_" + std::to_string(::getpid()) + "_" +
                     ::testing::UnitTest::GetInstance()->current_test_info()->name());
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
+  ScratchDirsOfTheRunningTest().push_back(dir);
   return dir;
 }
 

@@ -65,7 +65,7 @@ CommandResult View(const std::string& args) {
 class Viewer : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    // One directory per process: ctest runs each test in its own process, in parallel.
+    // One directory per process: ctest runs each suite in its own process, in parallel.
     dir_ = new fs::path(fs::temp_directory_path() /
                         ("lfcam_viewer_test_" + std::to_string(::getpid())));
     fs::remove_all(*dir_);
