@@ -11,6 +11,7 @@
 #                                line, matched against the whole SUITE.TEST name; '#' starts a
 #                                comment): .ci/asan-release-only.txt for the asan preset
 #      LFCAM_TESTS_TIMEOUT       seconds a suite may take
+#      LFCAM_TESTS_RUN_SERIAL    suites that run with nothing beside them (timing-sensitive ones)
 #
 # A suite all of whose tests skipped (data or a device absent) exits 77 (src/lfcam/tests_main.cpp)
 # and is reported skipped; the tests skipped in a suite that ran are named in its output
@@ -81,4 +82,8 @@ foreach(suite IN LISTS suites)
   set_tests_properties("${suite}" PROPERTIES
     WORKING_DIRECTORY "${LFCAM_TESTS_DIRECTORY}" TIMEOUT "${LFCAM_TESTS_TIMEOUT}"
     SKIP_RETURN_CODE 77)
+  list(FIND LFCAM_TESTS_RUN_SERIAL "${suite}" serial)  # (ctest's scripts predate IN_LIST)
+  if(serial GREATER -1)
+    set_tests_properties("${suite}" PROPERTIES RUN_SERIAL ON)
+  endif()
 endforeach()

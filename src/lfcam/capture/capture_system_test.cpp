@@ -1,6 +1,7 @@
 // The capture system end to end, with real lfcam-node processes: simulated Pi modules driven by
 // `lfcam capture` to a session that `calibrate` and `build` accept, holding the very images
 // `lfcam simulate capture` writes; and a soak of consecutive shots on a full 10x10 array.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -92,9 +93,9 @@ TEST(CaptureSystem, ASoakOfConsecutiveShotsOnAFullArrayLosesNothing) {
     for (const NodeReport& r : ConfigureArray(config, array.key())) ASSERT_TRUE(r.ready());
     ShootOptions o;
     o.kind = ShotKind::kIntrinsics;
-    // A hundred agents share this machine's two cores with another test suite (ctest -j2): 0.3 s
-    // left 13 of them 4 ms late in the first shot once (2026-11-26), while the depth fidelity
-    // suite ran beside it. On an array each agent has its Pi to itself.
+    // A hundred agents share this machine's cores (ctest runs this suite alone: RUN_SERIAL in
+    // CMakeLists.txt; with another suite beside it on two cores, a shot was late even at 0.5 s).
+    // On an array each agent has its Pi to itself.
     o.margin_s = TestTriggerMarginS(0.5);
     constexpr int kShots = 8;
     double worst_skew_ms = 0;

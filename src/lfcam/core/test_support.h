@@ -21,11 +21,15 @@ inline std::vector<std::filesystem::path>& ScratchDirsOfTheRunningTest() {
 }
 
 // A fresh, empty directory for the running test: PREFIX_PID_TESTNAME in the temp directory (one
-// per process and test: ctest runs suites in parallel processes).
+// per process and test: ctest runs suites in parallel processes). In a death test's child
+// (GoogleTest's "threadsafe" style runs the test again in a process of its own), the parent
+// test's directory as it is: what the child leaves there is what the parent then checks.
 inline std::filesystem::path MakeScratchDir(const std::string& prefix) {
+  const bool death_test_child = !GTEST_FLAG_GET(internal_run_death_test).empty();
   const auto dir = std::filesystem::temp_directory_path() /
-                   (prefix + "_" + std::to_string(::getpid()) + "_" +
-                    ::testing::UnitTest::GetInstance()->current_test_info()->name());
+                   (prefix + "_" + std::to_string(death_test_child ? ::getppid() : ::getpid()) +
+                    "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+  if (death_test_child) return dir;
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   ScratchDirsOfTheRunningTest().push_back(dir);

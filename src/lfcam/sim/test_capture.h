@@ -1,11 +1,11 @@
 #pragma once
 // Tests only: one simulated capture session shared by every test process of a build. ctest runs
 // each suite in its own process (cmake/TestSuites.cmake), and several suites use the same
-// session, so each would otherwise simulate it. The session lives in the temporary directory under a name made of
-// `name` and the test binary's identity (size and time), so a rebuilt binary simulates afresh;
-// sessions of other builds are removed. Processes that need it at once take turns (a lock file):
-// the first simulates it, the others wait and use it. Anything else made from a session (its
-// calibration) can be shared the same way.
+// session, so each would otherwise simulate it. The session lives in the temporary directory under
+// a name made of `name` and the test binary's identity (size and time), so a rebuilt binary
+// simulates afresh; sessions of other builds are removed. Processes that need it at once take turns
+// (a lock file): the first simulates it, the others wait and use it. Anything else made from a
+// session (its calibration) can be shared the same way.
 #include <fcntl.h>
 #include <sys/file.h>
 #include <sys/stat.h>
