@@ -93,10 +93,11 @@ TEST(CaptureSystem, ASoakOfConsecutiveShotsOnAFullArrayLosesNothing) {
     for (const NodeReport& r : ConfigureArray(config, array.key())) ASSERT_TRUE(r.ready());
     ShootOptions o;
     o.kind = ShotKind::kIntrinsics;
-    // A hundred agents share this machine's cores (ctest runs this suite alone: RUN_SERIAL in
-    // CMakeLists.txt; with another suite beside it on two cores, a shot was late even at 0.5 s).
-    // On an array each agent has its Pi to itself.
-    o.margin_s = TestTriggerMarginS(0.5);
+    // A hundred agents share this machine's two cores (ctest runs this suite alone: RUN_SERIAL in
+    // CMakeLists.txt). On 2026-11-26 a shot came late three times in five runs: 13 agents by
+    // 4 ms at a 0.3 s margin (another suite beside it), 71 by 23 ms at 0.5 s (the same), 2 by
+    // 33 ms at 0.5 s alone. On an array each agent has its Pi to itself.
+    o.margin_s = TestTriggerMarginS(1.0);
     constexpr int kShots = 8;
     double worst_skew_ms = 0;
     for (int k = 0; k < kShots; ++k) {
