@@ -34,6 +34,7 @@ cv::Mat FitLocalPlanes(const cv::Mat& label, const cv::Mat& guide_rgb8, const cv
   cv::Mat out = label.clone();
   tbb::parallel_for(0, h, [&](int y) {
     for (int x = 0; x < w; ++x) {
+      if (!(confidence.at<float>(y, x) < options.refit_below_confidence)) continue;
       const float own = label.at<float>(y, x);
       const cv::Vec3b c0 = guide_rgb8.at<cv::Vec3b>(y, x);
       // Sums over the neighbourhood of weight times 1, dx, dy, dx², dy², dx·dy, label,

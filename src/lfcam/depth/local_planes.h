@@ -22,6 +22,8 @@ struct LocalPlaneOptions {
   double sigma_colour = 0.06;    // the colour weight's, in sRGB units (0 .. 1) over R, G, B
   double max_label_gap = 7.0;    // neighbours farther from the sample's own label do not count
   double min_confidence = 0.05;  // a neighbour's confidence counts at least this much
+  // Only samples less confident than this are refitted (the others keep their labels).
+  double refit_below_confidence = 2.0;
 };
 
 // `label`: CV_32FC1 continuous labels (linear in disparity); `guide_rgb8`: the reference view,

@@ -73,6 +73,31 @@ TEST(LocalPlanes, LeaveOutNeighboursAcrossADepthGapOfTheSameColour) {
       ASSERT_NEAR(fitted.at<float>(y, x), label.at<float>(y, x), 1e-3) << x << ", " << y;
 }
 
+// refit_below_confidence: the confident samples keep their labels exactly, the others are
+// refitted (here onto the slant their neighbours agree on).
+TEST(LocalPlanes, RefitOnlyTheSamplesLessConfidentThanAsked) {
+  const int w = 40, h = 30;
+  cv::Mat label(h, w, CV_32FC1), confidence(h, w, CV_32FC1);
+  const cv::Mat guide(h, w, CV_8UC3, cv::Scalar(100, 100, 100));
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const bool odd = (x + y) % 2 == 1;
+      label.at<float>(y, x) = 10.0f + 0.2f * float(x) + (odd ? 0.5f : 0.0f);
+      confidence.at<float>(y, x) = odd ? 0.02f : 0.6f;
+    }
+  LocalPlaneOptions options;
+  options.refit_below_confidence = 0.1;
+  const cv::Mat fitted = FitLocalPlanes(label, guide, confidence, options);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      if ((x + y) % 2 == 0)
+        ASSERT_EQ(fitted.at<float>(y, x), label.at<float>(y, x)) << x << ", " << y;
+      else  // pulled from +0.5 off the slant towards its confident neighbours' plane
+        ASSERT_LT(std::abs(fitted.at<float>(y, x) - (10.0f + 0.2f * float(x))), 0.2f)
+            << x << ", " << y;
+    }
+}
+
 TEST(LocalPlanes, RefuseMapsOfAnotherTypeOrSize) {
   const cv::Mat label(8, 8, CV_32FC1, cv::Scalar(1.0f)), guide(8, 8, CV_8UC3);
   const cv::Mat confidence(8, 8, CV_32FC1, cv::Scalar(1.0f));

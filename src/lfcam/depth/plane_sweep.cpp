@@ -26,7 +26,9 @@ constexpr double kCoarseFactor = 4.0;
 constexpr float kConfident = 0.25f;     // confidence above which a sample counts for the range
 constexpr double kOutlierPixels = 0.4;  // the clean-up's threshold: nearest view's shift, samples
 constexpr double kPlaneGapPixels =
-    0.3;  // the plane fit's neighbours: nearest view's shift, samples
+    0.3;                              // the plane fit's neighbours: nearest view's shift, samples
+constexpr int kWidePlaneRadius = 10;  // the second plane fit's radius, samples
+constexpr double kWidePlaneConfidence = 0.1;  // ... for samples less confident than this
 
 CostVolumeOptions VolumeOptions(const PlaneSweepOptions& options, double scale) {
   CostVolumeOptions o;
@@ -196,6 +198,12 @@ DepthMap EstimateDepth(const LightField& lf, int row, int col, const PlaneSweepO
   if (options.fit_local_planes) {
     LocalPlaneOptions fit;
     fit.max_label_gap = kPlaneGapPixels / per_plane;
+    choice.label = FitLocalPlanes(choice.label, views.reference_rgb8(), choice.confidence, fit);
+    // Where the views barely tell the planes apart (weak texture: semi-global matching's fill,
+    // which wanders about a slanted surface), a plane through twice the neighbourhood.
+    fit.radius = kWidePlaneRadius;
+    fit.sigma_space = kWidePlaneRadius / 2.0;
+    fit.refit_below_confidence = kWidePlaneConfidence;
     choice.label = FitLocalPlanes(choice.label, views.reference_rgb8(), choice.confidence, fit);
   }
   DepthMap map;

@@ -9,7 +9,8 @@
 // matching (depth/semi_global.h), the cheapest plane per sample is refined to a fraction of a
 // step (a parabola through three aggregated costs), outliers (a sample far from the
 // weighted median of its neighbours of the same colour) take that median, and each sample then
-// takes the plane through its neighbours' labels (depth/local_planes.h).
+// takes the plane through its neighbours' labels (depth/local_planes.h); a sample of little
+// confidence, the plane through a neighbourhood twice as wide.
 //
 // Confidence: how far the chosen plane's own matching cost lies below the sample's mean cost
 // over all planes (1 - best / mean, against a floor): near 1 for a clear minimum, 0 where the
