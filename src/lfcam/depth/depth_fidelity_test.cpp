@@ -66,6 +66,9 @@ TEST(DepthFidelity, PlaneSweepFindsThePaperScenesDepths) {
   EXPECT_GE(scores["checkerboard"].share(), 0.93);
   EXPECT_GE(scores["coffee maker"].share(), 0.93);
   EXPECT_LE(scores["all"].mean_error(), 50.0);
+  // The table, seen at a grazing angle, is where the slant prior shows (82.8% without it, 84.3%
+  // with it; docs/depth.md): this floor is just under what was measured.
+  EXPECT_GE(scores["table"].share(), 0.835);
   // The range does not reach the checkerboard's false match (1.85 m: a shift of one period
   // between neighbours) whatever the map's own reach: the nearest object is 3.4 m away.
   PlaneSweepOptions narrow;

@@ -11,7 +11,7 @@
 namespace lfcam {
 
 cv::Mat FitLocalPlanes(const cv::Mat& label, const cv::Mat& guide_rgb8, const cv::Mat& confidence,
-                       const LocalPlaneOptions& options) {
+                       const LocalPlaneOptions& options, cv::Mat* slopes) {
   if (label.type() != CV_32FC1 || guide_rgb8.type() != CV_8UC3 || confidence.type() != CV_32FC1 ||
       guide_rgb8.size() != label.size() || confidence.size() != label.size())
     throw Error(
@@ -32,6 +32,8 @@ cv::Mat FitLocalPlanes(const cv::Mat& label, const cv::Mat& guide_rgb8, const cv
   const float gap = float(options.max_label_gap), floor = float(options.min_confidence);
 
   cv::Mat out = label.clone();
+  if (slopes && (slopes->type() != CV_32FC2 || slopes->size() != label.size()))
+    *slopes = cv::Mat(label.size(), CV_32FC2, cv::Scalar(0, 0));
   tbb::parallel_for(0, h, [&](int y) {
     for (int x = 0; x < w; ++x) {
       if (!(confidence.at<float>(y, x) < options.refit_below_confidence)) continue;
@@ -72,6 +74,13 @@ cv::Mat FitLocalPlanes(const cv::Mat& label, const cv::Mat& guide_rgb8, const cv
       if (!(std::abs(det) > 1e-12 * s0 * s0 * s0)) continue;
       const double a = (sl * c11 + slx * c12 + sly * c13) / det;
       out.at<float>(y, x) = own + float(a);
+      if (slopes) {
+        const double c22 = a11 * a33 - a13 * a13, c23 = a12 * a13 - a11 * a23,
+                     c33 = a11 * a22 - a12 * a12;
+        const double b = (sl * c12 + slx * c22 + sly * c23) / det,
+                     c = (sl * c13 + slx * c23 + sly * c33) / det;
+        slopes->at<cv::Vec2f>(y, x) = {float(b), float(c)};
+      }
     }
   });
   return out;

@@ -28,8 +28,9 @@ struct LocalPlaneOptions {
 
 // `label`: CV_32FC1 continuous labels (linear in disparity); `guide_rgb8`: the reference view,
 // CV_8UC3 of the same size; `confidence`: CV_32FC1 in [0, 1] of the same size. Returns the
-// refined labels.
+// refined labels; `slopes`, when given, gets each refitted sample's plane slope (label change
+// per sample along x and y, CV_32FC2; made, zero, when it is not a map of that size and type).
 cv::Mat FitLocalPlanes(const cv::Mat& label, const cv::Mat& guide_rgb8, const cv::Mat& confidence,
-                       const LocalPlaneOptions& options = {});
+                       const LocalPlaneOptions& options = {}, cv::Mat* slopes = nullptr);
 
 }  // namespace lfcam

@@ -29,6 +29,7 @@ constexpr double kPlaneGapPixels =
     0.3;                              // the plane fit's neighbours: nearest view's shift, samples
 constexpr int kWidePlaneRadius = 10;  // the second plane fit's radius, samples
 constexpr double kWidePlaneConfidence = 0.1;  // ... for samples less confident than this
+constexpr double kSlantPriorSmoothing = 1.5;  // the slant prior's Gaussian, samples
 
 CostVolumeOptions VolumeOptions(const PlaneSweepOptions& options, double scale) {
   CostVolumeOptions o;
@@ -180,31 +181,50 @@ DepthMap EstimateDepth(const LightField& lf, int row, int col, const PlaneSweepO
   const CostVolume volume = views.Sweep(q);
   cv::Mat grey;
   cv::cvtColor(views.reference_rgb8(), grey, cv::COLOR_RGB2GRAY);
-  const CostVolume aggregate =
-      AggregateSemiGlobal(volume, grey, {options.smoothness_p1, options.smoothness_p2});
-  // Unique: no other minimum more than a sample of the farthest view's shift away.
-  Choice choice = Choose(aggregate, volume, options.truncation,
-                         std::max(1, int(std::lround(1.0 / options.step_samples))));
   // The nearest view's shift a plane, in samples.
   const double per_plane = (q_near - q_far) / (labels - 1) * views.nearest_shift_per_q();
-  if (options.refine_edges) {
-    // The threshold: kOutlierPixels of the nearest view's shift, in planes.
-    const int radius = options.refine_radius > 0
-                           ? options.refine_radius
-                           : std::max(2, int(std::lround(std::min(d.n_s, d.n_t) / 70.0)));
-    CleanOutliers(views.reference_rgb8(), radius, std::max(2.0, kOutlierPixels / per_plane),
-                  choice.label);
-  }
-  if (options.fit_local_planes) {
-    LocalPlaneOptions fit;
-    fit.max_label_gap = kPlaneGapPixels / per_plane;
-    choice.label = FitLocalPlanes(choice.label, views.reference_rgb8(), choice.confidence, fit);
-    // Where the views barely tell the planes apart (weak texture: semi-global matching's fill,
-    // which wanders about a slanted surface), a plane through twice the neighbourhood.
-    fit.radius = kWidePlaneRadius;
-    fit.sigma_space = kWidePlaneRadius / 2.0;
-    fit.refit_below_confidence = kWidePlaneConfidence;
-    choice.label = FitLocalPlanes(choice.label, views.reference_rgb8(), choice.confidence, fit);
+  cv::Mat slopes;
+  const auto estimate = [&](const cv::Mat& expected_step) {
+    const CostVolume aggregate = AggregateSemiGlobal(
+        volume, grey, {options.smoothness_p1, options.smoothness_p2}, expected_step);
+    // Unique: no other minimum more than a sample of the farthest view's shift away.
+    Choice choice = Choose(aggregate, volume, options.truncation,
+                           std::max(1, int(std::lround(1.0 / options.step_samples))));
+    if (options.refine_edges) {
+      // The threshold: kOutlierPixels of the nearest view's shift, in planes.
+      const int radius = options.refine_radius > 0
+                             ? options.refine_radius
+                             : std::max(2, int(std::lround(std::min(d.n_s, d.n_t) / 70.0)));
+      CleanOutliers(views.reference_rgb8(), radius, std::max(2.0, kOutlierPixels / per_plane),
+                    choice.label);
+    }
+    if (options.fit_local_planes) {
+      LocalPlaneOptions fit;
+      fit.max_label_gap = kPlaneGapPixels / per_plane;
+      choice.label =
+          FitLocalPlanes(choice.label, views.reference_rgb8(), choice.confidence, fit, &slopes);
+      // Where the views barely tell the planes apart (weak texture: semi-global matching's
+      // fill, which wanders about a slanted surface), a plane through twice the neighbourhood.
+      fit.radius = kWidePlaneRadius;
+      fit.sigma_space = kWidePlaneRadius / 2.0;
+      fit.refit_below_confidence = kWidePlaneConfidence;
+      choice.label =
+          FitLocalPlanes(choice.label, views.reference_rgb8(), choice.confidence, fit, &slopes);
+    }
+    return choice;
+  };
+  Choice choice = estimate(cv::Mat());
+  if (options.slant_prior && options.fit_local_planes && volume_options.reach >= 2) {
+    // Semi-global matching again, its paths expecting the slant of the planes just fitted
+    // (smoothed): the first pass's small-step penalty favours surfaces parallel to the array.
+    // Kept where the first pass was sure of its match; elsewhere the slopes are its fill's.
+    cv::Mat expected_step;
+    cv::GaussianBlur(slopes, expected_step, cv::Size(0, 0), kSlantPriorSmoothing);
+    const Choice second = estimate(expected_step);
+    for (int y = 0; y < second.label.rows; ++y)
+      for (int x = 0; x < second.label.cols; ++x)
+        if (choice.confidence.at<float>(y, x) >= kWidePlaneConfidence)
+          choice.label.at<float>(y, x) = second.label.at<float>(y, x);
   }
   DepthMap map;
   map.row = row;

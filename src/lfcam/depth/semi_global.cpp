@@ -18,9 +18,22 @@ constexpr int kHuge = 0x3fff;  // a label that does not exist (the padding eithe
 
 // One step along a path: cur[i] = c[i] + min(prev[i], prev[i -+ 1] + p1, min(prev) + p2) -
 // min(prev). `prev` and `cur` are padded by one label each side; returns min(cur).
-int Step(const Cost* c, const Cost* prev, int prev_min, Cost* cur, int n, int p1, int p2) {
+int Step(const Cost* c, const Cost* prev, int prev_min, Cost* cur, int n, int p1, int p2,
+         int shift = 0) {
   const int jump = prev_min + p2;
   int lowest = kHuge * 4;
+  if (shift != 0) {  // the expected label is i - shift
+    const auto at = [&](int j) { return j < -1 || j > n ? int(kHuge) : int(prev[j + 1]); };
+    for (int i = 0; i < n; ++i) {
+      const int j = i - shift;
+      int v = std::min(at(j), std::min(at(j - 1), at(j + 1)) + p1);
+      v = std::min(v, jump);
+      const int out = c[i] + v - prev_min;
+      cur[i + 1] = Cost(out);
+      lowest = std::min(lowest, out);
+    }
+    return lowest;
+  }
   for (int i = 0; i < n; ++i) {
     int v = std::min<int>(prev[i + 1], std::min<int>(prev[i], prev[i + 2]) + p1);
     v = std::min(v, jump);
@@ -48,7 +61,7 @@ void Accumulate(const Cost* path, Cost* sum, int n) {
 }  // namespace
 
 CostVolume AggregateSemiGlobal(const CostVolume& volume, const cv::Mat& guide,
-                               const SemiGlobalOptions& options) {
+                               const SemiGlobalOptions& options, const cv::Mat& expected_step) {
   const int w = volume.width, h = volume.height, n = volume.labels, stride = n + 2;
   if (w <= 0 || h <= 0 || n <= 0) throw Error("semi-global matching: an empty cost volume");
   const int p1 = options.p1;
@@ -63,6 +76,15 @@ CostVolume AggregateSemiGlobal(const CostVolume& volume, const cv::Mat& guide,
   const auto p2_between = [&](int x0, int y0, int x1, int y1) {
     return jump_penalty[std::size_t(
         std::abs(int(guide.at<std::uint8_t>(y0, x0)) - int(guide.at<std::uint8_t>(y1, x1))))];
+  };
+  const bool slanted = !expected_step.empty();
+  if (slanted && (expected_step.type() != CV_32FC2 || expected_step.size() != guide.size()))
+    throw Error("semi-global matching: the expected steps must be a CV_32FC2 map of its size");
+  // The label change expected from the path's previous sample (x - dx, y - dy) to (x, y).
+  const auto shift = [&](int x, int y, int dx, int dy) {
+    if (!slanted) return 0;
+    const cv::Vec2f s = expected_step.at<cv::Vec2f>(y, x);
+    return int(std::lround(s[0] * dx + s[1] * dy));
   };
   CostVolume sum;
   sum.width = w;
@@ -83,7 +105,7 @@ CostVolume AggregateSemiGlobal(const CostVolume& volume, const cv::Mat& guide,
         const int x = dx > 0 ? i : w - 1 - i;
         prev_min = i == 0 ? Start(volume.at(x, y), b.data(), n)
                           : Step(volume.at(x, y), a.data(), prev_min, b.data(), n, p1,
-                                 p2_between(x, y, x - dx, y));
+                                 p2_between(x, y, x - dx, y), shift(x, y, dx, 0));
         Accumulate(b.data(), sum.at(x, y), n);
         std::swap(a, b);
       }
@@ -102,7 +124,7 @@ CostVolume AggregateSemiGlobal(const CostVolume& volume, const cv::Mat& guide,
           Cost* out = cur.data() + at * stride;
           cur_min[at] = j == 0 ? Start(volume.at(x, y), out, n)
                                : Step(volume.at(x, y), prev.data() + at * stride, prev_min[at], out,
-                                      n, p1, p2_between(x, y, x, y - dy));
+                                      n, p1, p2_between(x, y, x, y - dy), shift(x, y, 0, dy));
           Accumulate(out, sum.at(x, y), n);
         }
       });

@@ -22,7 +22,11 @@ struct SemiGlobalOptions {
 // The sum over the paths (same layout as the volume), led by `guide` (the reference view, 8-bit
 // grey, the volume's size). The volume's costs must be at most 16000 so that the sum fits 16
 // bits.
+// `expected_step` (optional, CV_32FC2 of the volume's size): the label change expected per
+// sample along +x and +y (a surface's slant); a path then pays P1 / P2 for departing from it
+// rather than from the same label (Scharstein, Taniai and Sinha 2017).
 CostVolume AggregateSemiGlobal(const CostVolume& volume, const cv::Mat& guide,
-                               const SemiGlobalOptions& options);
+                               const SemiGlobalOptions& options,
+                               const cv::Mat& expected_step = cv::Mat());
 
 }  // namespace lfcam

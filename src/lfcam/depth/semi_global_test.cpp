@@ -46,6 +46,28 @@ TEST(SemiGlobal, FillsATexturelessRegionFromItsSurroundings) {
     for (int x = 20; x < 40; x += 3) EXPECT_EQ(Best(s, x, y), 7) << x << "," << y;
 }
 
+TEST(SemiGlobal, FillsATexturelessBandInASlantAlongTheExpectedSlant) {
+  // A surface slanted two labels a sample along x (a jump each sample, to paths expecting no
+  // slant), a band 20 samples wide without texture across it: with the slant expected, the paths
+  // carry it across the hole; without, they fill it flatter.
+  const int w = 40, h = 20;
+  const auto slant = [](int x, int) { return 5 + 2 * x; };
+  const CostVolume v =
+      Volume(w, h, 96, [&](int x, int y) { return x >= 10 && x < 30 ? -1 : slant(x, y); });
+  const cv::Mat flat(h, w, CV_8UC1, cv::Scalar(128));
+  const cv::Mat expected(h, w, CV_32FC2, cv::Scalar(2.0, 0.0));
+  const CostVolume with = AggregateSemiGlobal(v, flat, {}, expected);
+  const CostVolume without = AggregateSemiGlobal(v, flat, {});
+  int off_without = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 10; x < 30; ++x) {
+      EXPECT_EQ(Best(with, x, y), slant(x, y)) << x << "," << y;
+      off_without += std::abs(Best(without, x, y) - slant(x, y)) > 1;
+    }
+  EXPECT_GT(off_without, 200);  // what the expected slant changes: most of the band's 400
+  EXPECT_THROW(AggregateSemiGlobal(v, flat, {}, cv::Mat(h, w, CV_32FC1)), Error);
+}
+
 TEST(SemiGlobal, KeepsADepthEdgeWhereTheViewHasOneAndAWeakMatchDoesNotWin) {
   // Left half label 3, right half label 12, the guide's edge between them; one sample on the
   // right whose own match says 5 is outvoted by its neighbours.
