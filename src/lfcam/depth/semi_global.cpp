@@ -17,7 +17,8 @@ using Cost = std::uint16_t;
 constexpr int kHuge = 0x3fff;  // a label that does not exist (the padding either side)
 
 // One step along a path: cur[i] = c[i] + min(prev[i], prev[i -+ 1] + p1, min(prev) + p2) -
-// min(prev). `prev` and `cur` are padded by one label each side; returns min(cur).
+// min(prev). `prev` and `cur` are padded by one label each side; returns min(cur). With a
+// `shift` (a slanted surface's expected label change), prev[i - shift] takes prev[i]'s place.
 int Step(const Cost* c, const Cost* prev, int prev_min, Cost* cur, int n, int p1, int p2,
          int shift = 0) {
   const int jump = prev_min + p2;
