@@ -12,6 +12,7 @@
 #include "lfcam/cli/backend_flags.h"
 #include "lfcam/cli/bench_playback.h"
 #include "lfcam/cli/bench_video.h"
+#include "lfcam/cli/bench_viewer.h"
 #include "lfcam/cli/commands.h"
 #include "lfcam/cli/parse.h"
 #include "lfcam/core/atomic_file.h"
@@ -105,6 +106,7 @@ void AddBenchCommand(CLI::App& app) {
     double min_seconds = 1.0;
     bool reference = false, quiet = false, users_case = false;
     double aperture_mm = 0;
+    std::string size = "1920x1080";
   };
   auto flags = std::make_shared<Flags>();
   bench
@@ -113,17 +115,26 @@ void AddBenchCommand(CLI::App& app) {
                    "(1024^2, f 444, d_o 4000, d_l 64..256 x gamma 1..16) or video (`render "
                    "--video`: Fig. 11 (a)'s 60-frame 1024^2 refocus sweep, rendered alone and "
                    "encoded to H.264 alongside) or playback (the viewer playing the "
-                   "--lightfield VIDEO.lfv without a window: frames kept a second)")
+                   "--lightfield VIDEO.lfv without a window: frames kept a second) or viewer (the "
+                   "viewer's frames of a still light field without a window, the eye moving: "
+                   "wall-clock and GPU time a frame, frames a second)")
       ->required()
-      ->check(CLI::IsMember({"table1", "table2", "video", "playback"}));
+      ->check(CLI::IsMember({"table1", "table2", "video", "playback", "viewer"}));
   bench->add_option("--lightfield", flags->lightfield,
                     "Light field to time on (default: simulate the paper's, 10x10 views of "
                     "1248x1152 samples over [-1.2, 1.2]^2, in memory: about 12 s on 2 cores)");
   bench->add_option("--json", flags->json, "Also write one record per cell to this JSON file");
+  auto* aperture_option =
+      bench
+          ->add_option(
+              "--aperture", flags->aperture_mm,
+              "playback and viewer: the viewer's aperture d_l in mm (playback's default 0: a "
+              "pinhole, its first view; viewer's 256)")
+          ->check(CLI::Range(0.0, 10000.0));
   bench
-      ->add_option("--aperture", flags->aperture_mm,
-                   "playback: the viewer's aperture d_l in mm (0: a pinhole, its first view)")
-      ->check(CLI::Range(0.0, 10000.0));
+      ->add_option("--size", flags->size,
+                   "viewer: the window's size, WxH (the frames rendered at full resolution)")
+      ->capture_default_str();
   bench->add_flag("--users-case", flags->users_case,
                   "Also time every cell on the light field a user has: the same views and samples "
                   "over `lfcam simulate lightfield`'s default st domain [0, 1]^2 (what `lfcam "
@@ -157,7 +168,7 @@ void AddBenchCommand(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::Range(0.0, 600.0));
   bench->add_flag("--quiet", flags->quiet, "No progress bar (it is drawn only on a terminal)");
-  bench->callback([flags, integrator_option] {
+  bench->callback([flags, integrator_option, aperture_option] {
     const Integrator integrator =
         FlagValue("--integrator", [&] { return IntegratorFromString(flags->integrator); });
     const Interpolation interpolation =
@@ -199,6 +210,19 @@ void AddBenchCommand(CLI::App& app) {
     }
     const LightField lf = flags->lightfield.empty() ? PaperBenchLightField(flags->quiet)
                                                     : ReadLightField(flags->lightfield);
+    if (flags->table == "viewer") {
+      if (flags->users_case || depth_lookup || !flags->json.empty())
+        throw UsageError("--users-case, --interpolation depth and --json: not with viewer");
+      ViewerBenchOptions viewer;
+      std::tie(viewer.width, viewer.height) = ParseSize("--size", flags->size, 16384);
+      if (aperture_option->count() > 0) viewer.aperture_mm = flags->aperture_mm;
+      viewer.integrator = integrator_option->count() > 0 ? integrator
+                          : renderer.uses_gl()           ? Integrator::kCamerasQuadrilinear
+                                                         : Integrator::kLensSamples;
+      viewer.frames = std::max(flags->min_runs, 30);
+      BenchViewer(lf, viewer, renderer, render_options);
+      return;
+    }
     if (flags->table == "video") {
       if (flags->users_case || depth_lookup || !flags->json.empty())
         throw UsageError("--users-case, --interpolation depth and --json: not with video");

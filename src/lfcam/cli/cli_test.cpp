@@ -199,6 +199,17 @@ TEST_F(Cli, BenchTimesThePapersTablesBesideItsFigures) {
   EXPECT_TRUE(t2u.contains("users_case"));
   EXPECT_EQ(leftovers(), before);
 
+  // The viewer's frames without a window: both paths of the eye, a frame's cost and its rate.
+  run = Lfcam("bench viewer --size 32x18 --aperture 30" + fast);
+  ASSERT_EQ(run.status, 0) << run.output;
+  for (const char* row : {"lens-samples, d_l 30 mm", "across the array's plane", "in front of it",
+                          "frames/s"})
+    EXPECT_NE(run.output.find(row), std::string::npos) << row << ": " << run.output;
+  for (const char* flags : {" --json x.json", " --users-case", " --size 0x18"}) {
+    run = Lfcam("bench viewer" + fast + flags);
+    EXPECT_EQ(run.status, 2) << flags << ": " << run.output;
+  }
+
   // Bad flags are refused before any work.
   EXPECT_EQ(Lfcam("bench table3" + fast).status, 2);
   run = Lfcam("bench table1 --integrator cameras" + fast);
@@ -241,6 +252,13 @@ TEST_F(Cli, RendersAndBenchesOnTheGlBackend) {
     EXPECT_EQ(cell["backend"], "gl");
     EXPECT_GT(cell["median_ms"].get<double>(), 0.0);
   }
+
+  // The viewer's frames on the GPU: its default there, the quadrilinear limit, and each
+  // frame's wall-clock beside the GPU's time.
+  run = Lfcam("bench viewer --backend gl --size 32x18" + fast);
+  ASSERT_EQ(run.status, 0) << run.output;
+  for (const char* row : {"cameras-quadrilinear, d_l 256 mm", "wall/GPU", "in front of it"})
+    EXPECT_NE(run.output.find(row), std::string::npos) << row << ": " << run.output;
 
   // The scalar reference is the CPU's; a bad backend or work group is bad usage.
   EXPECT_EQ(Lfcam("render " + Path("small.lf") + " --backend gl --reference --out " + Path("x.png"))

@@ -28,7 +28,7 @@ void RenderOptionFlags::AddTo(CLI::App& render) {
                         "focus, out-of-focus objects as one copy per camera) or "
                         "cameras-quadrilinear (= cameras --interpolation quadrilinear: the limit "
                         "of the paper's own estimator, each camera read through its hat scaled "
-                        "to the st-plane; noise-free, the paper's smooth out-of-focus blur; CPU)");
+                        "to the st-plane; noise-free, the paper's smooth out-of-focus blur)");
   integrator_option_->capture_default_str();
   interpolation_option_ = render.add_option(
       "--interpolation", interpolation,

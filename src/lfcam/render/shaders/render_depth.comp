@@ -130,6 +130,7 @@ vec3 PointAt(vec3 origin, vec3 direction, float origin_depth, float n_dir, float
 
 // The inverse depth where the ray hits the surface camera c sees, or -1.
 float March(int c, vec3 origin, vec3 direction) {
+  if (has_depth[c] == 0) return -1.0;  // every step would find no depth
   const float n_dir = dot(n_ca, direction);
   if (n_dir >= 0.0) return -1.0;
   const float origin_depth = DepthOf(origin);
