@@ -80,22 +80,30 @@ Shift MakeShift(double tx, double ty, int w, int h, const Shift* within = nullpt
   return s;
 }
 
+// The two terms of a view's cost at a sample: each truncated, then weighted.
+struct CostTerms {
+  float color_cap, gradient_cap, color_weight, gradient_weight;
+};
+
 // One row's comparison: the shifted view's channels s0 .. s4 against the reference's f0 .. f4,
-// each term truncated, added to `sum`, and 1 to `count`.
+// each term truncated and weighted, added to `sum`, and 1 to `count`.
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
 __attribute__((target_clones("arch=x86-64-v3", "default")))
 #endif
 void CompareRow(const float* __restrict s0, const float* __restrict s1, const float* __restrict s2,
                 const float* __restrict s3, const float* __restrict s4, const float* __restrict f0,
                 const float* __restrict f1, const float* __restrict f2, const float* __restrict f3,
-                const float* __restrict f4, float color_cap, float gradient_cap, std::size_t n,
+                const float* __restrict f4, const CostTerms terms, std::size_t n,
                 float* __restrict sum, float* __restrict count) {
+  const float color_cap = terms.color_cap, gradient_cap = terms.gradient_cap;
+  const float color_weight = terms.color_weight, gradient_weight = terms.gradient_weight;
   for (std::size_t x = 0; x < n; ++x) {
     const float color =
         (std::abs(s0[x] - f0[x]) + std::abs(s1[x] - f1[x]) + std::abs(s2[x] - f2[x])) *
         (1.0f / 3.0f);
     const float gradient = std::abs(s3[x] - f3[x]) + std::abs(s4[x] - f4[x]);
-    sum[x] += std::min(color, color_cap) + std::min(gradient, gradient_cap);
+    sum[x] += color_weight * std::min(color, color_cap) +
+              gradient_weight * std::min(gradient, gradient_cap);
     count[x] += 1.0f;
   }
 }
@@ -109,7 +117,7 @@ __attribute__((target_clones("arch=x86-64-v3", "default")))
 #endif
 void AccumulateShiftedRow(const std::vector<std::int16_t>& src, const float* ref, int w, int h,
                           int y,
-                          const Shift& shift, float color_cap, float gradient_cap,
+                          const Shift& shift, const CostTerms& terms,
                           std::vector<float>& rows, float* sum, float* count) {
   if (y < shift.y_lo || y > shift.y_hi || shift.x_lo > shift.x_hi) return;
   const std::size_t plane = std::size_t(w) * h;
@@ -146,8 +154,8 @@ void AccumulateShiftedRow(const std::vector<std::int16_t>& src, const float* ref
   const std::size_t sw = std::size_t(w);
   CompareRow(shifted + x_lo, shifted + sw + x_lo, shifted + 2 * sw + x_lo, shifted + 3 * sw + x_lo,
              shifted + 4 * sw + x_lo, ref + at, ref + plane + at, ref + 2 * plane + at,
-             ref + 3 * plane + at, ref + 4 * plane + at, color_cap, gradient_cap,
-             std::size_t(x_hi - x_lo + 1), sum + at, count + at);
+             ref + 3 * plane + at, ref + 4 * plane + at, terms, std::size_t(x_hi - x_lo + 1),
+             sum + at, count + at);
 }
 
 // Where the homography m (reference coordinates -> the view's) lands inside the view: 1, else 0.
@@ -294,7 +302,7 @@ cv::Matx33d SweepViews::Homography(const View& view, double depth) const {
   return m;
 }
 
-CostVolume SweepViews::Sweep(const std::vector<double>& q) const {
+CostVolume SweepViews::Sweep(const std::vector<double>& q, double gradient_share) const {
   const int w = width_, h = height_, n = int(q.size());
   const std::size_t plane = std::size_t(w) * h;
   CostVolume volume;
@@ -303,9 +311,14 @@ CostVolume SweepViews::Sweep(const std::vector<double>& q) const {
   volume.labels = n;
   volume.cost.assign(plane * std::size_t(n), 0);
   tbb::enumerable_thread_specific<Scratch> scratches;
-  const float color_cap = float(options_.color_cap), gradient_cap = float(options_.gradient_cap);
+  if (!(gradient_share >= 0.0 && gradient_share <= 1.0))
+    throw Error(fmt::format("the gradient term's share {} is not within 0 .. 1", gradient_share));
+  const CostTerms terms{float(options_.color_cap), float(options_.gradient_cap),
+                        float(2.0 * (1.0 - gradient_share)), float(2.0 * gradient_share)};
   const float unit = float(CostVolume::kCostUnit);
-  const auto most = std::uint16_t(std::lround((options_.color_cap + options_.gradient_cap) * unit));
+  const auto most = std::uint16_t(std::lround(
+      (terms.color_weight * options_.color_cap + terms.gradient_weight * options_.gradient_cap) *
+      unit));
   const int radius = std::max(0, options_.window_radius);
   // A half-array counts where at least two of its views see the sample (one alone, the rest
   // cut off by the frame's edge, matches too easily by chance), unless none has two.
@@ -381,8 +394,8 @@ CostVolume SweepViews::Sweep(const std::vector<double>& q) const {
           const std::size_t at = std::size_t(y) * sw + std::size_t(x);
           CompareRow(war + at, war + plane + at, war + 2 * plane + at, war + 3 * plane + at,
                      war + 4 * plane + at, ref + at, ref + plane + at, ref + 2 * plane + at,
-                     ref + 3 * plane + at, ref + 4 * plane + at, color_cap, gradient_cap,
-                     std::size_t(end - x), sum + at, count + at);
+                     ref + 3 * plane + at, ref + 4 * plane + at, terms, std::size_t(end - x),
+                     sum + at, count + at);
           x = end;
         }
       }
@@ -390,7 +403,7 @@ CostVolume SweepViews::Sweep(const std::vector<double>& q) const {
     for (const auto& [v, shift] : shifted)
       for (int y = 0; y < h; ++y) {
         const View& view = views_[v];
-        AccumulateShiftedRow(view.packed, ref, w, h, y, shift, color_cap, gradient_cap, s.across,
+        AccumulateShiftedRow(view.packed, ref, w, h, y, shift, terms, s.across,
                              s.sum.data() + std::size_t(view.view_class) * plane,
                              s.count.data() + std::size_t(view.view_class) * plane);
       }

@@ -35,7 +35,8 @@ struct CostVolumeOptions {
 };
 
 // The cost of every plane at every sample, as 16-bit integers (kCostUnit a unit of cost; at
-// most (color_cap + gradient_cap) * kCostUnit), stored label-fastest: cost(x, y)[i].
+// most 2 ((1 - a) color_cap + a gradient_cap) * kCostUnit, a the gradient term's share: see
+// SweepViews::Sweep), stored label-fastest: cost(x, y)[i].
 struct CostVolume {
   static constexpr double kCostUnit = 4000.0;
   int width = 0, height = 0, labels = 0;
@@ -65,8 +66,10 @@ class SweepViews {
   // The farthest view's shift per unit of inverse depth in full-resolution samples.
   double full_resolution_shift_per_q() const { return farthest_mm_ * st_depth_ / full_sample_mm_; }
 
-  // The cost volume over the planes of inverse depth q[i] (1/mm).
-  CostVolume Sweep(const std::vector<double>& q) const;
+  // The cost volume over the planes of inverse depth q[i] (1/mm). Each view's cost at a sample
+  // is 2 ((1 - a) min(colour, color_cap) + a min(gradient, gradient_cap)), a the gradient term's
+  // share (0.5: the two terms alike).
+  CostVolume Sweep(const std::vector<double>& q, double gradient_share = 0.5) const;
 
  private:
   struct View {

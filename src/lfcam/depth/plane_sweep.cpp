@@ -31,6 +31,23 @@ constexpr int kWidePlaneRadius = 10;  // the second plane fit's radius, samples
 constexpr double kWidePlaneConfidence = 0.1;  // ... for samples less confident than this
 constexpr double kSlantPriorSmoothing = 1.5;  // the slant prior's Gaussian, samples
 
+// The matching cost's gradient term's share (SweepViews::Sweep) by how far apart neighbouring
+// views see the swept depths, in samples (docs/depth.md, "A sixth round"). Where that range is
+// narrow (a dense grid, a plenoptic camera: the views a few samples apart at most), a colour
+// difference between the views that is not a shift (vignetting, shading that changes with the
+// view) pulls the colour term's minimum off the true disparity by a sizeable part of a sample,
+// and the gradients, blind to such smooth differences, lead (Hosni et al.'s 0.89). Where it is
+// wide, a slanted surface's texture is foreshortened differently in each view, which changes its
+// gradients but not its colours, and the two terms count alike.
+constexpr double kNarrowRange = 8.0, kWideRange = 15.0;  // samples between neighbouring views
+constexpr double kNarrowGradientShare = 0.89, kWideGradientShare = 0.5;
+
+double GradientShare(double neighbour_range) {
+  const double t =
+      std::clamp((neighbour_range - kNarrowRange) / (kWideRange - kNarrowRange), 0.0, 1.0);
+  return kNarrowGradientShare + (kWideGradientShare - kNarrowGradientShare) * t;
+}
+
 CostVolumeOptions VolumeOptions(const PlaneSweepOptions& options, double scale) {
   CostVolumeOptions o;
   o.reach = options.reach > 0 ? options.reach : 4;
@@ -178,7 +195,8 @@ DepthMap EstimateDepth(const LightField& lf, int row, int col, const PlaneSweepO
       Planes(q_near, q_far, options.step_samples / views.farthest_shift_per_q(),
              views.width() * views.height());
   const int labels = int(q.size());
-  const CostVolume volume = views.Sweep(q);
+  const CostVolume volume =
+      views.Sweep(q, GradientShare((q_near - q_far) * views.nearest_shift_per_q()));
   cv::Mat grey;
   cv::cvtColor(views.reference_rgb8(), grey, cv::COLOR_RGB2GRAY);
   // The nearest view's shift a plane, in samples.

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "lfcam/core/error.h"
+#include "lfcam/depth/cost_volume.h"
 #include "lfcam/depth/depth_test_scene.h"
 #include "lfcam/depth/disparity_map.h"
 #include "lfcam/sim/depth_truth.h"
@@ -171,6 +172,45 @@ TEST(PlaneSweepInput, RefusesASingleViewAndAViewOutsideTheGrid) {
   PlaneSweepOptions bad;
   bad.range = DepthRange{5000, 3000};
   EXPECT_THROW(EstimateDepth(two, 0, 0, bad), Error);
+}
+
+}  // namespace
+}  // namespace lfcam
+
+namespace lfcam {
+namespace {
+
+// The matching cost's two terms, weighted by the gradient term's share: views brighter than the
+// reference by a constant cost their colour difference in the colour term and nothing in the
+// gradients', so at the wall's true plane the cost follows the share from one to the other.
+TEST(CostVolumeTerms, TheGradientShareWeighsColourAgainstGradients) {
+  LightField lf = testing::TwoPlaneLightField(testing::TwoPlaneScene());
+  const auto& d = lf.dims();
+  for (int r = 0; r < d.rows; ++r)
+    for (int c = 0; c < d.cols; ++c) {
+      if (r == 3 && c == 3) continue;
+      std::uint8_t* p = lf.mutable_view_data(r, c);
+      for (std::size_t i = 0; i < d.samples_per_view() * 3; ++i)
+        p[i] = std::uint8_t(std::min(255, p[i] + 12));
+    }
+  CostVolumeOptions options;
+  options.reach = 1;
+  const SweepViews views(lf, 3, 3, options);
+  const std::vector<double> wall = {1.0 / 5000.0};  // the wall's plane (D = 5000 mm)
+  const auto median_cost = [&](double share) {
+    const CostVolume volume = views.Sweep(wall, share);
+    std::vector<double> costs;
+    for (int y = 10; y < 50; ++y)
+      for (int x = 10; x < 50; ++x) costs.push_back(volume.at(x, y)[0]);
+    std::nth_element(costs.begin(), costs.begin() + costs.size() / 2, costs.end());
+    return costs[costs.size() / 2];
+  };
+  const double colour = median_cost(0.0), both = median_cost(0.5), gradient = median_cost(1.0);
+  // 12 levels of 255 in the colour term, twice over at share 0: about 2 x 0.047 x 4000.
+  EXPECT_NEAR(colour, 2 * 12.0 / 255.0 * CostVolume::kCostUnit, 40.0);
+  EXPECT_LT(gradient, 0.15 * colour);
+  EXPECT_NEAR(both, 0.5 * (colour + gradient), 0.1 * colour);
+  EXPECT_THROW(views.Sweep(wall, 1.5), Error);
 }
 
 }  // namespace
