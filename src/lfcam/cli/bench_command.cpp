@@ -219,7 +219,8 @@ void AddBenchCommand(CLI::App& app) {
       viewer.integrator = integrator_option->count() > 0 ? integrator
                           : renderer.uses_gl()           ? Integrator::kCamerasQuadrilinear
                                                          : Integrator::kLensSamples;
-      viewer.frames = std::max(flags->min_runs, 30);
+      viewer.min_frames = flags->min_runs;
+      viewer.min_seconds = flags->min_seconds;
       BenchViewer(lf, viewer, renderer, render_options);
       return;
     }

@@ -46,11 +46,10 @@ void BenchViewer(const LightField& lf, const ViewerBenchOptions& options,
   start.aperture_mm = options.aperture_mm;
   const Vec3 forward = (start.look_at - start.eye).normalized();
   const Vec3 right = forward.cross(start.up).normalized(), up = right.cross(forward);
-  fmt::print("renderer: {}; viewer {}x{}, {}, d_l {} mm, {} frames a path\n",
-             renderer.description(), options.width, options.height, ToString(options.integrator),
-             options.aperture_mm, options.frames);
-  fmt::print("{:<44} {:>9} {:>9} {:>8} {:>10}\n", "eye moving every frame", "wall ms", "GPU ms",
-             "wall/GPU", "frames/s");
+  fmt::print("renderer: {}; viewer {}x{}, {}, d_l {} mm\n", renderer.description(), options.width,
+             options.height, ToString(options.integrator), options.aperture_mm);
+  fmt::print("{:<44} {:>7} {:>9} {:>9} {:>8} {:>10}\n", "eye moving every frame", "frames",
+             "wall ms", "GPU ms", "wall/GPU", "frames/s");
   struct Path {
     const char* name;
     double forward_mm;  // the eye's distance in front of the opening view's
@@ -58,8 +57,11 @@ void BenchViewer(const LightField& lf, const ViewerBenchOptions& options,
   for (const Path& path : {Path{"across the array's plane (40 mm circle)", 0.0},
                            Path{"500 mm in front of it (40 mm circle)", 500.0}}) {
     std::vector<double> wall, gpu;
-    for (int i = -1; i < options.frames; ++i) {  // frame -1: the warm-up (uploads, programs)
-      const double angle = 2 * std::numbers::pi * std::max(i, 0) / options.frames;
+    double spent_ms = 0;
+    // Frame -1: the warm-up (uploads, programs).
+    for (int i = -1; i < kMaxViewerFrames; ++i) {
+      if (i >= options.min_frames && spent_ms >= 1000.0 * options.min_seconds) break;
+      const double angle = 2 * std::numbers::pi * std::max(i, 0) / 60.0;
       VirtualCameraParams p = start;
       const Vec3 move =
           path.forward_mm * forward + 40.0 * (std::cos(angle) * right + std::sin(angle) * up);
@@ -67,11 +69,12 @@ void BenchViewer(const LightField& lf, const ViewerBenchOptions& options,
       p.look_at += move;
       const auto [wall_ms, gpu_ms] = ViewerFrame(lf, p, renderer, o);
       if (i < 0) continue;
+      spent_ms += wall_ms;
       wall.push_back(wall_ms);
       gpu.push_back(gpu_ms);
     }
     const double w = Median(wall), g = Median(gpu);
-    fmt::print("{:<44} {:>9.2f} {:>9} {:>8} {:>10.1f}\n", path.name, w,
+    fmt::print("{:<44} {:>7} {:>9.2f} {:>9} {:>8} {:>10.1f}\n", path.name, wall.size(), w,
                g >= 0 ? fmt::format("{:.2f}", g) : std::string("-"),
                g > 0 ? fmt::format("{:.2f}", w / g) : std::string("-"), 1000.0 / w);
   }

@@ -11,11 +11,16 @@
 
 namespace lfcam::cli {
 
+inline constexpr int kMaxViewerFrames = 600;
+
 struct ViewerBenchOptions {
   int width = 1920, height = 1080;
   double aperture_mm = 256;
   Integrator integrator = Integrator::kCamerasQuadrilinear;
-  int frames = 60;  // per path, after a warm-up frame
+  // Frames a path, after a warm-up frame: at least `min_frames`, and more until `min_seconds`
+  // are spent, at most kMaxViewerFrames. The eye goes round its circle once in 60 frames.
+  int min_frames = 5;
+  double min_seconds = 1.0;
 };
 
 void BenchViewer(const LightField& lf, const ViewerBenchOptions& options,
