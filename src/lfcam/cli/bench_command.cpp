@@ -194,6 +194,11 @@ void AddBenchCommand(CLI::App& app) {
     const std::unique_ptr<FrameRenderer> opened = BackendFlags::Open(backend);
     const FrameRenderer& renderer = *opened;
 
+    // The viewer's default unless --integrator says: on a GPU the quadrilinear limit, on the CPU
+    // the paper's estimator.
+    const Integrator viewers_integrator = integrator_option->count() > 0 ? integrator
+                                          : renderer.uses_gl() ? Integrator::kCamerasQuadrilinear
+                                                               : Integrator::kLensSamples;
     if (flags->table == "playback") {
       if (flags->lightfield.empty())
         throw UsageError("playback: --lightfield VIDEO.lfv (a light field video) is required");
@@ -201,10 +206,7 @@ void AddBenchCommand(CLI::App& app) {
       playback.video = flags->lightfield;
       playback.seconds = std::max(5.0, flags->min_seconds);
       playback.aperture_mm = flags->aperture_mm;
-      // The viewer's default: on a GPU the quadrilinear limit, on the CPU the paper's estimator.
-      playback.integrator = integrator_option->count() > 0 ? integrator
-                            : renderer.uses_gl()           ? Integrator::kCamerasQuadrilinear
-                                                           : Integrator::kLensSamples;
+      playback.integrator = viewers_integrator;
       BenchPlayback(playback, renderer, render_options);
       return;
     }
@@ -216,9 +218,7 @@ void AddBenchCommand(CLI::App& app) {
       ViewerBenchOptions viewer;
       std::tie(viewer.width, viewer.height) = ParseSize("--size", flags->size, 16384);
       if (aperture_option->count() > 0) viewer.aperture_mm = flags->aperture_mm;
-      viewer.integrator = integrator_option->count() > 0 ? integrator
-                          : renderer.uses_gl()           ? Integrator::kCamerasQuadrilinear
-                                                         : Integrator::kLensSamples;
+      viewer.integrator = viewers_integrator;
       viewer.min_frames = flags->min_runs;
       viewer.min_seconds = flags->min_seconds;
       BenchViewer(lf, viewer, renderer, render_options);
