@@ -8,16 +8,12 @@
 #include <numbers>
 #include <vector>
 
+#include "lfcam/render/benchmark_tables.h"
 #include "lfcam/render/gl_renderer.h"
 #include "lfcam/viewer/view_navigation.h"
 
 namespace lfcam::cli {
 namespace {
-
-double Median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.empty() ? 0.0 : v[v.size() / 2];
-}
 
 // One frame as the viewer renders it: on GL into the output texture (no read-back), on the CPU
 // the image it draws. The wall-clock time, and the GPU's (negative on the CPU).

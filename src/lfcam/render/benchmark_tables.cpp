@@ -77,15 +77,12 @@ VirtualCameraParams CellCamera(const BenchCell& cell, const ArrayPlane& array) {
   return p;
 }
 
-namespace {
-
 double Median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
   std::sort(values.begin(), values.end());
   const std::size_t n = values.size();
   return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
-
-}  // namespace
 
 Timing TimeCell(const LightField& lf, const BenchCell& cell, const FrameRenderer& renderer,
                 FrameRenderOptions options, const TimingPolicy& policy) {

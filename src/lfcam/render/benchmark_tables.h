@@ -51,6 +51,9 @@ struct TimingPolicy {
 };
 // One warm-up render, then runs until the policy is met; the median. `options` gives the
 // backend's settings (reference, work group); the cell gives the rest.
+// The median of timed runs (the mean of the middle two of an even count; 0 for none).
+double Median(std::vector<double> values);
+
 Timing TimeCell(const LightField& lf, const BenchCell& cell, const FrameRenderer& renderer,
                 FrameRenderOptions options, const TimingPolicy& policy);
 
