@@ -3,9 +3,11 @@
 // nothing written).
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
 
 #include "lfcam/cli/cli_test_support.h"
 #include "lfcam/core/test_support.h"
@@ -56,6 +58,41 @@ TEST_F(DepthCli, WritesAMapItsConfidenceAndPreviewAndAFolderForRendering) {
   }
 }
 
+// --backend gl: the cost volumes on the GPU (llvmpipe in CI), the same map as the CPU's, and
+// what ran where said; auto takes only a hardware GPU.
+TEST_F(DepthCli, SweepsOnTheGpuWithBackendGl) {
+  auto run = Lfcam("depth " + P("p.lf") + " --out " + P("cpu.png") + " --quiet");
+  ASSERT_EQ(run.status, 0) << run.output;
+  run = Lfcam("depth " + P("p.lf") + " --out " + P("gl.png") + " --backend gl --json");
+  if (run.status != 0 && run.output.find("--backend gl:") != std::string::npos) {
+    const char* required = std::getenv("LFCAM_REQUIRE_GL");
+    if (required != nullptr && std::string(required) == "1")
+      FAIL() << "LFCAM_REQUIRE_GL=1 but:\n" << run.output;
+    GTEST_SKIP() << "no GL 4.3 context: " << run.output;
+  }
+  ASSERT_EQ(run.status, 0) << run.output;
+  const auto j = nlohmann::json::parse(run.output);
+  EXPECT_EQ(j["gpu"]["gpu_sweeps"], 2) << run.output;  // the range's coarse sweep and the map's
+  EXPECT_EQ(j["gpu"]["cpu_sweeps"], 0) << run.output;
+  EXPECT_FALSE(j["gpu"]["device"].get<std::string>().empty());
+  const cv::Mat cpu = cv::imread(P("cpu.png"), cv::IMREAD_UNCHANGED);
+  const cv::Mat gl = cv::imread(P("gl.png"), cv::IMREAD_UNCHANGED);
+  ASSERT_FALSE(cpu.empty());
+  ASSERT_EQ(cpu.size(), gl.size());
+  cv::Mat differ;
+  cv::compare(cpu, gl, differ, cv::CMP_NE);
+  EXPECT_LE(cv::countNonZero(differ), int(cpu.total() / 100));
+  // Every view: their estimates run side by side and their sweeps take the GPU in turn.
+  run = Lfcam("depth " + P("p.lf") + " --all --quiet --out " + P("set") + " --backend gl --json");
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_EQ(nlohmann::json::parse(run.output)["gpu"]["gpu_sweeps"], 10) << run.output;
+  run = Lfcam("depth " + P("p.lf") + " --out " + P("auto.png") + " --backend auto");
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_TRUE(run.output.find("cost volumes:") != std::string::npos ||
+              run.output.find("on the CPU") != std::string::npos)
+      << run.output;
+}
+
 TEST_F(DepthCli, ExportsPointsFromTheMapsForColmapAndNerf) {
   auto run = Lfcam("export " + P("p.lf") + " --format colmap --out " + P("colmap") + " --depth " +
                    P("truth"));
@@ -93,6 +130,7 @@ TEST_F(DepthCli, RefusesBadFlagsAndBadMapsWritingNothing) {
     EXPECT_NE(run.output.find(names), std::string::npos) << args << "\n" << run.output;
   };
   refused("depth " + P("p.lf") + " --out " + P("x.png") + " --view 3,0", 2, "--view");
+  refused("depth " + P("p.lf") + " --out " + P("x.png") + " --backend cuda", 2, "--backend");
   refused("depth " + P("p.lf") + " --out " + P("x.png") + " --view 1.5,0", 2, "--view");
   refused("depth " + P("p.lf") + " --out " + P("x.png") + " --depth-range 5000,3000", 2,
           "--depth-range");

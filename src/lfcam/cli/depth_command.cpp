@@ -1,6 +1,7 @@
 // `lfcam depth FILE --out depth.png [--view R,C | --all] [--depth-range NEAR,FAR] [--reach N]
-// [--json]`: depth from the light field itself (depth/plane_sweep.h; docs/depth.md).
-#include <fmt/core.h>
+// [--backend cpu|gl|auto] [--json]`: depth from the light field itself (depth/plane_sweep.h;
+// docs/depth.md), its cost volumes on the GPU with --backend gl (depth/gl_cost_volume.h).
+#include <fmt/format.h>
 
 #include <chrono>
 #include <cmath>
@@ -17,7 +18,9 @@
 #include "lfcam/core/progress.h"
 #include "lfcam/depth/depth_set.h"
 #include "lfcam/depth/disparity_map.h"
+#include "lfcam/depth/gl_cost_volume.h"
 #include "lfcam/depth/plane_sweep.h"
+#include "lfcam/render/frame_renderer.h"
 
 namespace lfcam::cli {
 namespace {
@@ -45,6 +48,47 @@ nlohmann::json Summary(const DepthMap& map) {
           {"confident_share", n > 0 ? confident / n : 0.0}};
 }
 
+// The GPU engine --backend asks for, or none (the CPU): gl must find a GL 4.3 context; auto
+// takes a hardware GPU when there is one and says which it took.
+std::unique_ptr<GlCostVolume> OpenEngine(const std::string& flag, bool quiet) {
+  const Backend backend = FlagValue("--backend", [&] { return BackendFromString(flag); });
+  if (backend == Backend::kCpu) return nullptr;
+  std::unique_ptr<GlCostVolume> engine;
+  try {
+    engine = GlCostVolume::Create();
+  } catch (const Error& e) {
+    if (backend == Backend::kGl) throw Error(std::string("--backend gl: ") + e.what());
+    if (!quiet) fmt::print("depth: no GPU ({}): the cost volumes on the CPU\n", e.what());
+    return nullptr;
+  }
+  if (backend == Backend::kAuto && engine->device().software) {
+    if (!quiet)
+      fmt::print("depth: no hardware GPU (only {}): the cost volumes on the CPU\n",
+                 engine->device().renderer);
+    return nullptr;
+  }
+  return engine;
+}
+
+// What the GPU engine did, for people and --json.
+nlohmann::json EngineReport(const GlCostVolume& engine) {
+  const GlCostVolume::Tally t = engine.tally();
+  return {{"device", engine.device().renderer},
+          {"gpu_sweeps", t.gpu_sweeps},
+          {"gpu_seconds", t.gpu_seconds},
+          {"cpu_sweeps", t.cpu_sweeps},
+          {"cpu_reasons", t.cpu_reasons}};
+}
+
+void PrintEngineReport(const nlohmann::json& r) {
+  fmt::print("cost volumes: {} swept on {} in {:.2f} s", r["gpu_sweeps"].get<int>(),
+             r["device"].get<std::string>(), r["gpu_seconds"].get<double>());
+  if (r["cpu_sweeps"].get<int>() > 0)
+    fmt::print("; {} on the CPU: {}", r["cpu_sweeps"].get<int>(),
+               fmt::join(r["cpu_reasons"].get<std::vector<std::string>>(), "; "));
+  fmt::print("\n");
+}
+
 }  // namespace
 
 void AddDepthCommand(CLI::App& app) {
@@ -52,7 +96,7 @@ void AddDepthCommand(CLI::App& app) {
       "depth", "Estimate depth maps from the light field itself (plane sweep), with confidence");
   struct Flags {
     int frame = 0;
-    std::string input, out, view, range, disparity_pfm;
+    std::string input, out, view, range, disparity_pfm, backend = "cpu";
     bool all = false, json = false, quiet = false;
     int reach = 0;
   };
@@ -82,6 +126,12 @@ void AddDepthCommand(CLI::App& app) {
       "Also write the view's disparity as the light field depth benchmarks count it (the HCI "
       "benchmark's PFM: st samples, a rectified rig's pixels, between neighbouring views, "
       "positive nearer than the st-plane; docs/depth.md)");
+  command
+      ->add_option("--backend", f->backend,
+                   "Where the cost volumes are computed: cpu, gl (OpenGL compute shaders, "
+                   "headless through EGL, on a GPU or Mesa's llvmpipe; the rest of the estimate "
+                   "stays on the CPU) or auto (gl on a hardware GPU, else cpu; says which)")
+      ->capture_default_str();
   command->add_flag("--json", f->json, "Print what was estimated as JSON");
   command->add_flag("--quiet", f->quiet, "No progress bar (it is drawn only on a terminal)");
   command->callback([f] {
@@ -108,6 +158,8 @@ void AddDepthCommand(CLI::App& app) {
         throw UsageError(fmt::format("--out {}: a depth map is a .png", f->out));
       RequireWritableOutput(f->out, "--out");
     }
+    const std::unique_ptr<GlCostVolume> engine = OpenEngine(f->backend, f->quiet || f->json);
+    options.engine = engine.get();
     const LightField lf = ReadLightFieldFrame(f->input, std::size_t(f->frame));
     const auto& d = lf.dims();
     if (d.view_count() < 2)
@@ -146,10 +198,12 @@ void AddDepthCommand(CLI::App& app) {
       report["range_mm"] = {set.range().near_mm, set.range().far_mm};
       report["central"] = Summary(set.at((d.rows - 1) / 2, (d.cols - 1) / 2));
       report["seconds"] = seconds();
+      if (engine) report["gpu"] = EngineReport(*engine);
       if (f->json) {
         fmt::print("{}\n", JsonToText(report, 2));
         return;
       }
+      if (engine) PrintEngineReport(report["gpu"]);
       fmt::print("wrote {} depth maps to {} (range {:.0f} .. {:.0f} mm) in {:.1f} s\n", set.count(),
                  f->out, set.range().near_mm, set.range().far_mm, seconds());
       return;
@@ -167,10 +221,12 @@ void AddDepthCommand(CLI::App& app) {
     report["confidence"] = ConfidencePathFor(f->out).string();
     report["preview"] = PreviewPathFor(f->out).string();
     report["seconds"] = seconds();
+    if (engine) report["gpu"] = EngineReport(*engine);
     if (f->json) {
       fmt::print("{}\n", JsonToText(report, 2));
       return;
     }
+    if (engine) PrintEngineReport(report["gpu"]);
     const nlohmann::json& s = report["map"];
     fmt::print(
         "wrote {} (view {},{}: {}x{}, {:.0f} .. {:.0f} mm, {:.0f}% confident), {} and {} in "

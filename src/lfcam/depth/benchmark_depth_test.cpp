@@ -47,7 +47,7 @@ TEST(DepthOnTheBenchmark, AntinousScoresWhatDocsDepthSays) {
   std::cout << fmt::format(
       "[depth benchmark] antinous: BadPix0.07 {:.2f}%, MSEx100 {:.2f}, {:.1f} s\n", badpix, mse100,
       seconds);
-  // Floors a little above what was measured (docs/depth.md: 3.14% and 4.8; with the colour and
+  // Floors a little above what was measured (docs/depth.md: 3.15% and 4.9; with the colour and
   // gradient terms counting alike, as at wide baselines, 5.28% and 6.4, which both floors fail;
   // without the slant prior then 5.38%, without the wider plane fit 5.55%, without the local
   // planes 6.32%).

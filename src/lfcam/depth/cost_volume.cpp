@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <array>
@@ -22,6 +23,7 @@ namespace {
 
 constexpr int kChannels = 5;  // R, G, B (sRGB, 0 .. 1), the grey level's x and y gradients
 constexpr int kHalves = 8;    // half-arrays, their directions 45 degrees apart
+static_assert(kChannels == ShiftedSweep::kChannels && kHalves == ShiftedSweep::kHalves);
 // The packed channels' units: sRGB levels exactly (0 .. 255); gradients (at most 1 in size) in
 // steps of 1/8192, finer than an 8-bit grey level's gradient (1/2040).
 constexpr std::array<float, kChannels> kPacked = {255.0f, 255.0f, 255.0f, 8192.0f, 8192.0f};
@@ -302,7 +304,8 @@ cv::Matx33d SweepViews::Homography(const View& view, double depth) const {
   return m;
 }
 
-CostVolume SweepViews::Sweep(const std::vector<double>& q, double gradient_share) const {
+CostVolume SweepViews::Sweep(const std::vector<double>& q, double gradient_share,
+                             CostVolumeEngine* engine) const {
   const int w = width_, h = height_, n = int(q.size());
   const std::size_t plane = std::size_t(w) * h;
   CostVolume volume;
@@ -349,108 +352,149 @@ CostVolume SweepViews::Sweep(const std::vector<double>& q, double gradient_share
       ValidUnder(b, w, h, at_b);
       for (std::size_t p = 0; p < plane; ++p) stable_mask[v][p] *= at_b[p];
     }
+  if (engine != nullptr) {
+    // Every view's read at every plane; the engine takes the sweep when all are shifts.
+    ShiftedSweep sweep;
+    sweep.width = w;
+    sweep.height = h;
+    sweep.labels = n;
+    sweep.reference = reference_.channels.data();
+    sweep.packed_unit = kPacked;
+    for (const View& view : views_) {
+      sweep.views.push_back(view.packed.data());
+      sweep.halves.push_back(view.halves);
+    }
+    sweep.color_cap = terms.color_cap;
+    sweep.gradient_cap = terms.gradient_cap;
+    sweep.color_weight = terms.color_weight;
+    sweep.gradient_weight = terms.gradient_weight;
+    sweep.window_radius = radius;
+    sweep.min_count = min_count;
+    sweep.most = most;
+    bool shifts = true;
+    for (int i = 0; i < n && shifts; ++i)
+      for (std::size_t v = 0; v < views_.size() && shifts; ++v) {
+        const cv::Matx33d m = Homography(views_[v], 1.0 / q[std::size_t(i)]);
+        if (!IsShift(m) || (options_.same_views_at_every_plane && !stable_mask[v].empty())) {
+          shifts = false;
+          break;
+        }
+        const Shift shift = MakeShift(m(0, 2), m(1, 2), w, h,
+                                      options_.same_views_at_every_plane ? &stable[v] : nullptr);
+        sweep.reads.push_back({shift.x0, shift.y0, shift.wx, shift.wy, shift.x_lo, shift.x_hi,
+                               shift.y_lo, shift.y_hi});
+      }
+    if (shifts) return engine->Sweep(sweep);
+    engine->RanOnCpu(
+        "its views are not parallel to the st-plane (each plane warps them by a "
+        "homography, not a shift)");
+  }
+  // Each plane isolated: OpenCV's filters below run on TBB too, and a thread waiting in one must
+  // not take up another plane meanwhile, which would reuse this thread's scratch under it.
   tbb::parallel_for(0, n, [&](int i) {
-    Scratch& s = scratches.local();
-    // Sums per class of views (the views in the same half-arrays), then per half-array.
-    const std::size_t classes = class_halves_.size();
-    s.sum.assign(plane * std::max<std::size_t>(classes, kHalves), 0.0f);
-    s.count.assign(plane * std::max<std::size_t>(classes, kHalves), 0.0f);
-    s.cost.resize(plane);
-    const double depth = 1.0 / q[std::size_t(i)];
-    const float* ref = reference_.channels.data();
-    // Views whose warp is a shift: row by row through all of them. Others: warped whole.
-    std::vector<std::pair<std::size_t, Shift>>& shifted = s.shifted;
-    shifted.clear();
-    for (std::size_t v = 0; v < views_.size(); ++v) {
-      const View& view = views_[v];
-      const cv::Matx33d m = Homography(view, depth);
-      float* sum = s.sum.data() + std::size_t(view.view_class) * plane;
-      float* count = s.count.data() + std::size_t(view.view_class) * plane;
-      if (IsShift(m)) {
-        shifted.emplace_back(v,
-                             MakeShift(m(0, 2), m(1, 2), w, h,
-                                       options_.same_views_at_every_plane ? &stable[v] : nullptr));
-        continue;
-      }
-      s.unpacked.resize(plane * kChannels);
-      for (int c = 0; c < kChannels; ++c)
-        for (std::size_t p = 0; p < plane; ++p)
-          s.unpacked[c * plane + p] = float(view.packed[c * plane + p]) / kPacked[std::size_t(c)];
-      WarpCubic(s.unpacked, w, h, m, s.warped, s.valid);
-      if (!stable_mask[v].empty())
-        for (std::size_t p = 0; p < plane; ++p) s.valid[p] *= stable_mask[v][p];
-      // The same comparison as a shifted view's, over each run of samples the view sees.
-      const float* war = s.warped.data();
-      const std::size_t sw = std::size_t(w);
-      for (int y = 0; y < h; ++y) {
-        const float* valid = s.valid.data() + std::size_t(y) * sw;
-        for (int x = 0; x < w;) {
-          if (valid[x] == 0.0f) {
-            ++x;
-            continue;
-          }
-          int end = x;
-          while (end < w && valid[end] != 0.0f) ++end;
-          const std::size_t at = std::size_t(y) * sw + std::size_t(x);
-          CompareRow(war + at, war + plane + at, war + 2 * plane + at, war + 3 * plane + at,
-                     war + 4 * plane + at, ref + at, ref + plane + at, ref + 2 * plane + at,
-                     ref + 3 * plane + at, ref + 4 * plane + at, terms, std::size_t(end - x),
-                     sum + at, count + at);
-          x = end;
-        }
-      }
-    }
-    for (const auto& [v, shift] : shifted)
-      for (int y = 0; y < h; ++y) {
+    tbb::this_task_arena::isolate([&] {
+      Scratch& s = scratches.local();
+      // Sums per class of views (the views in the same half-arrays), then per half-array.
+      const std::size_t classes = class_halves_.size();
+      s.sum.assign(plane * std::max<std::size_t>(classes, kHalves), 0.0f);
+      s.count.assign(plane * std::max<std::size_t>(classes, kHalves), 0.0f);
+      s.cost.resize(plane);
+      const double depth = 1.0 / q[std::size_t(i)];
+      const float* ref = reference_.channels.data();
+      // Views whose warp is a shift: row by row through all of them. Others: warped whole.
+      std::vector<std::pair<std::size_t, Shift>>& shifted = s.shifted;
+      shifted.clear();
+      for (std::size_t v = 0; v < views_.size(); ++v) {
         const View& view = views_[v];
-        AccumulateShiftedRow(view.packed, ref, w, h, y, shift, terms, s.across,
-                             s.sum.data() + std::size_t(view.view_class) * plane,
-                             s.count.data() + std::size_t(view.view_class) * plane);
-      }
-    // The half-arrays' sums from the classes' (in place of the classes', which are then done
-    // with: a class's planes are read before any half-array's at or after its index is written).
-    {
-      std::vector<float>& half_sum = s.warped;
-      std::vector<float>& half_count = s.across;
-      half_sum.assign(plane * kHalves, 0.0f);
-      half_count.assign(plane * kHalves, 0.0f);
-      for (std::size_t k = 0; k < classes; ++k)
-        for (int g = 0; g < kHalves; ++g) {
-          if (!(class_halves_[k] >> g & 1)) continue;
-          const float* cs = s.sum.data() + k * plane;
-          const float* cc = s.count.data() + k * plane;
-          float* hs = half_sum.data() + std::size_t(g) * plane;
-          float* hc = half_count.data() + std::size_t(g) * plane;
-          for (std::size_t p = 0; p < plane; ++p) {
-            hs[p] += cs[p];
-            hc[p] += cc[p];
+        const cv::Matx33d m = Homography(view, depth);
+        float* sum = s.sum.data() + std::size_t(view.view_class) * plane;
+        float* count = s.count.data() + std::size_t(view.view_class) * plane;
+        if (IsShift(m)) {
+          shifted.emplace_back(
+              v, MakeShift(m(0, 2), m(1, 2), w, h,
+                           options_.same_views_at_every_plane ? &stable[v] : nullptr));
+          continue;
+        }
+        s.unpacked.resize(plane * kChannels);
+        for (int c = 0; c < kChannels; ++c)
+          for (std::size_t p = 0; p < plane; ++p)
+            s.unpacked[c * plane + p] = float(view.packed[c * plane + p]) / kPacked[std::size_t(c)];
+        WarpCubic(s.unpacked, w, h, m, s.warped, s.valid);
+        if (!stable_mask[v].empty())
+          for (std::size_t p = 0; p < plane; ++p) s.valid[p] *= stable_mask[v][p];
+        // The same comparison as a shifted view's, over each run of samples the view sees.
+        const float* war = s.warped.data();
+        const std::size_t sw = std::size_t(w);
+        for (int y = 0; y < h; ++y) {
+          const float* valid = s.valid.data() + std::size_t(y) * sw;
+          for (int x = 0; x < w;) {
+            if (valid[x] == 0.0f) {
+              ++x;
+              continue;
+            }
+            int end = x;
+            while (end < w && valid[end] != 0.0f) ++end;
+            const std::size_t at = std::size_t(y) * sw + std::size_t(x);
+            CompareRow(war + at, war + plane + at, war + 2 * plane + at, war + 3 * plane + at,
+                       war + 4 * plane + at, ref + at, ref + plane + at, ref + 2 * plane + at,
+                       ref + 3 * plane + at, ref + 4 * plane + at, terms, std::size_t(end - x),
+                       sum + at, count + at);
+            x = end;
           }
         }
-      std::swap(s.sum, half_sum);
-      std::swap(s.count, half_count);
-    }
-    // Each half-array's mean over the window; the cheapest half-array that sees the sample
-    // counts.
-    std::vector<float>& best = s.cost;
-    best.assign(plane, INFINITY);
-    for (int g = 0; g < kHalves; ++g) {
-      cv::Mat sum(h, w, CV_32FC1, s.sum.data() + std::size_t(g) * plane);
-      cv::Mat count(h, w, CV_32FC1, s.count.data() + std::size_t(g) * plane);
-      if (radius > 0) {
-        cv::boxFilter(sum, sum, -1, {2 * radius + 1, 2 * radius + 1}, {-1, -1}, false,
-                      cv::BORDER_REPLICATE);
-        cv::boxFilter(count, count, -1, {2 * radius + 1, 2 * radius + 1}, {-1, -1}, false,
-                      cv::BORDER_REPLICATE);
       }
-      const float* sp = sum.ptr<float>();
-      const float* cp = count.ptr<float>();
+      for (const auto& [v, shift] : shifted)
+        for (int y = 0; y < h; ++y) {
+          const View& view = views_[v];
+          AccumulateShiftedRow(view.packed, ref, w, h, y, shift, terms, s.across,
+                               s.sum.data() + std::size_t(view.view_class) * plane,
+                               s.count.data() + std::size_t(view.view_class) * plane);
+        }
+      // The half-arrays' sums from the classes' (in place of the classes', which are then done
+      // with: a class's planes are read before any half-array's at or after its index is written).
+      {
+        std::vector<float>& half_sum = s.warped;
+        std::vector<float>& half_count = s.across;
+        half_sum.assign(plane * kHalves, 0.0f);
+        half_count.assign(plane * kHalves, 0.0f);
+        for (std::size_t k = 0; k < classes; ++k)
+          for (int g = 0; g < kHalves; ++g) {
+            if (!(class_halves_[k] >> g & 1)) continue;
+            const float* cs = s.sum.data() + k * plane;
+            const float* cc = s.count.data() + k * plane;
+            float* hs = half_sum.data() + std::size_t(g) * plane;
+            float* hc = half_count.data() + std::size_t(g) * plane;
+            for (std::size_t p = 0; p < plane; ++p) {
+              hs[p] += cs[p];
+              hc[p] += cc[p];
+            }
+          }
+        std::swap(s.sum, half_sum);
+        std::swap(s.count, half_count);
+      }
+      // Each half-array's mean over the window; the cheapest half-array that sees the sample
+      // counts.
+      std::vector<float>& best = s.cost;
+      best.assign(plane, INFINITY);
+      for (int g = 0; g < kHalves; ++g) {
+        cv::Mat sum(h, w, CV_32FC1, s.sum.data() + std::size_t(g) * plane);
+        cv::Mat count(h, w, CV_32FC1, s.count.data() + std::size_t(g) * plane);
+        if (radius > 0) {
+          cv::boxFilter(sum, sum, -1, {2 * radius + 1, 2 * radius + 1}, {-1, -1}, false,
+                        cv::BORDER_REPLICATE);
+          cv::boxFilter(count, count, -1, {2 * radius + 1, 2 * radius + 1}, {-1, -1}, false,
+                        cv::BORDER_REPLICATE);
+        }
+        const float* sp = sum.ptr<float>();
+        const float* cp = count.ptr<float>();
+        for (std::size_t p = 0; p < plane; ++p)
+          if (cp[p] > min_count) best[p] = std::min(best[p], sp[p] / cp[p]);
+      }
+      std::uint16_t* out = volume.cost.data() + i;
       for (std::size_t p = 0; p < plane; ++p)
-        if (cp[p] > min_count) best[p] = std::min(best[p], sp[p] / cp[p]);
-    }
-    std::uint16_t* out = volume.cost.data() + i;
-    for (std::size_t p = 0; p < plane; ++p)
-      out[p * std::size_t(n)] =
-          std::isfinite(best[p]) ? std::uint16_t(std::lround(best[p] * unit)) : most;
+        out[p * std::size_t(n)] =
+            std::isfinite(best[p]) ? std::uint16_t(std::lround(best[p] * unit)) : most;
+    });
   });
   return volume;
 }

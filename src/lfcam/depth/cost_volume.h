@@ -14,8 +14,10 @@
 // line through the reference. So the views' costs are averaged over each of 8 half-arrays (the
 // views whose grid offset lies within 90 degrees of one of 8 directions a 45 degrees apart), each
 // half-array's cost is averaged over a small window, and the cheapest half-array counts.
+#include <array>
 #include <cstdint>
 #include <opencv2/core.hpp>
+#include <string>
 #include <vector>
 
 #include "lfcam/core/lightfield.h"
@@ -47,6 +49,41 @@ struct CostVolume {
   }
 };
 
+// A sweep whose every view is read shifted at every plane (the st-plane parallel to the array's
+// plane, as a rectified, parallel or built light field has it), laid out for a GPU to compute
+// the same volume as SweepViews::Sweep (depth/gl_cost_volume.h).
+struct ShiftedSweep {
+  static constexpr int kChannels = 5;  // R, G, B (sRGB, 0 .. 1), the grey gradients along x, y
+  static constexpr int kHalves = 8;    // half-arrays
+  int width = 0, height = 0, labels = 0;
+  const float* reference = nullptr;            // kChannels planes of width x height
+  std::vector<const std::int16_t*> views;      // each view's kChannels planes, 16-bit fixed point
+  std::array<float, kChannels> packed_unit{};  // a channel's value is its integer / this
+  std::vector<unsigned> halves;                // each view's half-arrays (bit g)
+  // How a view is read at a plane: at (x + x0 - 1 + i, y + y0 - 1 + j), i, j = 0 .. 3, with
+  // Keys' weights wx[i] wy[j], the view's edge repeated; only at the samples x_lo .. x_hi,
+  // y_lo .. y_hi.
+  struct Read {
+    int x0 = 0, y0 = 0;
+    std::array<float, 4> wx{}, wy{};
+    int x_lo = 0, x_hi = -1, y_lo = 0, y_hi = -1;
+  };
+  std::vector<Read> reads;  // [label * views.size() + view]
+  float color_cap = 0, gradient_cap = 0, color_weight = 0, gradient_weight = 0;
+  int window_radius = 0;
+  float min_count = 0;     // a half-array counts where its windowed count exceeds this
+  std::uint16_t most = 0;  // the cost where no half-array counts
+};
+
+// Computes a ShiftedSweep's volume (depth/gl_cost_volume.h: on the GPU, through OpenGL).
+class CostVolumeEngine {
+ public:
+  virtual ~CostVolumeEngine() = default;
+  virtual CostVolume Sweep(const ShiftedSweep& sweep) = 0;
+  // Called when a sweep was not a ShiftedSweep and ran on the CPU instead.
+  virtual void RanOnCpu(const std::string& why) = 0;
+};
+
 // The reference view and its neighbours, prepared for sweeping.
 class SweepViews {
  public:
@@ -69,7 +106,9 @@ class SweepViews {
   // The cost volume over the planes of inverse depth q[i] (1/mm). Each view's cost at a sample
   // is 2 ((1 - a) min(colour, color_cap) + a min(gradient, gradient_cap)), a the gradient term's
   // share (0.5: the two terms alike).
-  CostVolume Sweep(const std::vector<double>& q, double gradient_share = 0.5) const;
+  // With an `engine`, a sweep whose views are all read shifted is computed by it.
+  CostVolume Sweep(const std::vector<double>& q, double gradient_share = 0.5,
+                   CostVolumeEngine* engine = nullptr) const;
 
  private:
   struct View {

@@ -2,9 +2,11 @@
 
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <mutex>
 #include <opencv2/imgproc.hpp>
@@ -119,10 +121,21 @@ void CleanOutliers(const cv::Mat& guide_rgb8, int radius, double threshold, cv::
   {
     // OpenCV 4.6's weighted median is not safe to run twice at once (two views' maps estimated
     // in parallel crash in it): one at a time.
+    // Isolated: the filter runs on TBB, and a thread waiting in it must not take up another
+    // view's estimate, which would come here again and wait on this thread's own lock. And it
+    // clusters the guide's colours by k-means seeded from the calling thread's RNG
+    // (cv::theRNG()), whose state depends on what that thread ran before: seeded the same for
+    // every call, so that a map does not depend on which thread estimated it, or after what.
     static std::mutex one_at_a_time;
     std::lock_guard lock(one_at_a_time);
-    cv::ximgproc::weightedMedianFilter(guide_rgb8, label, median, radius, 25.5,
-                                       cv::ximgproc::WMF_EXP);
+    cv::RNG& rng = cv::theRNG();
+    const std::uint64_t saved = rng.state;
+    rng.state = 0xffffffffu;  // OpenCV's own initial state
+    tbb::this_task_arena::isolate([&] {
+      cv::ximgproc::weightedMedianFilter(guide_rgb8, label, median, radius, 25.5,
+                                         cv::ximgproc::WMF_EXP);
+    });
+    rng.state = saved;
   }
   for (int y = 0; y < label.rows; ++y)
     for (int x = 0; x < label.cols; ++x)
@@ -152,7 +165,7 @@ DepthRange EstimateDepthRange(const LightField& lf, int row, int col,
   const double q_near = 2.0 / coarse.st_depth(), q_far = 0.05 / coarse.st_depth();
   const std::vector<double> q =
       Planes(q_near, q_far, 1.0 / coarse.farthest_shift_per_q(), coarse.width() * coarse.height());
-  const CostVolume volume = coarse.Sweep(q);
+  const CostVolume volume = coarse.Sweep(q, 0.5, options.engine);
   // The matching cost alone decides here (no semi-global step: it would spread a repeating
   // texture's false match over a whole region), and only unique minima count.
   const Choice choice = Choose(volume, volume, options.truncation, 1);
@@ -196,7 +209,7 @@ DepthMap EstimateDepth(const LightField& lf, int row, int col, const PlaneSweepO
              views.width() * views.height());
   const int labels = int(q.size());
   const CostVolume volume =
-      views.Sweep(q, GradientShare((q_near - q_far) * views.nearest_shift_per_q()));
+      views.Sweep(q, GradientShare((q_near - q_far) * views.nearest_shift_per_q()), options.engine);
   cv::Mat grey;
   cv::cvtColor(views.reference_rgb8(), grey, cv::COLOR_RGB2GRAY);
   // The nearest view's shift a plane, in samples.

@@ -24,6 +24,8 @@
 
 namespace lfcam {
 
+class CostVolumeEngine;
+
 struct PlaneSweepOptions {
   std::optional<DepthRange> range;  // the depths swept; default: EstimateDepthRange
   // Views up to this many grid steps away in rows and in columns; 0: 4 for one view, 1 for
@@ -42,6 +44,9 @@ struct PlaneSweepOptions {
   // where the first pass was confident (docs/depth.md; not at reach 1, `--all`'s default,
   // where it costs a third more time for a tenth of a point).
   bool slant_prior = true;
+  // Where given, the cost volumes are computed by it (depth/gl_cost_volume.h: on the GPU); the
+  // rest of the estimate stays on the CPU.
+  CostVolumeEngine* engine = nullptr;
 };
 
 // The depth map of view (row, col). Throws lfcam::Error when the light field has a single view

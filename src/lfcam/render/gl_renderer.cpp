@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "lfcam/core/error.h"
+#include "lfcam/gpu/gl_program.h"
 #include "lfcam/render/camera_integrator.h"
 #include "lfcam/render/depth_aware_sampler.h"
 #include "lfcam/render/quadrilinear_limit.h"
@@ -44,67 +45,6 @@ struct ShaderCameraWeight {
   float weight;
 };
 static_assert(sizeof(OriginConstants) == 6 * sizeof(float), "std430 layout of Origin");
-
-std::string GlErrorName(GLenum error) {
-  switch (error) {
-    case GL_INVALID_ENUM:
-      return "GL_INVALID_ENUM";
-    case GL_INVALID_VALUE:
-      return "GL_INVALID_VALUE";
-    case GL_INVALID_OPERATION:
-      return "GL_INVALID_OPERATION";
-    case GL_OUT_OF_MEMORY:
-      return "GL_OUT_OF_MEMORY";
-    default:
-      return fmt::format("GL error 0x{:x}", error);
-  }
-}
-
-// Throws when GL reports an error; `what` says what was being done.
-void CheckGl(const std::string& what) {
-  const GLenum error = glGetError();
-  if (error != GL_NO_ERROR)
-    throw Error(fmt::format("OpenGL: {} failed: {}", what, GlErrorName(error)));
-}
-
-GLuint CompileProgram(const char* shader_text, const std::string& defines) {
-  const std::string source = "#version 430 core\n" + defines + "#line 1\n" + shader_text;
-  const GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
-  const char* text = source.c_str();
-  glShaderSource(shader, 1, &text, nullptr);
-  glCompileShader(shader);
-  GLint ok = 0;
-  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-  const auto log = [](GLuint object, bool is_program) {
-    GLint length = 0;
-    if (is_program)
-      glGetProgramiv(object, GL_INFO_LOG_LENGTH, &length);
-    else
-      glGetShaderiv(object, GL_INFO_LOG_LENGTH, &length);
-    std::string info(std::size_t(std::max(length, 1)), '\0');
-    if (is_program)
-      glGetProgramInfoLog(object, length, nullptr, info.data());
-    else
-      glGetShaderInfoLog(object, length, nullptr, info.data());
-    return info;
-  };
-  if (!ok) {
-    const std::string message = log(shader, false);
-    glDeleteShader(shader);
-    throw Error("OpenGL: a compute shader of the renderer did not compile:\n" + message);
-  }
-  const GLuint program = glCreateProgram();
-  glAttachShader(program, shader);
-  glLinkProgram(program);
-  glDeleteShader(shader);
-  glGetProgramiv(program, GL_LINK_STATUS, &ok);
-  if (!ok) {
-    const std::string message = log(program, true);
-    glDeleteProgram(program);
-    throw Error("OpenGL: a compute shader of the renderer did not link:\n" + message);
-  }
-  return program;
-}
 
 // Uniform setters by name (a name the compiler optimised away is skipped).
 struct Uniforms {

@@ -19,9 +19,9 @@
 
 #include "lfcam/core/lightfield.h"
 #include "lfcam/depth/depth_set.h"
+#include "lfcam/gpu/gl_context.h"
 #include "lfcam/render/camera_integrator.h"
 #include "lfcam/render/cpu_renderer.h"
-#include "lfcam/render/gl_context.h"
 #include "lfcam/render/quadrilinear_limit.h"
 #include "lfcam/render/virtual_camera.h"
 
@@ -45,7 +45,7 @@ struct GlLimits {
 
 class GlRenderer {
  public:
-  // Makes a GL 4.3 context (render/gl_context.h); throws lfcam::Error when there is none.
+  // Makes a GL 4.3 context (gpu/gl_context.h); throws lfcam::Error when there is none.
   explicit GlRenderer(bool prefer_hardware = true);
   // In a context made elsewhere (GlContext::AdoptCurrent: the viewer's window).
   explicit GlRenderer(std::unique_ptr<GlContext> context);

@@ -1,4 +1,4 @@
-#include "lfcam/render/gl_context.h"
+#include "lfcam/gpu/gl_context.h"
 
 #include <epoxy/egl.h>
 #include <epoxy/gl.h>

@@ -1,0 +1,288 @@
+#include "lfcam/depth/gl_cost_volume.h"
+
+#include <epoxy/gl.h>
+#include <fmt/format.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <chrono>
+
+#include "lfcam/core/error.h"
+#include "lfcam/depth/shaders/sweep_costs.comp.h"
+#include "lfcam/depth/shaders/sweep_window.comp.h"
+#include "lfcam/gpu/gl_program.h"
+
+namespace lfcam {
+namespace {
+
+constexpr int kGroupX = 16, kGroupY = 8;  // the shaders' local size
+
+// ShiftedSweep::Read as the shader reads it (std430).
+struct ShaderRead {
+  std::int32_t x0, y0, halves, unused;
+  float wx[4], wy[4];
+  std::int32_t x_lo, x_hi, y_lo, y_hi;
+};
+static_assert(sizeof(ShaderRead) == 64, "std430 layout of Read");
+
+GLuint NewTexture(GLenum target) {
+  GLuint texture = 0;
+  glGenTextures(1, &texture);
+  glBindTexture(target, texture);
+  glTexParameteri(target, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(target, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glTexParameteri(target, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTexParameteri(target, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  return texture;
+}
+
+// The textures and buffer of one sweep, deleted with it.
+struct SweepObjects {
+  GLuint textures[6] = {};  // views_rgbx, views_y, reference_rgbx, reference_y, sums, volume
+  GLuint reads = 0;
+  ~SweepObjects() {
+    glDeleteTextures(6, textures);
+    if (reads) glDeleteBuffers(1, &reads);
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<GlCostVolume> GlCostVolume::Create(bool prefer_hardware) {
+  auto engine = std::unique_ptr<GlCostVolume>(new GlCostVolume());
+  std::promise<void> started;
+  std::future<void> ready = started.get_future();
+  engine->thread_ = std::thread(&GlCostVolume::GlThread, engine.get(), prefer_hardware, &started);
+  try {
+    ready.get();  // the context made, or why not
+  } catch (...) {
+    engine->thread_.join();  // it has ended
+    engine->thread_ = std::thread();
+    throw;
+  }
+  return engine;
+}
+
+void GlCostVolume::GlThread(bool prefer_hardware, std::promise<void>* started) {
+  try {
+    context_ = GlContext::Create(prefer_hardware);
+    device_ = context_->device();
+  } catch (...) {
+    started->set_exception(std::current_exception());
+    return;
+  }
+  started->set_value();
+  std::unique_lock lock(mutex_);
+  for (;;) {
+    wake_.wait(lock, [&] { return stop_ || work_ != nullptr; });
+    if (work_ != nullptr) {
+      const std::function<void()>* work = work_;
+      lock.unlock();
+      std::exception_ptr failure;
+      try {
+        (*work)();
+      } catch (...) {
+        failure = std::current_exception();
+      }
+      lock.lock();
+      failure_ = failure;
+      work_ = nullptr;
+      done_.notify_all();
+      continue;
+    }
+    break;  // stopping, no work left
+  }
+  lock.unlock();
+  if (costs_program_) glDeleteProgram(costs_program_);
+  if (window_program_) glDeleteProgram(window_program_);
+  context_.reset();
+}
+
+GlCostVolume::~GlCostVolume() {
+  if (!thread_.joinable()) return;
+  {
+    std::lock_guard lock(mutex_);
+    stop_ = true;
+  }
+  wake_.notify_all();
+  thread_.join();
+}
+
+void GlCostVolume::OnGlThread(const std::function<void()>& work) {
+  std::lock_guard one(submit_);
+  std::unique_lock lock(mutex_);
+  work_ = &work;
+  failure_ = nullptr;
+  wake_.notify_all();
+  done_.wait(lock, [&] { return work_ == nullptr; });
+  if (failure_) std::rethrow_exception(failure_);
+}
+
+void GlCostVolume::RanOnCpu(const std::string& why) {
+  std::lock_guard lock(mutex_);
+  ++tally_.cpu_sweeps;
+  if (std::find(tally_.cpu_reasons.begin(), tally_.cpu_reasons.end(), why) ==
+      tally_.cpu_reasons.end())
+    tally_.cpu_reasons.push_back(why);
+}
+
+GlCostVolume::Tally GlCostVolume::tally() const {
+  std::lock_guard lock(mutex_);
+  return tally_;
+}
+std::vector<std::uint16_t> GlCostVolume::SweepPlanes(const ShiftedSweep& sweep) {
+  constexpr int kChannels = ShiftedSweep::kChannels;
+  const int w = sweep.width, h = sweep.height, n = sweep.labels;
+  const int views = int(sweep.views.size());
+  const auto start = std::chrono::steady_clock::now();
+  GLint max_size = 0, max_layers = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
+  glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &max_layers);
+  if (w > max_size || h > max_size || views > max_layers || n > max_layers)
+    throw Error(fmt::format(
+        "the GPU ({}) takes textures of at most {} samples a side and {} layers; this sweep "
+        "needs {}x{} samples, {} views and {} planes",
+        device_.renderer, max_size, max_layers, w, h, views, n));
+  if (costs_program_ == 0) costs_program_ = CompileProgram(kSweepCostsShader, "");
+  if (window_program_ == 0) window_program_ = CompileProgram(kSweepWindowShader, "");
+
+  const std::size_t plane = std::size_t(w) * h;
+  SweepObjects objects;
+  GLuint* t = objects.textures;
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  // The views: channels 0 .. 3 interleaved, channel 4 alone.
+  t[0] = NewTexture(GL_TEXTURE_2D_ARRAY);
+  glTexStorage3D(GL_TEXTURE_2D_ARRAY, 1, GL_RGBA16I, w, h, views);
+  t[1] = NewTexture(GL_TEXTURE_2D_ARRAY);
+  glTexStorage3D(GL_TEXTURE_2D_ARRAY, 1, GL_R16I, w, h, views);
+  CheckGl(fmt::format("making room on the GPU for {} views of {}x{}", views, w, h));
+  std::vector<std::int16_t> rgbx(plane * 4);
+  for (int v = 0; v < views; ++v) {
+    const std::int16_t* packed = sweep.views[std::size_t(v)];
+    for (std::size_t p = 0; p < plane; ++p)
+      for (int c = 0; c < 4; ++c) rgbx[4 * p + std::size_t(c)] = packed[std::size_t(c) * plane + p];
+    glBindTexture(GL_TEXTURE_2D_ARRAY, t[0]);
+    glTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, v, w, h, 1, GL_RGBA_INTEGER, GL_SHORT,
+                    rgbx.data());
+    glBindTexture(GL_TEXTURE_2D_ARRAY, t[1]);
+    glTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, v, w, h, 1, GL_RED_INTEGER, GL_SHORT,
+                    packed + 4 * plane);
+  }
+  {
+    std::vector<float> reference(plane * 4);
+    for (std::size_t p = 0; p < plane; ++p)
+      for (int c = 0; c < 4; ++c)
+        reference[4 * p + std::size_t(c)] = sweep.reference[std::size_t(c) * plane + p];
+    t[2] = NewTexture(GL_TEXTURE_2D);
+    glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA32F, w, h);
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, w, h, GL_RGBA, GL_FLOAT, reference.data());
+    t[3] = NewTexture(GL_TEXTURE_2D);
+    glTexStorage2D(GL_TEXTURE_2D, 1, GL_R32F, w, h);
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, w, h, GL_RED, GL_FLOAT, sweep.reference + 4 * plane);
+  }
+  t[4] = NewTexture(GL_TEXTURE_2D_ARRAY);
+  glTexStorage3D(GL_TEXTURE_2D_ARRAY, 1, GL_RGBA32F, w, h, 4);
+  t[5] = NewTexture(GL_TEXTURE_2D_ARRAY);
+  glTexStorage3D(GL_TEXTURE_2D_ARRAY, 1, GL_R16UI, w, h, n);
+  CheckGl(fmt::format("uploading the views and making room for {} planes of {}x{} costs", n, w, h));
+  {
+    std::vector<ShaderRead> reads(sweep.reads.size());
+    for (std::size_t i = 0; i < reads.size(); ++i) {
+      const ShiftedSweep::Read& r = sweep.reads[i];
+      ShaderRead& s = reads[i];
+      s = {r.x0,   r.y0,   std::int32_t(sweep.halves[i % std::size_t(views)]),
+           0,      {},     {},
+           r.x_lo, r.x_hi, r.y_lo,
+           r.y_hi};
+      std::copy(r.wx.begin(), r.wx.end(), s.wx);
+      std::copy(r.wy.begin(), r.wy.end(), s.wy);
+    }
+    glGenBuffers(1, &objects.reads);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, objects.reads);
+    glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(reads.size() * sizeof(ShaderRead)),
+                 reads.data(), GL_STATIC_DRAW);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, objects.reads);
+  }
+  CheckGl("uploading the views' shifts");
+
+  const GLuint groups_x = GLuint((w + kGroupX - 1) / kGroupX);
+  const GLuint groups_y = GLuint((h + kGroupY - 1) / kGroupY);
+  glUseProgram(costs_program_);
+  glUniform1i(glGetUniformLocation(costs_program_, "view_count"), views);
+  glUniform2i(glGetUniformLocation(costs_program_, "size"), w, h);
+  glUniform4f(glGetUniformLocation(costs_program_, "unit_rgbx"), 1.0f / sweep.packed_unit[0],
+              1.0f / sweep.packed_unit[1], 1.0f / sweep.packed_unit[2],
+              1.0f / sweep.packed_unit[3]);
+  glUniform1f(glGetUniformLocation(costs_program_, "unit_y"), 1.0f / sweep.packed_unit[4]);
+  glUniform4f(glGetUniformLocation(costs_program_, "terms"), sweep.color_cap, sweep.gradient_cap,
+              sweep.color_weight, sweep.gradient_weight);
+  glUseProgram(window_program_);
+  glUniform2i(glGetUniformLocation(window_program_, "size"), w, h);
+  glUniform1i(glGetUniformLocation(window_program_, "radius"), std::max(0, sweep.window_radius));
+  glUniform1f(glGetUniformLocation(window_program_, "min_count"), sweep.min_count);
+  glUniform1f(glGetUniformLocation(window_program_, "unit"), float(CostVolume::kCostUnit));
+  glUniform1ui(glGetUniformLocation(window_program_, "most"), sweep.most);
+  static_assert(kChannels == 5, "four channels interleaved and one alone");
+  for (int i = 0; i < n; ++i) {
+    glUseProgram(costs_program_);
+    glUniform1i(glGetUniformLocation(costs_program_, "plane"), i);
+    for (int unit = 0; unit < 4; ++unit) {
+      glActiveTexture(GLenum(GL_TEXTURE0 + unit));
+      glBindTexture(unit < 2 ? GL_TEXTURE_2D_ARRAY : GL_TEXTURE_2D, t[unit]);
+    }
+    glBindImageTexture(0, t[4], 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    glDispatchCompute(groups_x, groups_y, 1);
+    glMemoryBarrier(GL_ALL_BARRIER_BITS);
+    glUseProgram(window_program_);
+    glUniform1i(glGetUniformLocation(window_program_, "plane"), i);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, t[4]);
+    glBindImageTexture(1, t[5], 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R16UI);
+    glDispatchCompute(groups_x, groups_y, 1);
+    glMemoryBarrier(GL_ALL_BARRIER_BITS);
+  }
+  CheckGl(fmt::format("sweeping {} planes", n));
+
+  // Read back plane by plane as the shaders wrote them; the volume is label-fastest.
+  std::vector<std::uint16_t> planes(plane * std::size_t(n));
+  glBindTexture(GL_TEXTURE_2D_ARRAY, t[5]);
+  glGetTexImage(GL_TEXTURE_2D_ARRAY, 0, GL_RED_INTEGER, GL_UNSIGNED_SHORT, planes.data());
+  CheckGl("reading the cost volume back");
+  {
+    std::lock_guard lock(mutex_);
+    ++tally_.gpu_sweeps;
+    tally_.gpu_seconds +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+  return planes;
+}
+
+CostVolume GlCostVolume::Sweep(const ShiftedSweep& sweep) {
+  const int w = sweep.width, h = sweep.height, n = sweep.labels;
+  const int views = int(sweep.views.size());
+  if (w <= 0 || h <= 0 || n <= 0 || views <= 0 ||
+      sweep.reads.size() != std::size_t(n) * std::size_t(views) ||
+      sweep.halves.size() != std::size_t(views))
+    throw Error("the GPU sweep was given an inconsistent sweep");
+  // On the GL thread until the volume is read back; then laid out here, in parallel.
+  std::vector<std::uint16_t> planes;
+  const std::function<void()> work = [&] { planes = SweepPlanes(sweep); };
+  OnGlThread(work);
+  const std::size_t plane = std::size_t(w) * h;
+  CostVolume volume;
+  volume.width = w;
+  volume.height = h;
+  volume.labels = n;
+  volume.cost.resize(planes.size());
+  tbb::parallel_for(0, h, [&](int y) {
+    for (int x = 0; x < w; ++x) {
+      std::uint16_t* out = volume.at(x, y);
+      const std::size_t p = std::size_t(y) * w + std::size_t(x);
+      for (int i = 0; i < n; ++i) out[i] = planes[std::size_t(i) * plane + p];
+    }
+  });
+  return volume;
+}
+
+}  // namespace lfcam

@@ -1,0 +1,127 @@
+// The plane sweep's cost volumes on the GPU (depth/gl_cost_volume.h) against the CPU's
+// (SweepViews::Sweep): the same volume to a unit of rounding, the same depth maps, and a sweep it
+// cannot take (views turned against the st-plane) left to the CPU and said. Runs wherever a GL
+// 4.3 context can be made (in CI, Mesa's llvmpipe); without one the tests say so and skip, unless
+// LFCAM_REQUIRE_GL=1 (scripts/test.sh), where that fails.
+#include "lfcam/depth/gl_cost_volume.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <iostream>
+
+#include "lfcam/core/error.h"
+#include "lfcam/depth/depth_test_scene.h"
+#include "lfcam/depth/plane_sweep.h"
+
+namespace lfcam {
+namespace {
+
+// The engine every test shares, or null with the reason in `why`.
+GlCostVolume* SharedEngine(std::string* why) {
+  static std::string failure;
+  static const std::unique_ptr<GlCostVolume> engine = []() -> std::unique_ptr<GlCostVolume> {
+    try {
+      auto e = GlCostVolume::Create();
+      std::cout << "GL device: " << e->device().renderer << "\n";
+      return e;
+    } catch (const Error& e) {
+      failure = e.what();
+      return nullptr;
+    }
+  }();
+  *why = failure;
+  return engine.get();
+}
+
+#define LFCAM_ENGINE_OR_SKIP(engine)                                       \
+  std::string why_no_gl;                                                   \
+  GlCostVolume* engine = SharedEngine(&why_no_gl);                         \
+  if (engine == nullptr) {                                                 \
+    const char* required = std::getenv("LFCAM_REQUIRE_GL");                \
+    if (required != nullptr && std::string(required) == "1")               \
+      FAIL() << "LFCAM_REQUIRE_GL=1 but no GL 4.3 context: " << why_no_gl; \
+    GTEST_SKIP() << "no GL 4.3 context could be made: " << why_no_gl;      \
+  }
+
+// Planes between the plate (3.2 m) and beyond the wall (5 m), uniformly in 1/D.
+std::vector<double> Planes(int n) {
+  std::vector<double> q;
+  for (int i = 0; i < n; ++i) q.push_back(1.0 / 2800 + (1.0 / 6000 - 1.0 / 2800) * i / (n - 1));
+  return q;
+}
+
+TEST(GlCostVolume, SweepsTheSameVolumeAsTheCpu) {
+  LFCAM_ENGINE_OR_SKIP(engine);
+  const LightField lf = testing::TwoPlaneLightField(testing::TwoPlaneScene());
+  CostVolumeOptions options;
+  options.reach = 2;  // 24 views: every half-array full, some cut by the frame's edge
+  options.same_views_at_every_plane = true;
+  const SweepViews views(lf, 2, 3, options);  // off centre: the half-arrays differ in size
+  const std::vector<double> q = Planes(24);
+  const int before = engine->tally().gpu_sweeps;
+  const CostVolume cpu = views.Sweep(q, 0.7);
+  const CostVolume gpu = views.Sweep(q, 0.7, engine);
+  EXPECT_EQ(engine->tally().gpu_sweeps, before + 1);
+  ASSERT_EQ(gpu.width, cpu.width);
+  ASSERT_EQ(gpu.height, cpu.height);
+  ASSERT_EQ(gpu.labels, cpu.labels);
+  ASSERT_EQ(gpu.cost.size(), cpu.cost.size());
+  int largest = 0;
+  std::size_t differ = 0;
+  for (std::size_t i = 0; i < cpu.cost.size(); ++i) {
+    const int d = std::abs(int(gpu.cost[i]) - int(cpu.cost[i]));
+    largest = std::max(largest, d);
+    differ += d != 0;
+  }
+  // Floats summed in another order: a cost a unit off where it rounds the other way.
+  EXPECT_LE(largest, 1);
+  EXPECT_LT(double(differ) / double(cpu.cost.size()), 0.01);
+  // Not a volume of constants: the costs span most of their range (0 .. 800 units here).
+  const auto [lo, hi] = std::minmax_element(cpu.cost.begin(), cpu.cost.end());
+  EXPECT_GT(int(*hi) - int(*lo), 600);
+}
+
+TEST(GlCostVolume, EstimatesTheSameDepthMaps) {
+  LFCAM_ENGINE_OR_SKIP(engine);
+  const LightField lf = testing::TwoPlaneLightField(testing::TwoPlaneScene());
+  PlaneSweepOptions options;
+  options.reach = 1;
+  options.range = DepthRange{2800, 6000};
+  const DepthMap cpu = EstimateDepth(lf, 3, 3, options);
+  options.engine = engine;
+  const DepthMap gpu = EstimateDepth(lf, 3, 3, options);
+  ASSERT_EQ(cpu.depth.size(), gpu.depth.size());
+  int off = 0;
+  for (int l = 0; l < cpu.n_t(); ++l)
+    for (int k = 0; k < cpu.n_s(); ++k) {
+      const float a = cpu.depth.at<float>(l, k), b = gpu.depth.at<float>(l, k);
+      off += !(std::abs(a - b) <= 1e-3f * a);
+    }
+  EXPECT_LE(off, cpu.n_s() * cpu.n_t() / 1000) << off << " samples differ";
+  // And right: the plate, 3.2 m from the array, where the central camera looks.
+  const float centre = gpu.depth.at<float>(cpu.n_t() / 2, cpu.n_s() / 2);
+  EXPECT_NEAR(centre, 3200.0f, 60.0f);
+}
+
+TEST(GlCostVolume, LeavesTurnedViewsToTheCpuAndSaysWhy) {
+  LFCAM_ENGINE_OR_SKIP(engine);
+  const LightField lf = testing::TwoPlaneLightField(testing::TwoPlaneScene(10.0));
+  CostVolumeOptions options;
+  options.reach = 1;
+  const SweepViews views(lf, 3, 3, options);
+  const std::vector<double> q = Planes(12);
+  const GlCostVolume::Tally before = engine->tally();
+  const CostVolume cpu = views.Sweep(q);
+  const CostVolume fallback = views.Sweep(q, 0.5, engine);
+  const GlCostVolume::Tally after = engine->tally();
+  EXPECT_EQ(after.gpu_sweeps, before.gpu_sweeps);
+  EXPECT_EQ(after.cpu_sweeps, before.cpu_sweeps + 1);
+  ASSERT_FALSE(after.cpu_reasons.empty());
+  EXPECT_NE(after.cpu_reasons.back().find("not parallel to the st-plane"), std::string::npos);
+  EXPECT_EQ(fallback.cost, cpu.cost);
+}
+
+}  // namespace
+}  // namespace lfcam

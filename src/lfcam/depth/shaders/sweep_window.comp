@@ -1,0 +1,45 @@
+// One plane of the plane sweep's cost volume from its half-arrays' sums (sweep_costs.comp):
+// each half-array's sum and count over a box window (the edge repeated), its mean where enough
+// of its views see the sample, and the cheapest half-array's, as 16-bit cost units, into the
+// volume's layer for the plane (SweepViews::Sweep in depth/cost_volume.cpp does the same).
+layout(local_size_x = 16, local_size_y = 8) in;
+
+layout(binding = 0) uniform sampler2DArray sums;  // as sweep_costs.comp writes them
+layout(r16ui, binding = 1) writeonly uniform uimage2DArray volume;
+
+uniform int plane;
+uniform ivec2 size;
+uniform int radius;
+uniform float min_count;
+uniform float unit;
+uniform uint most;
+
+void main() {
+  const ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+  if (p.x >= size.x || p.y >= size.y) return;
+  vec4 s0 = vec4(0.0), s1 = vec4(0.0), c0 = vec4(0.0), c1 = vec4(0.0);
+  for (int dy = -radius; dy <= radius; ++dy)
+    for (int dx = -radius; dx <= radius; ++dx) {
+      const ivec2 q = clamp(p + ivec2(dx, dy), ivec2(0), size - 1);
+      s0 += texelFetch(sums, ivec3(q, 0), 0);
+      s1 += texelFetch(sums, ivec3(q, 1), 0);
+      c0 += texelFetch(sums, ivec3(q, 2), 0);
+      c1 += texelFetch(sums, ivec3(q, 3), 0);
+    }
+  bool found = false;
+  float best = 0.0;
+  for (int g = 0; g < 4; ++g) {
+    if (c0[g] > min_count) {
+      const float mean = s0[g] / c0[g];
+      best = found ? min(best, mean) : mean;
+      found = true;
+    }
+    if (c1[g] > min_count) {
+      const float mean = s1[g] / c1[g];
+      best = found ? min(best, mean) : mean;
+      found = true;
+    }
+  }
+  const uint value = found ? uint(floor(best * unit + 0.5)) : most;
+  imageStore(volume, ivec3(p, plane), uvec4(value, 0u, 0u, 0u));
+}
