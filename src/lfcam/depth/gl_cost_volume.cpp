@@ -131,7 +131,6 @@ GlCostVolume::Tally GlCostVolume::tally() const {
   return tally_;
 }
 std::vector<std::uint16_t> GlCostVolume::SweepPlanes(const ShiftedSweep& sweep) {
-  constexpr int kChannels = ShiftedSweep::kChannels;
   const int w = sweep.width, h = sweep.height, n = sweep.labels;
   const int views = int(sweep.views.size());
   const auto start = std::chrono::steady_clock::now();
@@ -223,7 +222,7 @@ std::vector<std::uint16_t> GlCostVolume::SweepPlanes(const ShiftedSweep& sweep) 
   glUniform1f(glGetUniformLocation(window_program_, "min_count"), sweep.min_count);
   glUniform1f(glGetUniformLocation(window_program_, "unit"), float(CostVolume::kCostUnit));
   glUniform1ui(glGetUniformLocation(window_program_, "most"), sweep.most);
-  static_assert(kChannels == 5, "four channels interleaved and one alone");
+  static_assert(ShiftedSweep::kChannels == 5, "four channels interleaved and one alone");
   for (int i = 0; i < n; ++i) {
     glUseProgram(costs_program_);
     glUniform1i(glGetUniformLocation(costs_program_, "plane"), i);

@@ -236,13 +236,13 @@ TEST(PlaneSweepSet, EveryViewsMapIsItsOwnEstimateWhateverRanBefore) {
   for (const auto& [r, c] : {std::pair{2, 2}, {0, 1}}) (void)EstimateDepth(lf, r, c, options);
   const DepthMap again = EstimateDepth(lf, 4, 3, options);
   EXPECT_EQ(cv::countNonZero(first.depth != again.depth), 0);
-  // And a set's, its views estimated side by side.
+  // And a set's, its views estimated side by side (seven: each thread takes several in turn).
+  const auto some = [](int r, int c) { return (r + c) % 4 == 0; };
   DepthSet set(lf.dims());
-  EstimateDepthSet(
-      lf, set, [](int, int) { return true; }, options);
+  EstimateDepthSet(lf, set, some, options);
   for (int r = 0; r < 5; ++r)
     for (int c = 0; c < 5; ++c) {
-      if (r != 4 && (r + c) % 3 != 0) continue;
+      if (!some(r, c)) continue;
       const DepthMap alone = EstimateDepth(lf, r, c, options);
       EXPECT_EQ(cv::countNonZero(alone.depth != set.at(r, c).depth), 0) << r << "," << c;
     }
