@@ -13,6 +13,13 @@
 
 namespace lfcam::testing {
 
+// Whether the GL tests must run (LFCAM_REQUIRE_GL=1: scripts/test.sh installs Mesa), so that no
+// GL context fails them instead of skipping them.
+inline bool GlRequired() {
+  const char* required = std::getenv("LFCAM_REQUIRE_GL");
+  return required != nullptr && std::string(required) == "1";
+}
+
 // The scratch directories the running test has made (MakeScratchDir): removed when it ends
 // without failing, kept and named when it fails (src/lfcam/tests_main.cpp).
 inline std::vector<std::filesystem::path>& ScratchDirsOfTheRunningTest() {

@@ -12,6 +12,7 @@
 #include <iostream>
 
 #include "lfcam/core/error.h"
+#include "lfcam/core/test_support.h"
 #include "lfcam/depth/depth_test_scene.h"
 #include "lfcam/depth/plane_sweep.h"
 
@@ -39,8 +40,7 @@ GlCostVolume* SharedEngine(std::string* why) {
   std::string why_no_gl;                                                   \
   GlCostVolume* engine = SharedEngine(&why_no_gl);                         \
   if (engine == nullptr) {                                                 \
-    const char* required = std::getenv("LFCAM_REQUIRE_GL");                \
-    if (required != nullptr && std::string(required) == "1")               \
+    if (testing::GlRequired())                                             \
       FAIL() << "LFCAM_REQUIRE_GL=1 but no GL 4.3 context: " << why_no_gl; \
     GTEST_SKIP() << "no GL 4.3 context could be made: " << why_no_gl;      \
   }

@@ -18,6 +18,7 @@
 
 #include "lfcam/core/error.h"
 #include "lfcam/core/image_io.h"
+#include "lfcam/core/test_support.h"
 #include "lfcam/render/frame_renderer.h"
 #include "lfcam/render/render_test_cases.h"
 #include "lfcam/sim/depth_truth.h"
@@ -53,8 +54,7 @@ GlRenderer* SharedRenderer(std::string* why) {
   std::string why_no_gl;                                                   \
   GlRenderer* gl = SharedRenderer(&why_no_gl);                             \
   if (gl == nullptr) {                                                     \
-    const char* required = std::getenv("LFCAM_REQUIRE_GL");                \
-    if (required != nullptr && std::string(required) == "1")               \
+    if (testing::GlRequired())                                             \
       FAIL() << "LFCAM_REQUIRE_GL=1 but no GL 4.3 context: " << why_no_gl; \
     GTEST_SKIP() << "no GL 4.3 context could be made: " << why_no_gl;      \
   }

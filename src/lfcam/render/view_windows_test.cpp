@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "lfcam/core/error.h"
+#include "lfcam/core/test_support.h"
 #include "lfcam/render/cpu_renderer.h"
 #include "lfcam/render/gl_renderer.h"
 #include "lfcam/render/lightfield_sampler.h"
@@ -165,9 +166,7 @@ TEST(ViewWindows, TheGlRendererReadsEachViewInItsOwnWindow) {
   try {
     gl = std::make_unique<GlRenderer>();
   } catch (const Error& e) {
-    const char* required = std::getenv("LFCAM_REQUIRE_GL");
-    if (required != nullptr && std::string(required) == "1")
-      FAIL() << "LFCAM_REQUIRE_GL=1 but no GL 4.3 context: " << e.what();
+    if (testing::GlRequired()) FAIL() << "LFCAM_REQUIRE_GL=1 but no GL 4.3 context: " << e.what();
     GTEST_SKIP() << "no GL 4.3 context could be made: " << e.what();
   }
   const LightField& windowed = WindowedPaperLightField();

@@ -29,10 +29,7 @@ using testing::CommandResult;
 using testing::Lfcam;
 using testing::RunOnce;
 
-bool Required() {
-  const char* required = std::getenv("LFCAM_REQUIRE_GL");
-  return required != nullptr && std::string(required) == "1";
-}
+bool Required() { return testing::GlRequired(); }
 
 bool HaveXvfb() { return RunOnce("command -v xvfb-run >/dev/null 2>&1").status == 0; }
 
