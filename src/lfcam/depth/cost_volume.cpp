@@ -21,8 +21,10 @@
 namespace lfcam {
 namespace {
 
-constexpr int kChannels = 5;  // R, G, B (sRGB, 0 .. 1), the grey level's x and y gradients
-constexpr int kHalves = 8;    // half-arrays, their directions 45 degrees apart
+constexpr int kChannels = 5;     // R, G, B (sRGB, 0 .. 1), the grey level's x and y gradients
+constexpr int kHalves = 8;       // half-arrays, their directions 45 degrees apart
+constexpr int kBandRows = 8;     // the rows the sweep takes through every view at a time
+constexpr int kGroupPlanes = 8;  // the most planes swept together
 static_assert(kChannels == ShiftedSweep::kChannels && kHalves == ShiftedSweep::kHalves);
 // The packed channels' units: sRGB levels exactly (0 .. 255); gradients (at most 1 in size) in
 // steps of 1/8192, finer than an 8-bit grey level's gradient (1/2040).
@@ -88,7 +90,7 @@ struct CostTerms {
 };
 
 // One row's comparison: the shifted view's channels s0 .. s4 against the reference's f0 .. f4,
-// each term truncated and weighted, added to `sum`, and 1 to `count`.
+// each term truncated and weighted, added to `sum`.
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
 __attribute__((target_clones("arch=x86-64-v3", "default")))
 #endif
@@ -96,7 +98,7 @@ void CompareRow(const float* __restrict s0, const float* __restrict s1, const fl
                 const float* __restrict s3, const float* __restrict s4, const float* __restrict f0,
                 const float* __restrict f1, const float* __restrict f2, const float* __restrict f3,
                 const float* __restrict f4, const CostTerms terms, std::size_t n,
-                float* __restrict sum, float* __restrict count) {
+                float* __restrict sum) {
   const float color_cap = terms.color_cap, gradient_cap = terms.gradient_cap;
   const float color_weight = terms.color_weight, gradient_weight = terms.gradient_weight;
   for (std::size_t x = 0; x < n; ++x) {
@@ -106,21 +108,19 @@ void CompareRow(const float* __restrict s0, const float* __restrict s1, const fl
     const float gradient = std::abs(s3[x] - f3[x]) + std::abs(s4[x] - f4[x]);
     sum[x] += color_weight * std::min(color, color_cap) +
               gradient_weight * std::min(gradient, gradient_cap);
-    count[x] += 1.0f;
   }
 }
 
-// Row y of one view's truncated cost against the reference, the view shifted: added to `sum`
-// and 1 to `count` where the shifted view has a sample. The shift (vertical taps into one row,
-// then horizontal taps) and the comparison are fused, and the sweep runs row by row through all
-// the views, so that the reference's row and the sums' rows stay in cache.
+// Row y of one view's truncated cost against the reference, the view shifted: added to row y's
+// `sum_row` where the shifted view has a sample (the shift's rectangle). The shift (vertical taps
+// into one row, then horizontal taps) and the comparison are fused, and the sweep runs row by row
+// through all the views, so that the reference's row and the sums' rows stay in cache.
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
 __attribute__((target_clones("arch=x86-64-v3", "default")))
 #endif
 void AccumulateShiftedRow(const std::vector<std::int16_t>& src, const float* ref, int w, int h,
-                          int y,
-                          const Shift& shift, const CostTerms& terms,
-                          std::vector<float>& rows, float* sum, float* count) {
+                          int y, const Shift& shift, const CostTerms& terms,
+                          std::vector<float>& rows, float* sum_row) {
   if (y < shift.y_lo || y > shift.y_hi || shift.x_lo > shift.x_hi) return;
   const std::size_t plane = std::size_t(w) * h;
   const auto& wx = shift.wx;
@@ -157,7 +157,7 @@ void AccumulateShiftedRow(const std::vector<std::int16_t>& src, const float* ref
   CompareRow(shifted + x_lo, shifted + sw + x_lo, shifted + 2 * sw + x_lo, shifted + 3 * sw + x_lo,
              shifted + 4 * sw + x_lo, ref + at, ref + plane + at, ref + 2 * plane + at,
              ref + 3 * plane + at, ref + 4 * plane + at, terms, std::size_t(x_hi - x_lo + 1),
-             sum + at, count + at);
+             sum_row + x_lo);
 }
 
 // Where the homography m (reference coordinates -> the view's) lands inside the view: 1, else 0.
@@ -193,11 +193,82 @@ bool IsShift(const cv::Matx33d& m) {
          std::abs(m(2, 2) - 1) < 1e-12;
 }
 
-// Per-thread working memory of one plane's cost.
-struct Scratch {
-  std::vector<float> across, warped, cost, valid, sum, count, unpacked;
-  std::vector<std::pair<std::size_t, Shift>> shifted;  // views (their index) and their shifts
+// One plane of a group being swept: the views read shifted (their index and shift), the warped
+// views' sums per class over the whole plane (empty when none is warped), and the last rows of
+// each half-array's sums (row y at slot y modulo the ring's rows).
+struct PlaneScratch {
+  std::vector<std::pair<std::size_t, Shift>> shifted;
+  std::vector<float> class_sum, class_count;
+  std::vector<float> ring_sum, ring_count;
 };
+
+// Per-thread working memory of a group of planes.
+struct Scratch {
+  std::vector<PlaneScratch> planes;
+  std::vector<float> band_sum;  // per class of views, over a band of rows
+  std::vector<int> steps;
+  std::vector<float> across, unpacked, warped, valid;
+  std::vector<float> window_sum, best;
+};
+
+// Row y of half-array g's count: how many of its views read shifted see each sample there.
+void CountRow(const std::vector<std::pair<std::size_t, Shift>>& shifted,
+              const std::vector<unsigned>& halves, int g, int y, int w, std::vector<int>& steps,
+              float* count) {
+  steps.assign(std::size_t(w) + 1, 0);
+  for (const auto& [v, shift] : shifted) {
+    if (!(halves[v] >> g & 1) || y < shift.y_lo || y > shift.y_hi || shift.x_lo > shift.x_hi)
+      continue;
+    ++steps[std::size_t(shift.x_lo)];
+    --steps[std::size_t(shift.x_hi) + 1];
+  }
+  int views = 0;
+  for (int x = 0; x < w; ++x) {
+    views += steps[std::size_t(x)];
+    count[x] = float(views);
+  }
+}
+
+// Row y of a plane's cost: each half-array's sums over the window (its edge repeated, as
+// cv::boxFilter's BORDER_REPLICATE), the cheapest half-array whose count exceeds `min_count`;
+// infinity where none does.
+void WindowedBest(const PlaneScratch& ps, int y, int w, int h, int ring, int radius,
+                  float min_count, Scratch& s, float* best) {
+  const std::size_t sw = std::size_t(w);
+  s.window_sum.resize(4 * sw);
+  float* vs = s.window_sum.data();  // the window's column sums
+  float* vc = vs + sw;
+  float* bs = vs + 2 * sw;  // and its sums
+  float* bc = vs + 3 * sw;
+  // Sums along the row over the window, the row's ends repeated.
+  const auto across = [&](const float* v, float* out) {
+    std::fill(out, out + sw, 0.0f);
+    for (int dx = -radius; dx <= radius; ++dx) {
+      const int lo = std::clamp(-dx, 0, w), hi = std::clamp(w - dx, lo, w);
+      for (int x = 0; x < lo; ++x) out[x] += v[0];
+      for (int x = lo; x < hi; ++x) out[x] += v[x + dx];
+      for (int x = hi; x < w; ++x) out[x] += v[w - 1];
+    }
+  };
+  std::fill(best, best + sw, INFINITY);
+  for (int g = 0; g < kHalves; ++g) {
+    std::fill(vs, vs + 2 * sw, 0.0f);
+    for (int dy = -radius; dy <= radius; ++dy) {
+      const int row = std::clamp(y + dy, 0, h - 1);
+      const std::size_t slot = (std::size_t(g) * ring + std::size_t(row % ring)) * sw;
+      const float* rs = ps.ring_sum.data() + slot;
+      const float* rc = ps.ring_count.data() + slot;
+      for (std::size_t x = 0; x < sw; ++x) {
+        vs[x] += rs[x];
+        vc[x] += rc[x];
+      }
+    }
+    across(vs, bs);
+    across(vc, bc);
+    for (std::size_t x = 0; x < sw; ++x)
+      best[x] = bc[x] > min_count ? std::min(best[x], bs[x] / bc[x]) : best[x];
+  }
+}
 
 }  // namespace
 
@@ -249,14 +320,18 @@ SweepViews::SweepViews(const LightField& lf, int row, int col, const CostVolumeO
   };
   reference_ = load(row, col);
   const int reach = std::max(1, options.reach);
+  std::vector<std::pair<int, int>> around;
   for (int r = std::max(0, row - reach); r <= std::min(d.rows - 1, row + reach); ++r)
-    for (int c = std::max(0, col - reach); c <= std::min(d.cols - 1, col + reach); ++c) {
-      if (r == row && c == col) continue;
-      views_.push_back(load(r, c));
-      const double mm = (views_.back().center - reference_.center).norm();
-      farthest_mm_ = std::max(farthest_mm_, mm);
-      nearest_mm_ = nearest_mm_ > 0 ? std::min(nearest_mm_, mm) : mm;
-    }
+    for (int c = std::max(0, col - reach); c <= std::min(d.cols - 1, col + reach); ++c)
+      if (r != row || c != col) around.emplace_back(r, c);
+  views_.resize(around.size());
+  tbb::parallel_for(std::size_t(0), around.size(),
+                    [&](std::size_t i) { views_[i] = load(around[i].first, around[i].second); });
+  for (const View& v : views_) {
+    const double mm = (v.center - reference_.center).norm();
+    farthest_mm_ = std::max(farthest_mm_, mm);
+    nearest_mm_ = nearest_mm_ > 0 ? std::min(nearest_mm_, mm) : mm;
+  }
   for (View& v : views_) {
     const auto found = std::find(class_halves_.begin(), class_halves_.end(), v.halves);
     v.view_class = int(found - class_halves_.begin());
@@ -312,7 +387,6 @@ CostVolume SweepViews::Sweep(const std::vector<double>& q, double gradient_share
   volume.width = w;
   volume.height = h;
   volume.labels = n;
-  volume.cost.assign(plane * std::size_t(n), 0);
   tbb::enumerable_thread_specific<Scratch> scratches;
   if (!(gradient_share >= 0.0 && gradient_share <= 1.0))
     throw Error(fmt::format("the gradient term's share {} is not within 0 .. 1", gradient_share));
@@ -389,111 +463,149 @@ CostVolume SweepViews::Sweep(const std::vector<double>& q, double gradient_share
         "its views are not parallel to the st-plane (each plane warps them by a "
         "homography, not a shift)");
   }
-  // Each plane isolated: OpenCV's filters below run on TBB too, and a thread waiting in one must
-  // not take up another plane meanwhile, which would reuse this thread's scratch under it.
-  tbb::parallel_for(0, n, [&](int i) {
+  // A plane's views: those read shifted listed, the others warped whole and compared, their sums
+  // kept per class of views (the views in the same half-arrays).
+  const auto prepare = [&](double plane_q, PlaneScratch& ps, Scratch& s) {
+    const double depth = 1.0 / plane_q;
+    const float* ref = reference_.channels.data();
+    ps.shifted.clear();
+    ps.class_sum.clear();
+    ps.class_count.clear();
+    const std::size_t classes = class_halves_.size();
+    for (std::size_t v = 0; v < views_.size(); ++v) {
+      const View& view = views_[v];
+      const cv::Matx33d m = Homography(view, depth);
+      if (IsShift(m)) {
+        ps.shifted.emplace_back(
+            v, MakeShift(m(0, 2), m(1, 2), w, h,
+                         options_.same_views_at_every_plane ? &stable[v] : nullptr));
+        continue;
+      }
+      if (ps.class_sum.empty()) {
+        ps.class_sum.assign(plane * classes, 0.0f);
+        ps.class_count.assign(plane * classes, 0.0f);
+      }
+      float* sum = ps.class_sum.data() + std::size_t(view.view_class) * plane;
+      float* count = ps.class_count.data() + std::size_t(view.view_class) * plane;
+      s.unpacked.resize(plane * kChannels);
+      for (int c = 0; c < kChannels; ++c)
+        for (std::size_t p = 0; p < plane; ++p)
+          s.unpacked[c * plane + p] = float(view.packed[c * plane + p]) / kPacked[std::size_t(c)];
+      WarpCubic(s.unpacked, w, h, m, s.warped, s.valid);
+      if (!stable_mask[v].empty())
+        for (std::size_t p = 0; p < plane; ++p) s.valid[p] *= stable_mask[v][p];
+      // The same comparison as a shifted view's, over each run of samples the view sees.
+      const float* war = s.warped.data();
+      const std::size_t sw = std::size_t(w);
+      for (int y = 0; y < h; ++y) {
+        const float* valid = s.valid.data() + std::size_t(y) * sw;
+        for (int x = 0; x < w;) {
+          if (valid[x] == 0.0f) {
+            ++x;
+            continue;
+          }
+          int end = x;
+          while (end < w && valid[end] != 0.0f) ++end;
+          const std::size_t at = std::size_t(y) * sw + std::size_t(x);
+          CompareRow(war + at, war + plane + at, war + 2 * plane + at, war + 3 * plane + at,
+                     war + 4 * plane + at, ref + at, ref + plane + at, ref + 2 * plane + at,
+                     ref + 3 * plane + at, ref + 4 * plane + at, terms, std::size_t(end - x),
+                     sum + at);
+          for (int i = x; i < end; ++i) count[std::size_t(y) * sw + std::size_t(i)] += 1.0f;
+          x = end;
+        }
+      }
+    }
+  };
+  volume.cost.resize(plane * std::size_t(n));  // every cost written below
+  // Planes in groups, a band of rows at a time through every plane of the group and every view:
+  // a view's rows for the band are read from memory once for the group (they stay in cache from
+  // one plane to the next), each plane's sums per class of views stay in cache while the views
+  // add to them, and each half-array's windowed mean is taken from the few rows kept per plane,
+  // so no plane-sized intermediate reaches memory; the group's costs are written together,
+  // label-fastest as the volume keeps them. A sweep with warped views takes a plane at a time
+  // (their sums are kept over the whole plane).
+  bool all_shifts = true;
+  for (int i = 0; i < n && all_shifts; ++i)
+    for (const View& view : views_)
+      if (!IsShift(Homography(view, 1.0 / q[std::size_t(i)]))) {
+        all_shifts = false;
+        break;
+      }
+  const int threads = std::max(1, tbb::this_task_arena::max_concurrency());
+  const int group = all_shifts ? std::clamp(n / (2 * threads), 1, kGroupPlanes) : 1;
+  const int groups = (n + group - 1) / group;
+  const std::size_t sw = std::size_t(w);
+  const int ring = kBandRows + 2 * radius;  // rows kept per plane: a band and its window
+  const std::size_t classes = class_halves_.size();
+  std::vector<unsigned> view_halves;
+  for (const View& view : views_) view_halves.push_back(view.halves);
+  // Each group isolated: OpenCV's filters run on TBB too, and a thread waiting in one must not
+  // take up another group meanwhile, which would reuse this thread's scratch under it.
+  tbb::parallel_for(0, groups, [&](int group_index) {
     tbb::this_task_arena::isolate([&] {
       Scratch& s = scratches.local();
-      // Sums per class of views (the views in the same half-arrays), then per half-array.
-      const std::size_t classes = class_halves_.size();
-      s.sum.assign(plane * std::max<std::size_t>(classes, kHalves), 0.0f);
-      s.count.assign(plane * std::max<std::size_t>(classes, kHalves), 0.0f);
-      s.cost.resize(plane);
-      const double depth = 1.0 / q[std::size_t(i)];
+      const int i0 = group_index * group, planes = std::min(n, i0 + group) - i0;
+      s.planes.resize(std::size_t(planes));
+      for (int j = 0; j < planes; ++j) prepare(q[std::size_t(i0 + j)], s.planes[std::size_t(j)], s);
+      for (PlaneScratch& ps : s.planes) {
+        ps.ring_sum.resize(kHalves * std::size_t(ring) * sw);
+        ps.ring_count.resize(kHalves * std::size_t(ring) * sw);
+      }
+      const std::size_t band_size = std::size_t(kBandRows) * sw;
       const float* ref = reference_.channels.data();
-      // Views whose warp is a shift: row by row through all of them. Others: warped whole.
-      std::vector<std::pair<std::size_t, Shift>>& shifted = s.shifted;
-      shifted.clear();
-      for (std::size_t v = 0; v < views_.size(); ++v) {
-        const View& view = views_[v];
-        const cv::Matx33d m = Homography(view, depth);
-        float* sum = s.sum.data() + std::size_t(view.view_class) * plane;
-        float* count = s.count.data() + std::size_t(view.view_class) * plane;
-        if (IsShift(m)) {
-          shifted.emplace_back(
-              v, MakeShift(m(0, 2), m(1, 2), w, h,
-                           options_.same_views_at_every_plane ? &stable[v] : nullptr));
-          continue;
-        }
-        s.unpacked.resize(plane * kChannels);
-        for (int c = 0; c < kChannels; ++c)
-          for (std::size_t p = 0; p < plane; ++p)
-            s.unpacked[c * plane + p] = float(view.packed[c * plane + p]) / kPacked[std::size_t(c)];
-        WarpCubic(s.unpacked, w, h, m, s.warped, s.valid);
-        if (!stable_mask[v].empty())
-          for (std::size_t p = 0; p < plane; ++p) s.valid[p] *= stable_mask[v][p];
-        // The same comparison as a shifted view's, over each run of samples the view sees.
-        const float* war = s.warped.data();
-        const std::size_t sw = std::size_t(w);
-        for (int y = 0; y < h; ++y) {
-          const float* valid = s.valid.data() + std::size_t(y) * sw;
-          for (int x = 0; x < w;) {
-            if (valid[x] == 0.0f) {
-              ++x;
-              continue;
-            }
-            int end = x;
-            while (end < w && valid[end] != 0.0f) ++end;
-            const std::size_t at = std::size_t(y) * sw + std::size_t(x);
-            CompareRow(war + at, war + plane + at, war + 2 * plane + at, war + 3 * plane + at,
-                       war + 4 * plane + at, ref + at, ref + plane + at, ref + 2 * plane + at,
-                       ref + 3 * plane + at, ref + 4 * plane + at, terms, std::size_t(end - x),
-                       sum + at, count + at);
-            x = end;
+      s.best.resize(std::size_t(planes) * sw);
+      int next_out = 0;  // the first row whose costs are still to be written
+      for (int y0 = 0; y0 < h; y0 += kBandRows) {
+        const int y1 = std::min(h, y0 + kBandRows);
+        for (PlaneScratch& ps : s.planes) {
+          s.band_sum.assign(band_size * classes, 0.0f);
+          for (const auto& [v, shift] : ps.shifted) {
+            const View& view = views_[v];
+            const std::size_t at = std::size_t(view.view_class) * band_size;
+            for (int y = y0; y < y1; ++y)
+              AccumulateShiftedRow(view.packed, ref, w, h, y, shift, terms, s.across,
+                                   s.band_sum.data() + at + std::size_t(y - y0) * sw);
           }
-        }
-      }
-      for (const auto& [v, shift] : shifted)
-        for (int y = 0; y < h; ++y) {
-          const View& view = views_[v];
-          AccumulateShiftedRow(view.packed, ref, w, h, y, shift, terms, s.across,
-                               s.sum.data() + std::size_t(view.view_class) * plane,
-                               s.count.data() + std::size_t(view.view_class) * plane);
-        }
-      // The half-arrays' sums from the classes' (in place of the classes', which are then done
-      // with: a class's planes are read before any half-array's at or after its index is written).
-      {
-        std::vector<float>& half_sum = s.warped;
-        std::vector<float>& half_count = s.across;
-        half_sum.assign(plane * kHalves, 0.0f);
-        half_count.assign(plane * kHalves, 0.0f);
-        for (std::size_t k = 0; k < classes; ++k)
-          for (int g = 0; g < kHalves; ++g) {
-            if (!(class_halves_[k] >> g & 1)) continue;
-            const float* cs = s.sum.data() + k * plane;
-            const float* cc = s.count.data() + k * plane;
-            float* hs = half_sum.data() + std::size_t(g) * plane;
-            float* hc = half_count.data() + std::size_t(g) * plane;
-            for (std::size_t p = 0; p < plane; ++p) {
-              hs[p] += cs[p];
-              hc[p] += cc[p];
+          // Each half-array's sums: its classes' sums added; its counts: the shifted views that
+          // see each sample (their rectangles), and the warped views' counts.
+          for (int y = y0; y < y1; ++y)
+            for (int g = 0; g < kHalves; ++g) {
+              const std::size_t slot = (std::size_t(g) * ring + std::size_t(y % ring)) * sw;
+              float* hs = ps.ring_sum.data() + slot;
+              float* hc = ps.ring_count.data() + slot;
+              std::fill(hs, hs + sw, 0.0f);
+              CountRow(ps.shifted, view_halves, g, y, w, s.steps, hc);
+              for (std::size_t k = 0; k < classes; ++k) {
+                if (!(class_halves_[k] >> g & 1)) continue;
+                const float* cs = s.band_sum.data() + k * band_size + std::size_t(y - y0) * sw;
+                for (std::size_t x = 0; x < sw; ++x) hs[x] += cs[x];
+                if (ps.class_sum.empty()) continue;
+                const float* ws = ps.class_sum.data() + k * plane + std::size_t(y) * sw;
+                const float* wc = ps.class_count.data() + k * plane + std::size_t(y) * sw;
+                for (std::size_t x = 0; x < sw; ++x) {
+                  hs[x] += ws[x];
+                  hc[x] += wc[x];
+                }
+              }
             }
-          }
-        std::swap(s.sum, half_sum);
-        std::swap(s.count, half_count);
-      }
-      // Each half-array's mean over the window; the cheapest half-array that sees the sample
-      // counts.
-      std::vector<float>& best = s.cost;
-      best.assign(plane, INFINITY);
-      for (int g = 0; g < kHalves; ++g) {
-        cv::Mat sum(h, w, CV_32FC1, s.sum.data() + std::size_t(g) * plane);
-        cv::Mat count(h, w, CV_32FC1, s.count.data() + std::size_t(g) * plane);
-        if (radius > 0) {
-          cv::boxFilter(sum, sum, -1, {2 * radius + 1, 2 * radius + 1}, {-1, -1}, false,
-                        cv::BORDER_REPLICATE);
-          cv::boxFilter(count, count, -1, {2 * radius + 1, 2 * radius + 1}, {-1, -1}, false,
-                        cv::BORDER_REPLICATE);
         }
-        const float* sp = sum.ptr<float>();
-        const float* cp = count.ptr<float>();
-        for (std::size_t p = 0; p < plane; ++p)
-          if (cp[p] > min_count) best[p] = std::min(best[p], sp[p] / cp[p]);
+        // The rows whose window lies within the rows summed so far.
+        const int last = y1 == h ? h - 1 : y1 - 1 - radius;
+        for (int y = next_out; y <= last; ++y) {
+          for (int j = 0; j < planes; ++j)
+            WindowedBest(s.planes[std::size_t(j)], y, w, h, ring, radius, min_count, s,
+                         s.best.data() + std::size_t(j) * sw);
+          std::uint16_t* out = volume.cost.data() + std::size_t(y) * sw * std::size_t(n) + i0;
+          for (int x = 0; x < w; ++x, out += n)
+            for (int j = 0; j < planes; ++j) {
+              const float b = s.best[std::size_t(j) * sw + std::size_t(x)];
+              // b >= 0: rounded half up, as std::lround (inline; lround is a library call).
+              out[j] = std::isfinite(b) ? std::uint16_t(b * unit + 0.5f) : most;
+            }
+        }
+        next_out = std::max(next_out, last + 1);
       }
-      std::uint16_t* out = volume.cost.data() + i;
-      for (std::size_t p = 0; p < plane; ++p)
-        out[p * std::size_t(n)] =
-            std::isfinite(best[p]) ? std::uint16_t(std::lround(best[p] * unit)) : most;
     });
   });
   return volume;

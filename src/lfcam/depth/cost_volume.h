@@ -16,8 +16,11 @@
 // half-array's cost is averaged over a small window, and the cheapest half-array counts.
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <opencv2/core.hpp>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "lfcam/core/lightfield.h"
@@ -36,13 +39,34 @@ struct CostVolumeOptions {
   bool same_views_at_every_plane = false;
 };
 
+// An allocator whose value-less construction leaves an element uninitialised, so that a volume
+// of hundreds of megabytes whose every element is written anyway is not zeroed first.
+template <class T>
+struct UninitialisedAllocator : std::allocator<T> {
+  template <class U>
+  struct rebind {
+    using other = UninitialisedAllocator<U>;
+  };
+  UninitialisedAllocator() = default;
+  template <class U>
+  UninitialisedAllocator(const UninitialisedAllocator<U>&) noexcept {}
+  template <class U>
+  void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>) {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+
 // The cost of every plane at every sample, as 16-bit integers (kCostUnit a unit of cost; at
 // most 2 ((1 - a) color_cap + a gradient_cap) * kCostUnit, a the gradient term's share: see
 // SweepViews::Sweep), stored label-fastest: cost(x, y)[i].
 struct CostVolume {
   static constexpr double kCostUnit = 4000.0;
   int width = 0, height = 0, labels = 0;
-  std::vector<std::uint16_t> cost;
+  std::vector<std::uint16_t, UninitialisedAllocator<std::uint16_t>> cost;
   std::uint16_t* at(int x, int y) { return cost.data() + (std::size_t(y) * width + x) * labels; }
   const std::uint16_t* at(int x, int y) const {
     return cost.data() + (std::size_t(y) * width + x) * labels;

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <memory>
 #include <numbers>
+#include <vector>
 
 #include "lfcam/sim/scene.h"
 #include "lfcam/sim/simulate_lightfield.h"
@@ -37,6 +38,14 @@ inline LightField TwoPlaneLightField(const Scene& scene) {
   o.n_t = 220;
   o.supersampling = 1;
   return SimulateLightField(scene, o);
+}
+
+// n planes from in front of the plate (2.8 m) to beyond the wall (6 m), uniformly in 1/D: the
+// inverse depths a sweep of this scene takes.
+inline std::vector<double> SweepPlanes(int n) {
+  std::vector<double> q;
+  for (int i = 0; i < n; ++i) q.push_back(1.0 / 2800 + (1.0 / 6000 - 1.0 / 2800) * i / (n - 1));
+  return q;
 }
 
 }  // namespace lfcam::testing

@@ -45,13 +45,6 @@ GlCostVolume* SharedEngine(std::string* why) {
     GTEST_SKIP() << "no GL 4.3 context could be made: " << why_no_gl;      \
   }
 
-// Planes between the plate (3.2 m) and beyond the wall (5 m), uniformly in 1/D.
-std::vector<double> Planes(int n) {
-  std::vector<double> q;
-  for (int i = 0; i < n; ++i) q.push_back(1.0 / 2800 + (1.0 / 6000 - 1.0 / 2800) * i / (n - 1));
-  return q;
-}
-
 TEST(GlCostVolume, SweepsTheSameVolumeAsTheCpu) {
   LFCAM_ENGINE_OR_SKIP(engine);
   const LightField lf = testing::TwoPlaneLightField(testing::TwoPlaneScene());
@@ -59,7 +52,7 @@ TEST(GlCostVolume, SweepsTheSameVolumeAsTheCpu) {
   options.reach = 2;  // 24 views: every half-array full, some cut by the frame's edge
   options.same_views_at_every_plane = true;
   const SweepViews views(lf, 2, 3, options);  // off centre: the half-arrays differ in size
-  const std::vector<double> q = Planes(24);
+  const std::vector<double> q = testing::SweepPlanes(24);
   const int before = engine->tally().gpu_sweeps;
   const CostVolume cpu = views.Sweep(q, 0.7);
   const CostVolume gpu = views.Sweep(q, 0.7, engine);
@@ -111,7 +104,7 @@ TEST(GlCostVolume, LeavesTurnedViewsToTheCpuAndSaysWhy) {
   CostVolumeOptions options;
   options.reach = 1;
   const SweepViews views(lf, 3, 3, options);
-  const std::vector<double> q = Planes(12);
+  const std::vector<double> q = testing::SweepPlanes(12);
   const GlCostVolume::Tally before = engine->tally();
   const CostVolume cpu = views.Sweep(q);
   const CostVolume fallback = views.Sweep(q, 0.5, engine);

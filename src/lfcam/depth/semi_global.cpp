@@ -91,7 +91,8 @@ CostVolume AggregateSemiGlobal(const CostVolume& volume, const cv::Mat& guide,
   sum.width = w;
   sum.height = h;
   sum.labels = n;
-  sum.cost.assign(volume.cost.size(), 0);
+  sum.cost.resize(volume.cost.size());  // zeroed row by row, in parallel
+  tbb::parallel_for(0, h, [&](int y) { std::fill_n(sum.at(0, y), std::size_t(w) * n, 0); });
   const auto padded = [&](std::vector<Cost>& row, int samples) {
     row.assign(std::size_t(samples) * stride, Cost(kHuge));
   };

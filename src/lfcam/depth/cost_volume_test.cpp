@@ -1,0 +1,130 @@
+// The CPU's plane sweep (SweepViews::Sweep: planes in groups, a band of rows at a time, counts
+// from the views' rectangles) against the cost volume's definition evaluated directly, sample by
+// sample, from the same reads: every view read with Keys' weights at its shift, each term
+// truncated and weighted, averaged over each half-array and its window (the frame's edge
+// repeated), the cheapest half-array that enough views see.
+#include "lfcam/depth/cost_volume.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "lfcam/depth/depth_test_scene.h"
+
+namespace lfcam {
+namespace {
+
+// An engine that evaluates the definition directly: slow, plain, and independent of the CPU
+// sweep's order of work.
+class DefinitionEngine : public CostVolumeEngine {
+ public:
+  CostVolume Sweep(const ShiftedSweep& sweep) override {
+    constexpr int kChannels = ShiftedSweep::kChannels, kHalves = ShiftedSweep::kHalves;
+    const int w = sweep.width, h = sweep.height, n = sweep.labels;
+    const int views = int(sweep.views.size()), r = sweep.window_radius;
+    const std::size_t plane = std::size_t(w) * h;
+    CostVolume volume;
+    volume.width = w;
+    volume.height = h;
+    volume.labels = n;
+    volume.cost.resize(plane * std::size_t(n));
+    std::vector<double> sum(plane * kHalves), count(plane * kHalves);
+    for (int i = 0; i < n; ++i) {
+      std::fill(sum.begin(), sum.end(), 0.0);
+      std::fill(count.begin(), count.end(), 0.0);
+      for (int v = 0; v < views; ++v) {
+        const ShiftedSweep::Read& read = sweep.reads[std::size_t(i) * views + v];
+        for (int y = read.y_lo; y <= read.y_hi; ++y)
+          for (int x = read.x_lo; x <= read.x_hi; ++x) {
+            double value[kChannels] = {};
+            for (int c = 0; c < kChannels; ++c) {
+              for (int j = 0; j < 4; ++j)
+                for (int k = 0; k < 4; ++k) {
+                  const int sy = std::clamp(y + read.y0 - 1 + j, 0, h - 1);
+                  const int sx = std::clamp(x + read.x0 - 1 + k, 0, w - 1);
+                  value[c] += double(read.wy[std::size_t(j)]) * read.wx[std::size_t(k)] *
+                              sweep.views[std::size_t(v)][c * plane + std::size_t(sy) * w + sx];
+                }
+              value[c] /= sweep.packed_unit[std::size_t(c)];
+            }
+            const auto ref = [&](int c) {
+              return double(sweep.reference[c * plane + std::size_t(y) * w + x]);
+            };
+            const double color = (std::abs(value[0] - ref(0)) + std::abs(value[1] - ref(1)) +
+                                  std::abs(value[2] - ref(2))) /
+                                 3.0;
+            const double gradient = std::abs(value[3] - ref(3)) + std::abs(value[4] - ref(4));
+            const double cost =
+                sweep.color_weight * std::min<double>(color, sweep.color_cap) +
+                sweep.gradient_weight * std::min<double>(gradient, sweep.gradient_cap);
+            for (int g = 0; g < kHalves; ++g)
+              if (sweep.halves[std::size_t(v)] >> g & 1) {
+                sum[std::size_t(g) * plane + std::size_t(y) * w + x] += cost;
+                count[std::size_t(g) * plane + std::size_t(y) * w + x] += 1.0;
+              }
+          }
+      }
+      for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+          double best = INFINITY;
+          for (int g = 0; g < kHalves; ++g) {
+            double s = 0, c = 0;
+            for (int dy = -r; dy <= r; ++dy)
+              for (int dx = -r; dx <= r; ++dx) {
+                const std::size_t at = std::size_t(g) * plane +
+                                       std::size_t(std::clamp(y + dy, 0, h - 1)) * w +
+                                       std::size_t(std::clamp(x + dx, 0, w - 1));
+                s += sum[at];
+                c += count[at];
+              }
+            if (c > sweep.min_count) best = std::min(best, s / c);
+          }
+          uncounted_ += !std::isfinite(best);
+          volume.at(x, y)[i] = std::isfinite(best)
+                                   ? std::uint16_t(std::lround(best * CostVolume::kCostUnit))
+                                   : sweep.most;
+        }
+    }
+    return volume;
+  }
+  void RanOnCpu(const std::string& why) override { FAIL() << "not a shifted sweep: " << why; }
+  int uncounted() const { return uncounted_; }
+
+ private:
+  int uncounted_ = 0;
+};
+
+class CostVolumeDefinition : public ::testing::TestWithParam<int> {};
+
+// 220 rows (not a whole number of the sweep's bands), 13 planes (groups of unequal size), the
+// reference off centre (half-arrays of different sizes, some cut by the frame's edge), at window
+// radii 0, 1 and 2.
+TEST_P(CostVolumeDefinition, TheSweepIsTheCostItsDefinitionGives) {
+  const LightField lf = testing::TwoPlaneLightField(testing::TwoPlaneScene());
+  CostVolumeOptions options;
+  options.reach = 2;
+  options.same_views_at_every_plane = true;
+  options.window_radius = GetParam();
+  const SweepViews views(lf, 1, 4, options);
+  ASSERT_NE(views.height() % 8, 0);
+  const std::vector<double> q = testing::SweepPlanes(13);
+  const CostVolume swept = views.Sweep(q, 0.6);
+  DefinitionEngine definition;
+  const CostVolume direct = views.Sweep(q, 0.6, &definition);
+  ASSERT_EQ(swept.cost.size(), direct.cost.size());
+  int off = 0;
+  for (std::size_t i = 0; i < swept.cost.size(); ++i) {
+    const int d = std::abs(int(swept.cost[i]) - int(direct.cost[i]));
+    ASSERT_LE(d, 1) << "sample " << i / q.size() << ", plane " << i % q.size();
+    off += d != 0;
+  }
+  EXPECT_LT(double(off) / double(swept.cost.size()), 0.01);
+  // Samples that no half-array counts, along the frame's edge, were met.
+  EXPECT_GT(definition.uncounted(), 0);
+}
+
+INSTANTIATE_TEST_SUITE_P(WindowRadius, CostVolumeDefinition, ::testing::Values(0, 1, 2));
+
+}  // namespace
+}  // namespace lfcam
