@@ -3,6 +3,7 @@
 // nothing written).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -73,6 +74,12 @@ TEST_F(DepthCli, SweepsOnTheGpuWithBackendGl) {
   EXPECT_EQ(j["gpu"]["gpu_sweeps"], 2) << run.output;  // the range's coarse sweep and the map's
   EXPECT_EQ(j["gpu"]["cpu_sweeps"], 0) << run.output;
   EXPECT_FALSE(j["gpu"]["device"].get<std::string>().empty());
+  // The GPU's time, and what it went to: uploading, the passes, reading back.
+  const double upload = j["gpu"]["gpu_upload_seconds"], passes = j["gpu"]["gpu_pass_seconds"],
+               readback = j["gpu"]["gpu_readback_seconds"], total = j["gpu"]["gpu_seconds"];
+  EXPECT_GT(passes, 0.0) << run.output;
+  EXPECT_GE(std::min(upload, readback), 0.0) << run.output;
+  EXPECT_NEAR(upload + passes + readback, total, 1e-6 + 1e-3 * total) << run.output;
   const cv::Mat cpu = cv::imread(P("cpu.png"), cv::IMREAD_UNCHANGED);
   const cv::Mat gl = cv::imread(P("gl.png"), cv::IMREAD_UNCHANGED);
   ASSERT_FALSE(cpu.empty());

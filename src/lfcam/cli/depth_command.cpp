@@ -73,16 +73,19 @@ std::unique_ptr<GlCostVolume> OpenEngine(const std::string& flag, bool quiet) {
 // What the GPU engine did, for people and --json.
 nlohmann::json EngineReport(const GlCostVolume& engine) {
   const GlCostVolume::Tally t = engine.tally();
-  return {{"device", engine.device().renderer},
-          {"gpu_sweeps", t.gpu_sweeps},
-          {"gpu_seconds", t.gpu_seconds},
-          {"cpu_sweeps", t.cpu_sweeps},
-          {"cpu_reasons", t.cpu_reasons}};
+  return {{"device", engine.device().renderer}, {"gpu_sweeps", t.gpu_sweeps},
+          {"gpu_seconds", t.gpu_seconds},       {"gpu_upload_seconds", t.upload_seconds},
+          {"gpu_pass_seconds", t.pass_seconds}, {"gpu_readback_seconds", t.readback_seconds},
+          {"cpu_sweeps", t.cpu_sweeps},         {"cpu_reasons", t.cpu_reasons}};
 }
 
 void PrintEngineReport(const nlohmann::json& r) {
-  fmt::print("cost volumes: {} swept on {} in {:.2f} s", r["gpu_sweeps"].get<int>(),
-             r["device"].get<std::string>(), r["gpu_seconds"].get<double>());
+  fmt::print(
+      "cost volumes: {} swept on {} in {:.2f} s (uploading {:.2f} s, the passes {:.2f} s, reading "
+      "back {:.2f} s)",
+      r["gpu_sweeps"].get<int>(), r["device"].get<std::string>(), r["gpu_seconds"].get<double>(),
+      r["gpu_upload_seconds"].get<double>(), r["gpu_pass_seconds"].get<double>(),
+      r["gpu_readback_seconds"].get<double>());
   if (r["cpu_sweeps"].get<int>() > 0)
     fmt::print("; {} on the CPU: {}", r["cpu_sweeps"].get<int>(),
                fmt::join(r["cpu_reasons"].get<std::vector<std::string>>(), "; "));

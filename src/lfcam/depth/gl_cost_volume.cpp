@@ -36,16 +36,6 @@ GLuint NewTexture(GLenum target) {
   return texture;
 }
 
-// The textures and buffer of one sweep, deleted with it.
-struct SweepObjects {
-  GLuint textures[6] = {};  // views_rgbx, views_y, reference_rgbx, reference_y, sums, volume
-  GLuint reads = 0;
-  ~SweepObjects() {
-    glDeleteTextures(6, textures);
-    if (reads) glDeleteBuffers(1, &reads);
-  }
-};
-
 }  // namespace
 
 std::unique_ptr<GlCostVolume> GlCostVolume::Create(bool prefer_hardware) {
@@ -93,6 +83,7 @@ void GlCostVolume::GlThread(bool prefer_hardware, std::promise<void>* started) {
     break;  // stopping, no work left
   }
   lock.unlock();
+  DeleteObjects();
   if (costs_program_) glDeleteProgram(costs_program_);
   if (window_program_) glDeleteProgram(window_program_);
   context_.reset();
@@ -130,7 +121,7 @@ GlCostVolume::Tally GlCostVolume::tally() const {
   std::lock_guard lock(mutex_);
   return tally_;
 }
-std::vector<std::uint16_t> GlCostVolume::SweepPlanes(const ShiftedSweep& sweep) {
+GlCostVolume::Planes GlCostVolume::SweepPlanes(const ShiftedSweep& sweep) {
   const int w = sweep.width, h = sweep.height, n = sweep.labels;
   const int views = int(sweep.views.size());
   const auto start = std::chrono::steady_clock::now();
@@ -146,21 +137,17 @@ std::vector<std::uint16_t> GlCostVolume::SweepPlanes(const ShiftedSweep& sweep) 
   if (window_program_ == 0) window_program_ = CompileProgram(kSweepWindowShader, "");
 
   const std::size_t plane = std::size_t(w) * h;
-  SweepObjects objects;
-  GLuint* t = objects.textures;
+  MakeRoom(w, h, views, n);
+  const GLuint* t = textures_;
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   // The views: channels 0 .. 3 interleaved, channel 4 alone.
-  t[0] = NewTexture(GL_TEXTURE_2D_ARRAY);
-  glTexStorage3D(GL_TEXTURE_2D_ARRAY, 1, GL_RGBA16I, w, h, views);
-  t[1] = NewTexture(GL_TEXTURE_2D_ARRAY);
-  glTexStorage3D(GL_TEXTURE_2D_ARRAY, 1, GL_R16I, w, h, views);
-  CheckGl(fmt::format("making room on the GPU for {} views of {}x{}", views, w, h));
   std::vector<std::int16_t> rgbx(plane * 4);
   for (int v = 0; v < views; ++v) {
     const std::int16_t* packed = sweep.views[std::size_t(v)];
-    for (std::size_t p = 0; p < plane; ++p)
+    tbb::parallel_for(std::size_t(0), plane, [&](std::size_t p) {
       for (int c = 0; c < 4; ++c) rgbx[4 * p + std::size_t(c)] = packed[std::size_t(c) * plane + p];
+    });
     glBindTexture(GL_TEXTURE_2D_ARRAY, t[0]);
     glTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, v, w, h, 1, GL_RGBA_INTEGER, GL_SHORT,
                     rgbx.data());
@@ -173,18 +160,12 @@ std::vector<std::uint16_t> GlCostVolume::SweepPlanes(const ShiftedSweep& sweep) 
     for (std::size_t p = 0; p < plane; ++p)
       for (int c = 0; c < 4; ++c)
         reference[4 * p + std::size_t(c)] = sweep.reference[std::size_t(c) * plane + p];
-    t[2] = NewTexture(GL_TEXTURE_2D);
-    glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA32F, w, h);
+    glBindTexture(GL_TEXTURE_2D, t[2]);
     glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, w, h, GL_RGBA, GL_FLOAT, reference.data());
-    t[3] = NewTexture(GL_TEXTURE_2D);
-    glTexStorage2D(GL_TEXTURE_2D, 1, GL_R32F, w, h);
+    glBindTexture(GL_TEXTURE_2D, t[3]);
     glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, w, h, GL_RED, GL_FLOAT, sweep.reference + 4 * plane);
   }
-  t[4] = NewTexture(GL_TEXTURE_2D_ARRAY);
-  glTexStorage3D(GL_TEXTURE_2D_ARRAY, 1, GL_RGBA32F, w, h, 4);
-  t[5] = NewTexture(GL_TEXTURE_2D_ARRAY);
-  glTexStorage3D(GL_TEXTURE_2D_ARRAY, 1, GL_R16UI, w, h, n);
-  CheckGl(fmt::format("uploading the views and making room for {} planes of {}x{} costs", n, w, h));
+  CheckGl(fmt::format("uploading {} views of {}x{}", views, w, h));
   {
     std::vector<ShaderRead> reads(sweep.reads.size());
     for (std::size_t i = 0; i < reads.size(); ++i) {
@@ -197,13 +178,14 @@ std::vector<std::uint16_t> GlCostVolume::SweepPlanes(const ShiftedSweep& sweep) 
       std::copy(r.wx.begin(), r.wx.end(), s.wx);
       std::copy(r.wy.begin(), r.wy.end(), s.wy);
     }
-    glGenBuffers(1, &objects.reads);
-    glBindBuffer(GL_SHADER_STORAGE_BUFFER, objects.reads);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, reads_);
     glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(reads.size() * sizeof(ShaderRead)),
                  reads.data(), GL_STATIC_DRAW);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, objects.reads);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, reads_);
   }
   CheckGl("uploading the views' shifts");
+  glFinish();
+  const auto uploaded = std::chrono::steady_clock::now();
 
   const GLuint groups_x = GLuint((w + kGroupX - 1) / kGroupX);
   const GLuint groups_y = GLuint((h + kGroupY - 1) / kGroupY);
@@ -242,19 +224,65 @@ std::vector<std::uint16_t> GlCostVolume::SweepPlanes(const ShiftedSweep& sweep) 
     glMemoryBarrier(GL_ALL_BARRIER_BITS);
   }
   CheckGl(fmt::format("sweeping {} planes", n));
+  glFinish();
+  const auto swept = std::chrono::steady_clock::now();
 
   // Read back plane by plane as the shaders wrote them; the volume is label-fastest.
-  std::vector<std::uint16_t> planes(plane * std::size_t(n));
+  Planes planes(plane * std::size_t(n));
   glBindTexture(GL_TEXTURE_2D_ARRAY, t[5]);
   glGetTexImage(GL_TEXTURE_2D_ARRAY, 0, GL_RED_INTEGER, GL_UNSIGNED_SHORT, planes.data());
   CheckGl("reading the cost volume back");
   {
+    const auto end = std::chrono::steady_clock::now();
+    const auto seconds = [](auto a, auto b) {
+      return std::chrono::duration<double>(b - a).count();
+    };
     std::lock_guard lock(mutex_);
     ++tally_.gpu_sweeps;
-    tally_.gpu_seconds +=
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    tally_.gpu_seconds += seconds(start, end);
+    tally_.upload_seconds += seconds(start, uploaded);
+    tally_.pass_seconds += seconds(uploaded, swept);
+    tally_.readback_seconds += seconds(swept, end);
   }
   return planes;
+}
+
+void GlCostVolume::MakeRoom(int w, int h, int views, int n) {
+  if (w == made_width_ && h == made_height_ && n == made_labels_ && views <= made_views_) return;
+  DeleteObjects();
+  GLuint* t = textures_;
+  t[0] = NewTexture(GL_TEXTURE_2D_ARRAY);
+  glTexStorage3D(GL_TEXTURE_2D_ARRAY, 1, GL_RGBA16I, w, h, views);
+  t[1] = NewTexture(GL_TEXTURE_2D_ARRAY);
+  glTexStorage3D(GL_TEXTURE_2D_ARRAY, 1, GL_R16I, w, h, views);
+  t[2] = NewTexture(GL_TEXTURE_2D);
+  glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA32F, w, h);
+  t[3] = NewTexture(GL_TEXTURE_2D);
+  glTexStorage2D(GL_TEXTURE_2D, 1, GL_R32F, w, h);
+  t[4] = NewTexture(GL_TEXTURE_2D_ARRAY);
+  glTexStorage3D(GL_TEXTURE_2D_ARRAY, 1, GL_RGBA32F, w, h, 4);
+  t[5] = NewTexture(GL_TEXTURE_2D_ARRAY);
+  glTexStorage3D(GL_TEXTURE_2D_ARRAY, 1, GL_R16UI, w, h, n);
+  glGenBuffers(1, &reads_);
+  try {
+    CheckGl(
+        fmt::format("making room on the GPU for {} views and {} planes of {}x{}", views, n, w, h));
+  } catch (...) {
+    DeleteObjects();  // so that the next sweep makes room afresh
+    throw;
+  }
+  made_width_ = w;
+  made_height_ = h;
+  made_views_ = views;
+  made_labels_ = n;
+}
+
+void GlCostVolume::DeleteObjects() {
+  glDeleteTextures(6, textures_);
+  std::fill(std::begin(textures_), std::end(textures_), 0u);
+  if (reads_) glDeleteBuffers(1, &reads_);
+  reads_ = 0;
+  made_width_ = made_height_ = made_views_ = made_labels_ = 0;
 }
 
 CostVolume GlCostVolume::Sweep(const ShiftedSweep& sweep) {
@@ -265,7 +293,7 @@ CostVolume GlCostVolume::Sweep(const ShiftedSweep& sweep) {
       sweep.halves.size() != std::size_t(views))
     throw Error("the GPU sweep was given an inconsistent sweep");
   // On the GL thread until the volume is read back; then laid out here, in parallel.
-  std::vector<std::uint16_t> planes;
+  Planes planes;
   const std::function<void()> work = [&] { planes = SweepPlanes(sweep); };
   OnGlThread(work);
   const std::size_t plane = std::size_t(w) * h;
