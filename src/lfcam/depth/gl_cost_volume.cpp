@@ -3,6 +3,7 @@
 #include <epoxy/gl.h>
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <chrono>
@@ -121,14 +122,14 @@ GlCostVolume::Tally GlCostVolume::tally() const {
   std::lock_guard lock(mutex_);
   return tally_;
 }
-GlCostVolume::Planes GlCostVolume::SweepPlanes(const ShiftedSweep& sweep) {
+CostVolume GlCostVolume::SweepOnGlThread(const ShiftedSweep& sweep) {
   const int w = sweep.width, h = sweep.height, n = sweep.labels;
   const int views = int(sweep.views.size());
   const auto start = std::chrono::steady_clock::now();
   GLint max_size = 0, max_layers = 0;
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
   glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &max_layers);
-  if (w > max_size || h > max_size || views > max_layers || n > max_layers)
+  if (w > max_size || h > max_size || n > max_size || views > max_layers || h > max_layers)
     throw Error(fmt::format(
         "the GPU ({}) takes textures of at most {} samples a side and {} layers; this sweep "
         "needs {}x{} samples, {} views and {} planes",
@@ -145,8 +146,11 @@ GlCostVolume::Planes GlCostVolume::SweepPlanes(const ShiftedSweep& sweep) {
   std::vector<std::int16_t> rgbx(plane * 4);
   for (int v = 0; v < views; ++v) {
     const std::int16_t* packed = sweep.views[std::size_t(v)];
-    tbb::parallel_for(std::size_t(0), plane, [&](std::size_t p) {
-      for (int c = 0; c < 4; ++c) rgbx[4 * p + std::size_t(c)] = packed[std::size_t(c) * plane + p];
+    tbb::this_task_arena::isolate([&] {
+      tbb::parallel_for(std::size_t(0), plane, [&](std::size_t p) {
+        for (int c = 0; c < 4; ++c)
+          rgbx[4 * p + std::size_t(c)] = packed[std::size_t(c) * plane + p];
+      });
     });
     glBindTexture(GL_TEXTURE_2D_ARRAY, t[0]);
     glTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, v, w, h, 1, GL_RGBA_INTEGER, GL_SHORT,
@@ -227,10 +231,20 @@ GlCostVolume::Planes GlCostVolume::SweepPlanes(const ShiftedSweep& sweep) {
   glFinish();
   const auto swept = std::chrono::steady_clock::now();
 
-  // Read back plane by plane as the shaders wrote them; the volume is label-fastest.
-  Planes planes(plane * std::size_t(n));
+  // Read back through a pixel buffer: the GPU copies the volume into it at its own speed (read
+  // into the program's memory directly, glGetTexImage converts on the CPU at about a gigabyte a
+  // second), already laid out label-fastest, then into the volume.
+  CostVolume volume;
+  volume.width = w;
+  volume.height = h;
+  volume.labels = n;
+  volume.cost.resize(plane * std::size_t(n));
+  glBindBuffer(GL_PIXEL_PACK_BUFFER, pack_);
   glBindTexture(GL_TEXTURE_2D_ARRAY, t[5]);
-  glGetTexImage(GL_TEXTURE_2D_ARRAY, 0, GL_RED_INTEGER, GL_UNSIGNED_SHORT, planes.data());
+  glGetTexImage(GL_TEXTURE_2D_ARRAY, 0, GL_RED_INTEGER, GL_UNSIGNED_SHORT, nullptr);
+  glGetBufferSubData(GL_PIXEL_PACK_BUFFER, 0,
+                     GLsizeiptr(volume.cost.size() * sizeof(std::uint16_t)), volume.cost.data());
+  glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
   CheckGl("reading the cost volume back");
   {
     const auto end = std::chrono::steady_clock::now();
@@ -244,7 +258,7 @@ GlCostVolume::Planes GlCostVolume::SweepPlanes(const ShiftedSweep& sweep) {
     tally_.pass_seconds += seconds(uploaded, swept);
     tally_.readback_seconds += seconds(swept, end);
   }
-  return planes;
+  return volume;
 }
 
 void GlCostVolume::MakeRoom(int w, int h, int views, int n) {
@@ -262,8 +276,14 @@ void GlCostVolume::MakeRoom(int w, int h, int views, int n) {
   t[4] = NewTexture(GL_TEXTURE_2D_ARRAY);
   glTexStorage3D(GL_TEXTURE_2D_ARRAY, 1, GL_RGBA32F, w, h, 4);
   t[5] = NewTexture(GL_TEXTURE_2D_ARRAY);
-  glTexStorage3D(GL_TEXTURE_2D_ARRAY, 1, GL_R16UI, w, h, n);
+  glTexStorage3D(GL_TEXTURE_2D_ARRAY, 1, GL_R16UI, n, w, h);  // label-fastest: (plane, x), y
   glGenBuffers(1, &reads_);
+  glGenBuffers(1, &pack_);
+  glBindBuffer(GL_PIXEL_PACK_BUFFER, pack_);
+  glBufferData(GL_PIXEL_PACK_BUFFER,
+               GLsizeiptr(std::size_t(w) * std::size_t(h) * std::size_t(n) * sizeof(std::uint16_t)),
+               nullptr, GL_STREAM_READ);
+  glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
   try {
     CheckGl(
         fmt::format("making room on the GPU for {} views and {} planes of {}x{}", views, n, w, h));
@@ -281,7 +301,8 @@ void GlCostVolume::DeleteObjects() {
   glDeleteTextures(6, textures_);
   std::fill(std::begin(textures_), std::end(textures_), 0u);
   if (reads_) glDeleteBuffers(1, &reads_);
-  reads_ = 0;
+  if (pack_) glDeleteBuffers(1, &pack_);
+  reads_ = pack_ = 0;
   made_width_ = made_height_ = made_views_ = made_labels_ = 0;
 }
 
@@ -292,23 +313,9 @@ CostVolume GlCostVolume::Sweep(const ShiftedSweep& sweep) {
       sweep.reads.size() != std::size_t(n) * std::size_t(views) ||
       sweep.halves.size() != std::size_t(views))
     throw Error("the GPU sweep was given an inconsistent sweep");
-  // On the GL thread until the volume is read back; then laid out here, in parallel.
-  Planes planes;
-  const std::function<void()> work = [&] { planes = SweepPlanes(sweep); };
-  OnGlThread(work);
-  const std::size_t plane = std::size_t(w) * h;
   CostVolume volume;
-  volume.width = w;
-  volume.height = h;
-  volume.labels = n;
-  volume.cost.resize(planes.size());
-  tbb::parallel_for(0, h, [&](int y) {
-    for (int x = 0; x < w; ++x) {
-      std::uint16_t* out = volume.at(x, y);
-      const std::size_t p = std::size_t(y) * w + std::size_t(x);
-      for (int i = 0; i < n; ++i) out[i] = planes[std::size_t(i) * plane + p];
-    }
-  });
+  const std::function<void()> work = [&] { volume = SweepOnGlThread(sweep); };
+  OnGlThread(work);
   return volume;
 }
 

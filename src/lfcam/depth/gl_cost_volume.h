@@ -55,9 +55,8 @@ class GlCostVolume final : public CostVolumeEngine {
   // Runs `work` on the GL thread and waits for it; rethrows what it threw.
   void OnGlThread(const std::function<void()>& work);
   void GlThread(bool prefer_hardware, std::promise<void>* started);
-  using Planes = std::vector<std::uint16_t, UninitialisedAllocator<std::uint16_t>>;
-  // The sweep's planes as the shaders write them (plane-major), on the GL thread.
-  Planes SweepPlanes(const ShiftedSweep& sweep);
+  // The sweep, on the GL thread.
+  CostVolume SweepOnGlThread(const ShiftedSweep& sweep);
   // Makes room for a sweep of this size, keeping what the last sweep made where it fits (the
   // sweeps of one light field's views are all of one size).
   void MakeRoom(int width, int height, int views, int labels);
@@ -73,9 +72,9 @@ class GlCostVolume final : public CostVolumeEngine {
   std::exception_ptr failure_;
   bool stop_ = false;
   unsigned costs_program_ = 0, window_program_ = 0;
-  // views_rgbx, views_y, reference_rgbx, reference_y, sums, volume; the reads' buffer; the size
-  // they were made for.
-  unsigned textures_[6] = {}, reads_ = 0;
+  // views_rgbx, views_y, reference_rgbx, reference_y, sums, volume; the reads' buffer and the
+  // volume's read-back buffer; the size they were made for.
+  unsigned textures_[6] = {}, reads_ = 0, pack_ = 0;
   int made_width_ = 0, made_height_ = 0, made_views_ = 0, made_labels_ = 0;
   Tally tally_;
 };

@@ -1,10 +1,11 @@
 // One plane of the plane sweep's cost volume from its half-arrays' sums (sweep_costs.comp):
 // each half-array's sum and count over a box window (the edge repeated), its mean where enough
 // of its views see the sample, and the cheapest half-array's, as 16-bit cost units, into the
-// volume's layer for the plane (SweepViews::Sweep in depth/cost_volume.cpp does the same).
+// volume at the plane's label (SweepViews::Sweep in depth/cost_volume.cpp does the same).
 layout(local_size_x = 16, local_size_y = 8) in;
 
 layout(binding = 0) uniform sampler2DArray sums;  // as sweep_costs.comp writes them
+// Laid out label-fastest, as CostVolume keeps it: texel (plane, x), layer y.
 layout(r16ui, binding = 1) writeonly uniform uimage2DArray volume;
 
 uniform int plane;
@@ -41,5 +42,5 @@ void main() {
     }
   }
   const uint value = found ? uint(floor(best * unit + 0.5)) : most;
-  imageStore(volume, ivec3(p, plane), uvec4(value, 0u, 0u, 0u));
+  imageStore(volume, ivec3(plane, p.x, p.y), uvec4(value, 0u, 0u, 0u));
 }
