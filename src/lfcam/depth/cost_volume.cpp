@@ -458,10 +458,11 @@ CostVolume SweepViews::Sweep(const std::vector<double>& q, double gradient_share
         sweep.reads.push_back({shift.x0, shift.y0, shift.wx, shift.wy, shift.x_lo, shift.x_hi,
                                shift.y_lo, shift.y_hi});
       }
-    if (shifts) return engine->Sweep(sweep);
-    engine->RanOnCpu(
-        "its views are not parallel to the st-plane (each plane warps them by a "
-        "homography, not a shift)");
+    const std::string refused = shifts ? engine->Refuses(sweep) : std::string();
+    if (shifts && refused.empty()) return engine->Sweep(sweep);
+    engine->RanOnCpu(shifts ? refused
+                            : "its views are not parallel to the st-plane (each plane warps them "
+                              "by a homography, not a shift)");
   }
   // A plane's views: those read shifted listed, the others warped whole and compared, their sums
   // kept per class of views (the views in the same half-arrays).

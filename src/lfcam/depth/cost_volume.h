@@ -104,6 +104,9 @@ class CostVolumeEngine {
  public:
   virtual ~CostVolumeEngine() = default;
   virtual CostVolume Sweep(const ShiftedSweep& sweep) = 0;
+  // Why this engine cannot take the sweep (too large for it), or empty when it can; a sweep it
+  // refuses runs on the CPU, and RanOnCpu is told why.
+  virtual std::string Refuses(const ShiftedSweep& /*sweep*/) const { return {}; }
   // Called when a sweep was not a ShiftedSweep and ran on the CPU instead.
   virtual void RanOnCpu(const std::string& why) = 0;
 };

@@ -9,6 +9,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+#include <vector>
 
 #include "lfcam/depth/depth_test_scene.h"
 
@@ -125,6 +127,33 @@ TEST_P(CostVolumeDefinition, TheSweepIsTheCostItsDefinitionGives) {
 }
 
 INSTANTIATE_TEST_SUITE_P(WindowRadius, CostVolumeDefinition, ::testing::Values(0, 1, 2));
+
+// An engine that takes no sweep (as a GPU refuses one beyond its texture limits).
+class RefusingEngine : public CostVolumeEngine {
+ public:
+  CostVolume Sweep(const ShiftedSweep&) override {
+    ADD_FAILURE() << "a refused sweep was handed over";
+    return {};
+  }
+  std::string Refuses(const ShiftedSweep& sweep) const override {
+    return "too large for it: " + std::to_string(sweep.height) + " rows";
+  }
+  void RanOnCpu(const std::string& why) override { reasons.push_back(why); }
+  std::vector<std::string> reasons;
+};
+
+TEST(CostVolumeEngineChoice, ASweepTheEngineRefusesRunsOnTheCpuAndItIsToldWhy) {
+  const LightField lf = testing::TwoPlaneLightField(testing::TwoPlaneScene());
+  CostVolumeOptions options;
+  options.reach = 1;
+  const SweepViews views(lf, 3, 3, options);
+  const std::vector<double> q = testing::SweepPlanes(6);
+  RefusingEngine engine;
+  const CostVolume refused = views.Sweep(q, 0.5, &engine);
+  EXPECT_EQ(refused.cost, views.Sweep(q, 0.5).cost);
+  ASSERT_EQ(engine.reasons.size(), 1u);
+  EXPECT_EQ(engine.reasons[0], "too large for it: " + std::to_string(views.height()) + " rows");
+}
 
 }  // namespace
 }  // namespace lfcam

@@ -58,6 +58,11 @@ void GlCostVolume::GlThread(bool prefer_hardware, std::promise<void>* started) {
   try {
     context_ = GlContext::Create(prefer_hardware);
     device_ = context_->device();
+    GLint size = 0, layers = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &size);
+    glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &layers);
+    max_texture_size_ = size;
+    max_layers_ = layers;
   } catch (...) {
     started->set_exception(std::current_exception());
     return;
@@ -126,14 +131,7 @@ CostVolume GlCostVolume::SweepOnGlThread(const ShiftedSweep& sweep) {
   const int w = sweep.width, h = sweep.height, n = sweep.labels;
   const int views = int(sweep.views.size());
   const auto start = std::chrono::steady_clock::now();
-  GLint max_size = 0, max_layers = 0;
-  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
-  glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &max_layers);
-  if (w > max_size || h > max_size || n > max_size || views > max_layers || h > max_layers)
-    throw Error(fmt::format(
-        "the GPU ({}) takes textures of at most {} samples a side and {} layers; this sweep "
-        "needs {}x{} samples, {} views and {} planes",
-        device_.renderer, max_size, max_layers, w, h, views, n));
+  if (const std::string why = Refuses(sweep); !why.empty()) throw Error(why);
   if (costs_program_ == 0) costs_program_ = CompileProgram(kSweepCostsShader, "");
   if (window_program_ == 0) window_program_ = CompileProgram(kSweepWindowShader, "");
 
@@ -304,6 +302,19 @@ void GlCostVolume::DeleteObjects() {
   if (pack_) glDeleteBuffers(1, &pack_);
   reads_ = pack_ = 0;
   made_width_ = made_height_ = made_views_ = made_labels_ = 0;
+}
+
+std::string GlCostVolume::Refuses(const ShiftedSweep& sweep) const {
+  const int w = sweep.width, h = sweep.height, n = sweep.labels;
+  const int views = int(sweep.views.size());
+  // The views: w x h, a layer each; the volume: (plane, x) texels, a layer per row.
+  if (w > max_texture_size_ || h > max_texture_size_ || n > max_texture_size_ ||
+      views > max_layers_ || h > max_layers_)
+    return fmt::format(
+        "the GPU ({}) takes textures of at most {} texels a side and {} layers; this sweep "
+        "needs {}x{} samples, {} views and {} planes ({} rows as layers)",
+        device_.renderer, max_texture_size_, max_layers_, w, h, views, n, h);
+  return {};
 }
 
 CostVolume GlCostVolume::Sweep(const ShiftedSweep& sweep) {

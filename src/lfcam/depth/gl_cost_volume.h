@@ -34,6 +34,7 @@ class GlCostVolume final : public CostVolumeEngine {
 
   // Throws lfcam::Error when GL fails (out of GPU memory: it says so).
   CostVolume Sweep(const ShiftedSweep& sweep) override;
+  std::string Refuses(const ShiftedSweep& sweep) const override;
   void RanOnCpu(const std::string& why) override;
 
   const GlDeviceInfo& device() const { return device_; }
@@ -72,6 +73,7 @@ class GlCostVolume final : public CostVolumeEngine {
   std::exception_ptr failure_;
   bool stop_ = false;
   unsigned costs_program_ = 0, window_program_ = 0;
+  int max_texture_size_ = 0, max_layers_ = 0;  // the GPU's limits, read when the context is made
   // views_rgbx, views_y, reference_rgbx, reference_y, sums, volume; the reads' buffer and the
   // volume's read-back buffer; the size they were made for.
   unsigned textures_[6] = {}, reads_ = 0, pack_ = 0;

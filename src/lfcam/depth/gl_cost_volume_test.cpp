@@ -98,6 +98,21 @@ TEST(GlCostVolume, EstimatesTheSameDepthMaps) {
   EXPECT_NEAR(centre, 3200.0f, 60.0f);
 }
 
+TEST(GlCostVolume, RefusesASweepBeyondItsTextureLimitsNamingThem) {
+  LFCAM_ENGINE_OR_SKIP(engine);
+  ShiftedSweep small;
+  small.width = 64;
+  small.height = 48;
+  small.labels = 16;
+  small.views.assign(8, nullptr);
+  EXPECT_EQ(engine->Refuses(small), "");
+  ShiftedSweep tall = small;
+  tall.height = 1 << 20;  // more rows than any GPU's layers or texture side
+  const std::string why = engine->Refuses(tall);
+  EXPECT_NE(why.find("layers"), std::string::npos) << why;
+  EXPECT_NE(why.find(engine->device().renderer), std::string::npos) << why;
+}
+
 TEST(GlCostVolume, LeavesTurnedViewsToTheCpuAndSaysWhy) {
   LFCAM_ENGINE_OR_SKIP(engine);
   const LightField lf = testing::TwoPlaneLightField(testing::TwoPlaneScene(10.0));
