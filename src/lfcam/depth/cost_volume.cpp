@@ -236,9 +236,9 @@ void WindowedBest(const PlaneScratch& ps, int y, int w, int h, int ring, int rad
                   float min_count, Scratch& s, float* best) {
   const std::size_t sw = std::size_t(w);
   s.window_sum.resize(4 * sw);
-  float* vs = s.window_sum.data();  // the window's column sums
+  float* vs = s.window_sum.data();  // sums and counts down the window's rows, per column
   float* vc = vs + sw;
-  float* bs = vs + 2 * sw;  // and its sums
+  float* bs = vs + 2 * sw;  // those summed across the window: the whole window's
   float* bc = vs + 3 * sw;
   // Sums along the row over the window, the row's ends repeated.
   const auto across = [&](const float* v, float* out) {
