@@ -1,6 +1,7 @@
 // The depth estimate on a scene of the HCI 4D Light Field Benchmark (../shared/data/hci-antinous,
-// when present), scored as the benchmark scores it: BadPix(0.07) and MSE x 100 over the centre
-// view less a 15-pixel border (docs/depth.md, "On the field's benchmark").
+// when present), and on a simulated scene of the benchmark's kind whose truth is registered to
+// its views, scored as the benchmark scores it: BadPix(0.07) and MSE x 100 over the centre view
+// less a 15-pixel border (docs/depth.md, "On the field's benchmark" and "A seventh round").
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
@@ -14,6 +15,9 @@
 #include "lfcam/depth/plane_sweep.h"
 #include "lfcam/io/grid_import.h"
 #include "lfcam/io/rectified_import.h"
+#include "lfcam/sim/depth_truth.h"
+#include "lfcam/sim/scene.h"
+#include "lfcam/sim/simulate_lightfield.h"
 
 namespace lfcam::benchmark_depth_test {
 namespace {
@@ -53,6 +57,54 @@ TEST(DepthOnTheBenchmark, AntinousScoresWhatDocsDepthSays) {
   // planes 6.32%).
   EXPECT_LE(badpix, 3.25);
   EXPECT_LE(mse100, 5.2);
+}
+
+// The `paper` scene through a 9 x 9 rig of the benchmark's kind (cameras 5 mm apart: disparities
+// -1.55 to +0.69 px between neighbours; views of 416 x 384 samples, each the mean of 3 x 3 rays,
+// so that silhouettes have mixed pixels), the truth the simulator's, registered to the views by
+// construction. Here the benchmark's targets hold, silhouettes included (docs/depth.md, "A
+// seventh round"): what antinous' silhouettes lose is their truth's registration.
+TEST(DepthOnABenchmarkLikeScene, MeetsTheTargetsWhereTheTruthIsRegistered) {
+  Scene scene = MakePaperScene();
+  scene.rig.array.pitch_mm = 5.0;
+  SimulateLightFieldOptions o;
+  o.rows = o.cols = 9;
+  o.n_s = 416;
+  o.n_t = 384;
+  o.supersampling = 3;
+  const LightField lf = SimulateLightField(scene, o);
+  const DepthTruth truth = GroundTruthDepth(scene, lf, 4, 4);
+  const cv::Mat t = DisparityOf(lf, truth.map), d = DisparityOf(lf, EstimateDepth(lf, 4, 4, {}));
+  const int border = 15, edge_reach = 3;
+  // [0]: away from depth edges; [1]: within 3 samples of another object (the silhouettes).
+  double squared[2] = {0, 0}, moved_row = 0;
+  int n[2] = {0, 0}, bad = 0;
+  for (int l = border; l < t.rows - border; ++l)
+    for (int k = border; k < t.cols - border; ++k) {
+      const int object = truth.object.at<int>(l, k);
+      bool edge = false;
+      for (int a = -edge_reach; a <= edge_reach && !edge; ++a)
+        for (int b = -edge_reach; b <= edge_reach && !edge; ++b)
+          edge = truth.object.at<int>(l + a, k + b) != object;
+      const double e = d.at<float>(l, k) - t.at<float>(l, k);
+      squared[edge] += std::isfinite(e) ? e * e : 100.0;
+      ++n[edge];
+      bad += !(std::abs(e) <= 0.07);
+      const double m = t.at<float>(l + 1, k) - t.at<float>(l, k);
+      moved_row += m * m;
+    }
+  const int total = n[0] + n[1];
+  const double badpix = 100.0 * bad / total, mse100 = 100.0 * (squared[0] + squared[1]) / total,
+               edges100 = 100.0 * squared[1] / total, moved100 = 100.0 * moved_row / total;
+  std::cout << fmt::format(
+      "[depth benchmark] paper scene, 9 x 9 rig 5 mm apart: BadPix0.07 {:.2f}%, MSEx100 {:.3f} "
+      "(silhouettes {:.3f}; the truth moved one row scores {:.3f})\n",
+      badpix, mse100, edges100, moved100);
+  // Measured 4.68%, 0.61 and 0.52 against 1.66 (before the range took in faint surfaces: 34.7%,
+  // the back wall all at the range's far end).
+  EXPECT_LE(badpix, 5.0);
+  EXPECT_LE(mse100, 1.5);
+  EXPECT_LE(edges100, 0.5 * moved100);
 }
 
 }  // namespace

@@ -25,8 +25,11 @@ namespace {
 constexpr int kMinLabels = 48, kMaxLabels = 256;
 constexpr double kVolumeBytes = 1.2e9;  // the cost volume and its aggregate together, at most
 constexpr double kCoarseFactor = 4.0;
-constexpr float kConfident = 0.25f;     // confidence above which a sample counts for the range
-constexpr double kOutlierPixels = 0.4;  // the clean-up's threshold: nearest view's shift, samples
+constexpr float kConfident = 0.25f;      // confidence above which a sample counts for the range
+constexpr double kPopulousShare = 0.02;  // the share of the view's samples that makes a label
+                                         // count for the range, unconfident but unique
+constexpr int kBroadApart = 4;           // planes apart for that uniqueness
+constexpr double kOutlierPixels = 0.4;   // the clean-up's threshold: nearest view's shift, samples
 constexpr double kPlaneGapPixels =
     0.3;                              // the plane fit's neighbours: nearest view's shift, samples
 constexpr int kWidePlaneRadius = 10;  // the second plane fit's radius, samples
@@ -72,6 +75,7 @@ std::vector<double> Planes(double q_near, double q_far, double step, int samples
 struct Choice {
   cv::Mat label;       // CV_32FC1, continuous plane index
   cv::Mat confidence;  // CV_32FC1
+  cv::Mat unique;      // CV_32FC1: the uniqueness term of the confidence alone
 };
 
 // Per sample: the plane `decide` is cheapest on, refined by a parabola through its neighbours;
@@ -82,7 +86,7 @@ struct Choice {
 // confident, however well it matches.
 Choice Choose(const CostVolume& decide, const CostVolume& match, double truncation, int apart) {
   const int w = decide.width, h = decide.height, n = decide.labels;
-  Choice out{cv::Mat(h, w, CV_32FC1), cv::Mat(h, w, CV_32FC1)};
+  Choice out{cv::Mat(h, w, CV_32FC1), cv::Mat(h, w, CV_32FC1), cv::Mat(h, w, CV_32FC1)};
   const float floor = float(0.2 * truncation * CostVolume::kCostUnit);
   tbb::parallel_for(0, h, [&](int y) {
     for (int x = 0; x < w; ++x) {
@@ -107,7 +111,9 @@ Choice Choose(const CostVolume& decide, const CostVolume& match, double truncati
           second == std::numeric_limits<int>::max()
               ? 1.0f
               : std::clamp((float(second) - best) / ((mean - best) + 1.0f), 0.0f, 1.0f);
-      out.confidence.at<float>(y, x) = i <= 0 || i >= n - 1 ? 0.0f : std::min(peak, unique);
+      const bool inside = i > 0 && i < n - 1;
+      out.confidence.at<float>(y, x) = inside ? std::min(peak, unique) : 0.0f;
+      out.unique.at<float>(y, x) = inside ? unique : 0.0f;
     }
   });
   return out;
@@ -169,6 +175,9 @@ DepthRange EstimateDepthRange(const LightField& lf, int row, int col,
   // The matching cost alone decides here (no semi-global step: it would spread a repeating
   // texture's false match over a whole region), and only unique minima count.
   const Choice choice = Choose(volume, volume, options.truncation, 1);
+  // Uniqueness beyond kBroadApart planes: a faint texture's minimum is shallow and wide, but
+  // single; a repeating texture's is not.
+  const Choice broad = Choose(volume, volume, options.truncation, kBroadApart);
   std::vector<float> confident;
   for (int y = 0; y < choice.label.rows; ++y)
     for (int x = 0; x < choice.label.cols; ++x)
@@ -180,6 +189,22 @@ DepthRange EstimateDepthRange(const LightField& lf, int row, int col,
     std::sort(confident.begin(), confident.end());
     lo = std::max(0.0, confident[confident.size() / 100] - 2.0);
     hi = std::min(double(labels - 1), confident[confident.size() * 99 / 100] + 2.0);
+    // A surface of faint texture (the `paper` scene's back wall seen from cameras 3.5 mm apart:
+    // confidence about 0.13 all over) is seldom confident, but its samples agree on one label,
+    // and that label is a single minimum when looked at broadly: a label that kPopulousShare of
+    // the view's samples choose, each with a unique minimum beyond kBroadApart planes, is in
+    // the range. (A repeating texture's false match is populous too, but not unique.)
+    std::vector<int> votes(labels, 0);
+    for (int y = 0; y < choice.label.rows; ++y)
+      for (int x = 0; x < choice.label.cols; ++x)
+        if (broad.unique.at<float>(y, x) >= kConfident)
+          ++votes[std::clamp(int(std::lround(choice.label.at<float>(y, x))), 0, labels - 1)];
+    const double enough = kPopulousShare * double(choice.label.total());
+    for (int i = 0; i < labels; ++i)
+      if (votes[i] >= enough) {
+        lo = std::max(0.0, std::min(lo, i - 2.0));
+        hi = std::min(double(labels - 1), std::max(hi, i + 2.0));
+      }
   }
   const auto depth_at = [&](double label) {
     return 1.0 / (q_near + (q_far - q_near) * label / (labels - 1));

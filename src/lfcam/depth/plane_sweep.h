@@ -55,7 +55,8 @@ DepthMap EstimateDepth(const LightField& lf, int row, int col, const PlaneSweepO
 
 // The depth range worth sweeping, from a coarse sweep of view (row, col) at a quarter of its
 // resolution over 0.5 to 20 times the st-plane's distance: the 1st to 99th percentile of its
-// confident depths, widened by a margin.
+// confident depths, and any depth that 2% of its samples choose with a unique (if shallow)
+// minimum, widened by a margin.
 DepthRange EstimateDepthRange(const LightField& lf, int row, int col,
                               const PlaneSweepOptions& options = {});
 
