@@ -272,15 +272,71 @@ void WindowedBest(const PlaneScratch& ps, int y, int w, int h, int ring, int rad
 
 }  // namespace
 
+namespace {
+
+// The views within reach of (row, col).
+std::vector<std::pair<int, int>> ViewsAround(const LightFieldDims& d, int row, int col, int reach) {
+  std::vector<std::pair<int, int>> around;
+  for (int r = std::max(0, row - reach); r <= std::min(d.rows - 1, row + reach); ++r)
+    for (int c = std::max(0, col - reach); c <= std::min(d.cols - 1, col + reach); ++c)
+      if (r != row || c != col) around.emplace_back(r, c);
+  return around;
+}
+
+// The sweep's geometry, from the light field's alone.
+struct SweepGeometry {
+  int width = 0, height = 0;
+  double scale_x = 1, scale_y = 1;
+  double st_depth = 0, farthest_mm = 0, nearest_mm = 0, sample_mm = 0, full_sample_mm = 0;
+};
+
+SweepGeometry GeometryOf(const LightField& lf, int row, int col, const CostVolumeOptions& options) {
+  const auto& d = lf.dims();
+  SweepGeometry g;
+  const double factor = std::max(1.0, options.scale);
+  g.width = factor > 1.0 ? std::max(8, int(std::lround(d.n_s / factor))) : d.n_s;
+  g.height = factor > 1.0 ? std::max(8, int(std::lround(d.n_t / factor))) : d.n_t;
+  g.scale_x = double(d.n_s) / g.width;
+  g.scale_y = double(d.n_t) / g.height;
+  const Vec3 center = lf.camera_center(row, col);
+  for (const auto& [r, c] : ViewsAround(d, row, col, std::max(1, options.reach))) {
+    const double mm = (lf.camera_center(r, c) - center).norm();
+    g.farthest_mm = std::max(g.farthest_mm, mm);
+    g.nearest_mm = g.nearest_mm > 0 ? std::min(g.nearest_mm, mm) : mm;
+  }
+  g.st_depth =
+      DepthOf(lf.slab(), lf.st_sampling(row, col).Point((d.n_s - 1) / 2.0, (d.n_t - 1) / 2.0)) -
+      DepthOf(lf.slab(), center);
+  g.sample_mm =
+      std::min(lf.st_sampling().ds_mm() * g.scale_x, lf.st_sampling().dt_mm() * g.scale_y);
+  g.full_sample_mm = std::min(lf.st_sampling().ds_mm(), lf.st_sampling().dt_mm());
+  return g;
+}
+
+}  // namespace
+
+double NearestShiftPerQ(const LightField& lf, int row, int col, const CostVolumeOptions& options) {
+  const SweepGeometry g = GeometryOf(lf, row, col, options);
+  return g.nearest_mm * g.st_depth / g.sample_mm;
+}
+
 SweepViews::SweepViews(const LightField& lf, int row, int col, const CostVolumeOptions& options)
     : lf_(lf), options_(options) {
   const auto& d = lf.dims();
-  const double factor = std::max(1.0, options.scale);
-  width_ = factor > 1.0 ? std::max(8, int(std::lround(d.n_s / factor))) : d.n_s;
-  height_ = factor > 1.0 ? std::max(8, int(std::lround(d.n_t / factor))) : d.n_t;
-  scale_x_ = double(d.n_s) / width_;
-  scale_y_ = double(d.n_t) / height_;
+  const SweepGeometry geometry = GeometryOf(lf, row, col, options);
+  width_ = geometry.width;
+  height_ = geometry.height;
+  scale_x_ = geometry.scale_x;
+  scale_y_ = geometry.scale_y;
+  st_depth_ = geometry.st_depth;
+  farthest_mm_ = geometry.farthest_mm;
+  nearest_mm_ = geometry.nearest_mm;
+  sample_mm_ = geometry.sample_mm;
+  full_sample_mm_ = geometry.full_sample_mm;
   const std::size_t plane = std::size_t(width_) * height_;
+  // The middle of the frame, where views narrowly apart see the same things.
+  const cv::Rect middle(width_ / 8, height_ / 8, width_ - width_ / 4, height_ - height_ / 4);
+  cv::Scalar reference_mean;
   const auto load = [&](int r, int c) {
     View v;
     cv::Mat rgb = ViewSrgb8(lf, r, c);
@@ -289,6 +345,15 @@ SweepViews::SweepViews(const LightField& lf, int row, int col, const CostVolumeO
     if (r == row && c == col) reference_rgb8_ = rgb;
     cv::Mat f, grey, gx, gy;
     rgb.convertTo(f, CV_32F, 1.0 / 255.0);
+    if (r == row && c == col) {
+      reference_mean = cv::mean(f(middle));
+    } else if (options.equalise_brightness) {
+      const cv::Scalar mean = cv::mean(f(middle));
+      cv::Scalar gain;
+      for (int i = 0; i < 3; ++i)
+        gain[i] = mean[i] > 1e-3 ? std::clamp(reference_mean[i] / mean[i], 0.5, 2.0) : 1.0;
+      cv::multiply(f, gain, f);
+    }
     cv::cvtColor(f, grey, cv::COLOR_RGB2GRAY);
     cv::Sobel(grey, gx, CV_32F, 1, 0, 3, 1.0 / 8.0, 0, cv::BORDER_REPLICATE);
     cv::Sobel(grey, gy, CV_32F, 0, 1, 3, 1.0 / 8.0, 0, cv::BORDER_REPLICATE);
@@ -319,19 +384,10 @@ SweepViews::SweepViews(const LightField& lf, int row, int col, const CostVolumeO
     return v;
   };
   reference_ = load(row, col);
-  const int reach = std::max(1, options.reach);
-  std::vector<std::pair<int, int>> around;
-  for (int r = std::max(0, row - reach); r <= std::min(d.rows - 1, row + reach); ++r)
-    for (int c = std::max(0, col - reach); c <= std::min(d.cols - 1, col + reach); ++c)
-      if (r != row || c != col) around.emplace_back(r, c);
+  const auto around = ViewsAround(d, row, col, std::max(1, options.reach));
   views_.resize(around.size());
   tbb::parallel_for(std::size_t(0), around.size(),
                     [&](std::size_t i) { views_[i] = load(around[i].first, around[i].second); });
-  for (const View& v : views_) {
-    const double mm = (v.center - reference_.center).norm();
-    farthest_mm_ = std::max(farthest_mm_, mm);
-    nearest_mm_ = nearest_mm_ > 0 ? std::min(nearest_mm_, mm) : mm;
-  }
   for (View& v : views_) {
     const auto found = std::find(class_halves_.begin(), class_halves_.end(), v.halves);
     v.view_class = int(found - class_halves_.begin());
@@ -340,10 +396,6 @@ SweepViews::SweepViews(const LightField& lf, int row, int col, const CostVolumeO
   if (views_.empty())
     throw Error(
         fmt::format("depth needs at least two views; this light field has {}x{}", d.rows, d.cols));
-  st_depth_ = DepthOf(lf.slab(), reference_.sampling.Point((d.n_s - 1) / 2.0, (d.n_t - 1) / 2.0)) -
-              DepthOf(lf.slab(), reference_.center);
-  sample_mm_ = std::min(lf.st_sampling().ds_mm() * scale_x_, lf.st_sampling().dt_mm() * scale_y_);
-  full_sample_mm_ = std::min(lf.st_sampling().ds_mm(), lf.st_sampling().dt_mm());
 }
 
 cv::Matx33d SweepViews::Homography(const View& view, double depth) const {

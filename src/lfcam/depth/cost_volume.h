@@ -37,7 +37,16 @@ struct CostVolumeOptions {
   // plane's cost there is over the same views (docs/depth.md, "The frame's edges"). Off for
   // sweeps over a wide bracket of depths (EstimateDepthRange), where no view would remain.
   bool same_views_at_every_plane = false;
+  // Each view's brightness made the reference's, channel by channel (a gain from their means over
+  // the middle of the frame): for views narrowly apart, which see the same things (a plenoptic
+  // camera's outer views are darker than its centre's). Not for views far apart, whose means
+  // differ by what each sees (docs/depth.md, "An eighth round").
+  bool equalise_brightness = false;
 };
+
+// What SweepViews(lf, row, col, options).nearest_shift_per_q() will be, from the geometry alone
+// (no view loaded).
+double NearestShiftPerQ(const LightField& lf, int row, int col, const CostVolumeOptions& options);
 
 // An allocator whose value-less construction leaves an element uninitialised, so that a volume
 // of hundreds of megabytes whose every element is written anyway is not zeroed first.
