@@ -283,12 +283,7 @@ std::vector<std::pair<int, int>> ViewsAround(const LightFieldDims& d, int row, i
   return around;
 }
 
-// The sweep's geometry, from the light field's alone.
-struct SweepGeometry {
-  int width = 0, height = 0;
-  double scale_x = 1, scale_y = 1;
-  double st_depth = 0, farthest_mm = 0, nearest_mm = 0, sample_mm = 0, full_sample_mm = 0;
-};
+}  // namespace
 
 SweepGeometry GeometryOf(const LightField& lf, int row, int col, const CostVolumeOptions& options) {
   const auto& d = lf.dims();
@@ -311,13 +306,6 @@ SweepGeometry GeometryOf(const LightField& lf, int row, int col, const CostVolum
       std::min(lf.st_sampling().ds_mm() * g.scale_x, lf.st_sampling().dt_mm() * g.scale_y);
   g.full_sample_mm = std::min(lf.st_sampling().ds_mm(), lf.st_sampling().dt_mm());
   return g;
-}
-
-}  // namespace
-
-double NearestShiftPerQ(const LightField& lf, int row, int col, const CostVolumeOptions& options) {
-  const SweepGeometry g = GeometryOf(lf, row, col, options);
-  return g.nearest_mm * g.st_depth / g.sample_mm;
 }
 
 SweepViews::SweepViews(const LightField& lf, int row, int col, const CostVolumeOptions& options)

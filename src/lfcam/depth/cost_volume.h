@@ -44,9 +44,19 @@ struct CostVolumeOptions {
   bool equalise_brightness = false;
 };
 
-// What SweepViews(lf, row, col, options).nearest_shift_per_q() will be, from the geometry alone
-// (no view loaded).
-double NearestShiftPerQ(const LightField& lf, int row, int col, const CostVolumeOptions& options);
+// A sweep's geometry, from the light field's alone (no view loaded): what SweepViews(lf, row,
+// col, options) will have.
+struct SweepGeometry {
+  int width = 0, height = 0;        // the matching resolution
+  double scale_x = 1, scale_y = 1;  // full-resolution samples per matching sample
+  double st_depth = 0;              // D of the st-plane at the reference's centre, from its camera
+  double farthest_mm = 0, nearest_mm = 0;  // the views within reach, from the reference
+  double sample_mm = 0, full_sample_mm = 0;
+  // How far, in matching samples, a point moves between the reference and its nearest view per
+  // unit of inverse depth (1/mm).
+  double nearest_shift_per_q() const { return nearest_mm * st_depth / sample_mm; }
+};
+SweepGeometry GeometryOf(const LightField& lf, int row, int col, const CostVolumeOptions& options);
 
 // An allocator whose value-less construction leaves an element uninitialised, so that a volume
 // of hundreds of megabytes whose every element is written anyway is not zeroed first.
@@ -136,8 +146,6 @@ class SweepViews {
   // (and its nearest) per unit of inverse depth (1/mm).
   double farthest_shift_per_q() const { return farthest_mm_ * st_depth_ / sample_mm_; }
   double nearest_shift_per_q() const { return nearest_mm_ * st_depth_ / sample_mm_; }
-  // The farthest view's shift per unit of inverse depth in full-resolution samples.
-  double full_resolution_shift_per_q() const { return farthest_mm_ * st_depth_ / full_sample_mm_; }
 
   // The cost volume over the planes of inverse depth q[i] (1/mm). Each view's cost at a sample
   // is 2 ((1 - a) min(colour, color_cap) + a min(gradient, gradient_cap)), a the gradient term's

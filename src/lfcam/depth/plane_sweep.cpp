@@ -174,12 +174,12 @@ DepthRange EstimateDepthRange(const LightField& lf, int row, int col,
     o.equalise_brightness = true;
     return o;
   };
-  std::optional<SweepViews> views;
-  views.emplace(lf, row, col, coarse_options(kCoarseFactor));
-  const double shift_samples = 1.95 / views->st_depth() * views->full_resolution_shift_per_q();
+  // The farthest view's shift over the bracket swept (2 to 0.05 over the st-plane's distance),
+  // in full-resolution samples.
+  const SweepGeometry full = GeometryOf(lf, row, col, coarse_options(1.0));
+  const double shift_samples = 1.95 * full.farthest_mm / full.full_sample_mm;
   const double factor = std::min({kCoarseFactor, shift_samples / 16.0, d.n_s / 16.0, d.n_t / 16.0});
-  if (factor < kCoarseFactor) views.emplace(lf, row, col, coarse_options(std::max(1.0, factor)));
-  const SweepViews& coarse = *views;
+  const SweepViews coarse(lf, row, col, coarse_options(std::max(1.0, factor)));
   const double q_near = 2.0 / coarse.st_depth(), q_far = 0.05 / coarse.st_depth();
   const std::vector<double> q =
       Planes(q_near, q_far, 1.0 / coarse.farthest_shift_per_q(), coarse.width() * coarse.height());
@@ -242,7 +242,8 @@ DepthMap EstimateDepth(const LightField& lf, int row, int col, const PlaneSweepO
   const double q_near = 1.0 / range.near_mm, q_far = 1.0 / range.far_mm;
   // Views narrowly apart see the same things: their brightness is made the reference's.
   volume_options.equalise_brightness =
-      (q_near - q_far) * NearestShiftPerQ(lf, row, col, volume_options) <= kEqualiseRange;
+      (q_near - q_far) * GeometryOf(lf, row, col, volume_options).nearest_shift_per_q() <=
+      kEqualiseRange;
   const SweepViews views(lf, row, col, volume_options);
   const std::vector<double> q =
       Planes(q_near, q_far, options.step_samples / views.farthest_shift_per_q(),
