@@ -309,27 +309,17 @@ SweepGeometry GeometryOf(const LightField& lf, int row, int col, const CostVolum
 }
 
 SweepViews::SweepViews(const LightField& lf, int row, int col, const CostVolumeOptions& options)
-    : lf_(lf), options_(options) {
+    : lf_(lf), options_(options), geometry_(GeometryOf(lf, row, col, options)) {
   const auto& d = lf.dims();
-  const SweepGeometry geometry = GeometryOf(lf, row, col, options);
-  width_ = geometry.width;
-  height_ = geometry.height;
-  scale_x_ = geometry.scale_x;
-  scale_y_ = geometry.scale_y;
-  st_depth_ = geometry.st_depth;
-  farthest_mm_ = geometry.farthest_mm;
-  nearest_mm_ = geometry.nearest_mm;
-  sample_mm_ = geometry.sample_mm;
-  full_sample_mm_ = geometry.full_sample_mm;
-  const std::size_t plane = std::size_t(width_) * height_;
+  const int w = geometry_.width, h = geometry_.height;  // the matching resolution
+  const std::size_t plane = std::size_t(w) * h;
   // The middle of the frame, where views narrowly apart see the same things.
-  const cv::Rect middle(width_ / 8, height_ / 8, width_ - width_ / 4, height_ - height_ / 4);
+  const cv::Rect middle(w / 8, h / 8, w - w / 4, h - h / 4);
   cv::Scalar reference_mean;
   const auto load = [&](int r, int c) {
     View v;
     cv::Mat rgb = ViewSrgb8(lf, r, c);
-    if (rgb.cols != width_ || rgb.rows != height_)
-      cv::resize(rgb, rgb, {width_, height_}, 0, 0, cv::INTER_AREA);
+    if (rgb.cols != w || rgb.rows != h) cv::resize(rgb, rgb, {w, h}, 0, 0, cv::INTER_AREA);
     if (r == row && c == col) reference_rgb8_ = rgb;
     cv::Mat f, grey, gx, gy;
     rgb.convertTo(f, CV_32F, 1.0 / 255.0);
@@ -352,14 +342,12 @@ SweepViews::SweepViews(const LightField& lf, int row, int col, const CostVolumeO
     if (r == row && c == col) {
       v.channels.resize(plane * kChannels);
       for (int i = 0; i < kChannels; ++i)
-        planes[std::size_t(i)].copyTo(
-            cv::Mat(height_, width_, CV_32FC1, v.channels.data() + i * plane));
+        planes[std::size_t(i)].copyTo(cv::Mat(h, w, CV_32FC1, v.channels.data() + i * plane));
     } else {
       v.packed.resize(plane * kChannels);
       for (int i = 0; i < kChannels; ++i)
-        planes[std::size_t(i)].convertTo(
-            cv::Mat(height_, width_, CV_16SC1, v.packed.data() + i * plane), CV_16S,
-            kPacked[std::size_t(i)]);
+        planes[std::size_t(i)].convertTo(cv::Mat(h, w, CV_16SC1, v.packed.data() + i * plane),
+                                         CV_16S, kPacked[std::size_t(i)]);
     }
     v.center = lf.camera_center(r, c);
     v.sampling = lf.st_sampling(r, c);
@@ -388,40 +376,41 @@ SweepViews::SweepViews(const LightField& lf, int row, int col, const CostVolumeO
 
 cv::Matx33d SweepViews::Homography(const View& view, double depth) const {
   const Slab& slab = lf_.slab();
-  const double w = width_ - 1, h = height_ - 1;
+  const double w = geometry_.width - 1, h = geometry_.height - 1;
+  const double scale_x = geometry_.scale_x, scale_y = geometry_.scale_y;
   const cv::Point2f from[4] = {{0, 0}, {float(w), 0}, {0, float(h)}, {float(w), float(h)}};
   cv::Point2f to[4];
   const Vec3& c = reference_.center;
   for (int i = 0; i < 4; ++i) {
     const Vec3 x =
-        reference_.sampling.Point(ToFull(from[i].x, scale_x_), ToFull(from[i].y, scale_y_));
+        reference_.sampling.Point(ToFull(from[i].x, scale_x), ToFull(from[i].y, scale_y));
     // P on the reference camera's line through x, at depth D.
     const double lambda = (depth - DepthOf(slab, c)) / (DepthOf(slab, x) - DepthOf(slab, c));
     const Vec3 p = c + lambda * (x - c);
     const auto hit = slab.intersect({view.center, p - view.center});
     if (!hit) throw Error("plane sweep: a view's ray runs parallel to the st-plane");
-    to[i] = {float(ToScaled(view.sampling.k_of(hit->s), scale_x_)),
-             float(ToScaled(view.sampling.l_of(hit->t), scale_y_))};
+    to[i] = {float(ToScaled(view.sampling.k_of(hit->s), scale_x)),
+             float(ToScaled(view.sampling.l_of(hit->t), scale_y))};
   }
   cv::Matx33d m = cv::getPerspectiveTransform(from, to);
   // A shift computed through floats: make it exactly one when it is one to within rounding.
   if (std::abs(m(0, 0) - 1) < 1e-6 && std::abs(m(1, 1) - 1) < 1e-6 && std::abs(m(0, 1)) < 1e-6 &&
       std::abs(m(1, 0)) < 1e-6 && std::abs(m(2, 0)) < 1e-9 && std::abs(m(2, 1)) < 1e-9) {
     // The shift itself in double precision, from the centre's mapping.
-    const Vec3 x = reference_.sampling.Point(ToFull(w / 2, scale_x_), ToFull(h / 2, scale_y_));
+    const Vec3 x = reference_.sampling.Point(ToFull(w / 2, scale_x), ToFull(h / 2, scale_y));
     const double lambda = (depth - DepthOf(slab, c)) / (DepthOf(slab, x) - DepthOf(slab, c));
     const Vec3 p = c + lambda * (x - c);
     const auto hit = slab.intersect({view.center, p - view.center});
     m = cv::Matx33d::eye();
-    m(0, 2) = ToScaled(view.sampling.k_of(hit->s), scale_x_) - w / 2;
-    m(1, 2) = ToScaled(view.sampling.l_of(hit->t), scale_y_) - h / 2;
+    m(0, 2) = ToScaled(view.sampling.k_of(hit->s), scale_x) - w / 2;
+    m(1, 2) = ToScaled(view.sampling.l_of(hit->t), scale_y) - h / 2;
   }
   return m;
 }
 
 CostVolume SweepViews::Sweep(const std::vector<double>& q, double gradient_share,
                              CostVolumeEngine* engine) const {
-  const int w = width_, h = height_, n = int(q.size());
+  const int w = geometry_.width, h = geometry_.height, n = int(q.size());
   const std::size_t plane = std::size_t(w) * h;
   CostVolume volume;
   volume.width = w;

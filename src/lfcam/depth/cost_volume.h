@@ -52,8 +52,9 @@ struct SweepGeometry {
   double st_depth = 0;              // D of the st-plane at the reference's centre, from its camera
   double farthest_mm = 0, nearest_mm = 0;  // the views within reach, from the reference
   double sample_mm = 0, full_sample_mm = 0;
-  // How far, in matching samples, a point moves between the reference and its nearest view per
-  // unit of inverse depth (1/mm).
+  // How far, in matching samples, a point moves between the reference and its farthest (and its
+  // nearest) view per unit of inverse depth (1/mm).
+  double farthest_shift_per_q() const { return farthest_mm * st_depth / sample_mm; }
   double nearest_shift_per_q() const { return nearest_mm * st_depth / sample_mm; }
 };
 SweepGeometry GeometryOf(const LightField& lf, int row, int col, const CostVolumeOptions& options);
@@ -136,16 +137,16 @@ class SweepViews {
   // Throws lfcam::Error when the light field has no other view within reach.
   SweepViews(const LightField& lf, int row, int col, const CostVolumeOptions& options);
 
-  int width() const { return width_; }
-  int height() const { return height_; }
+  int width() const { return geometry_.width; }
+  int height() const { return geometry_.height; }
   // The reference view at the matching resolution, 8-bit RGB (a guide for edge-aware filters).
   const cv::Mat& reference_rgb8() const { return reference_rgb8_; }
   // D of the st-plane at the reference's centre, seen from the reference camera (mm).
-  double st_depth() const { return st_depth_; }
+  double st_depth() const { return geometry_.st_depth; }
   // How far, in matching samples, a point moves between the reference and its farthest view
   // (and its nearest) per unit of inverse depth (1/mm).
-  double farthest_shift_per_q() const { return farthest_mm_ * st_depth_ / sample_mm_; }
-  double nearest_shift_per_q() const { return nearest_mm_ * st_depth_ / sample_mm_; }
+  double farthest_shift_per_q() const { return geometry_.farthest_shift_per_q(); }
+  double nearest_shift_per_q() const { return geometry_.nearest_shift_per_q(); }
 
   // The cost volume over the planes of inverse depth q[i] (1/mm). Each view's cost at a sample
   // is 2 ((1 - a) min(colour, color_cap) + a min(gradient, gradient_cap)), a the gradient term's
@@ -170,13 +171,11 @@ class SweepViews {
 
   const LightField& lf_;
   CostVolumeOptions options_;
-  int width_ = 0, height_ = 0;
-  double scale_x_ = 1, scale_y_ = 1;
+  SweepGeometry geometry_;
   View reference_;
   std::vector<View> views_;
   std::vector<unsigned> class_halves_;  // the distinct half-array memberships of the views
   cv::Mat reference_rgb8_;
-  double st_depth_ = 0, farthest_mm_ = 0, nearest_mm_ = 0, sample_mm_ = 0, full_sample_mm_ = 0;
 };
 
 }  // namespace lfcam
