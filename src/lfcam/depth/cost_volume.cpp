@@ -200,6 +200,10 @@ struct PlaneScratch {
   std::vector<std::pair<std::size_t, Shift>> shifted;
   std::vector<float> class_sum, class_count;
   std::vector<float> ring_sum, ring_count;
+  // Each half-array's count row where every view read shifted sees the row (most rows: the
+  // same row for all of them), so that it is counted once per plane rather than once per row.
+  std::vector<float> inner_count;
+  int inner_lo = 0, inner_hi = -1;
 };
 
 // Per-thread working memory of a group of planes.
@@ -231,7 +235,12 @@ void CountRow(const std::vector<std::pair<std::size_t, Shift>>& shifted,
 
 // Row y of a plane's cost: each half-array's sums over the window (its edge repeated, as
 // cv::boxFilter's BORDER_REPLICATE), the cheapest half-array whose count exceeds `min_count`;
-// infinity where none does.
+// infinity where none does. Each sum is taken in the same order as a running sum from zero would
+// (the same floats), but written rather than added to zeroed rows, and the choice made without a
+// branch, so that the loops vectorise (docs/benchmarks.md).
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+__attribute__((target_clones("arch=x86-64-v3", "default")))
+#endif
 void WindowedBest(const PlaneScratch& ps, int y, int w, int h, int ring, int radius,
                   float min_count, Scratch& s, float* best) {
   const std::size_t sw = std::size_t(w);
@@ -242,6 +251,12 @@ void WindowedBest(const PlaneScratch& ps, int y, int w, int h, int ring, int rad
   float* bc = vs + 3 * sw;
   // Sums along the row over the window, the row's ends repeated.
   const auto across = [&](const float* v, float* out) {
+    if (radius == 1 && w >= 2) {
+      out[0] = v[0] + v[0] + v[1];
+      for (std::size_t x = 1; x + 1 < sw; ++x) out[x] = v[x - 1] + v[x] + v[x + 1];
+      out[sw - 1] = v[sw - 2] + v[sw - 1] + v[sw - 1];
+      return;
+    }
     std::fill(out, out + sw, 0.0f);
     for (int dx = -radius; dx <= radius; ++dx) {
       const int lo = std::clamp(-dx, 0, w), hi = std::clamp(w - dx, lo, w);
@@ -250,14 +265,20 @@ void WindowedBest(const PlaneScratch& ps, int y, int w, int h, int ring, int rad
       for (int x = hi; x < w; ++x) out[x] += v[w - 1];
     }
   };
+  // Larger than any mean: a half-array without enough views is never the cheapest.
+  constexpr float kNotEnough = 1e30f;
   std::fill(best, best + sw, INFINITY);
   for (int g = 0; g < kHalves; ++g) {
-    std::fill(vs, vs + 2 * sw, 0.0f);
     for (int dy = -radius; dy <= radius; ++dy) {
       const int row = std::clamp(y + dy, 0, h - 1);
       const std::size_t slot = (std::size_t(g) * ring + std::size_t(row % ring)) * sw;
       const float* rs = ps.ring_sum.data() + slot;
       const float* rc = ps.ring_count.data() + slot;
+      if (dy == -radius) {
+        std::copy(rs, rs + sw, vs);
+        std::copy(rc, rc + sw, vc);
+        continue;
+      }
       for (std::size_t x = 0; x < sw; ++x) {
         vs[x] += rs[x];
         vc[x] += rc[x];
@@ -265,9 +286,12 @@ void WindowedBest(const PlaneScratch& ps, int y, int w, int h, int ring, int rad
     }
     across(vs, bs);
     across(vc, bc);
+    // min_count > 0, so the division is safe wherever it is taken.
     for (std::size_t x = 0; x < sw; ++x)
-      best[x] = bc[x] > min_count ? std::min(best[x], bs[x] / bc[x]) : best[x];
+      best[x] = std::min(
+          best[x], bs[x] / std::max(bc[x], min_count) + (bc[x] > min_count ? 0.0f : kNotEnough));
   }
+  for (std::size_t x = 0; x < sw; ++x) best[x] = best[x] >= kNotEnough ? INFINITY : best[x];
 }
 
 }  // namespace
@@ -581,6 +605,18 @@ CostVolume SweepViews::Sweep(const std::vector<double>& q, double gradient_share
       for (PlaneScratch& ps : s.planes) {
         ps.ring_sum.resize(kHalves * std::size_t(ring) * sw);
         ps.ring_count.resize(kHalves * std::size_t(ring) * sw);
+        ps.inner_lo = 0;
+        ps.inner_hi = h - 1;
+        for (const auto& [v, shift] : ps.shifted)
+          if (shift.x_lo <= shift.x_hi) {  // (a view that sees no column counts nowhere)
+            ps.inner_lo = std::max(ps.inner_lo, shift.y_lo);
+            ps.inner_hi = std::min(ps.inner_hi, shift.y_hi);
+          }
+        if (ps.inner_lo > ps.inner_hi) continue;
+        ps.inner_count.resize(kHalves * sw);
+        for (int g = 0; g < kHalves; ++g)
+          CountRow(ps.shifted, view_halves, g, ps.inner_lo, w, s.steps,
+                   ps.inner_count.data() + std::size_t(g) * sw);
       }
       const std::size_t band_size = std::size_t(kBandRows) * sw;
       const float* ref = reference_.channels.data();
@@ -605,7 +641,12 @@ CostVolume SweepViews::Sweep(const std::vector<double>& q, double gradient_share
               float* hs = ps.ring_sum.data() + slot;
               float* hc = ps.ring_count.data() + slot;
               std::fill(hs, hs + sw, 0.0f);
-              CountRow(ps.shifted, view_halves, g, y, w, s.steps, hc);
+              if (y >= ps.inner_lo && y <= ps.inner_hi) {
+                const float* inner = ps.inner_count.data() + std::size_t(g) * sw;
+                std::copy(inner, inner + sw, hc);
+              } else {
+                CountRow(ps.shifted, view_halves, g, y, w, s.steps, hc);
+              }
               for (std::size_t k = 0; k < classes; ++k) {
                 if (!(class_halves_[k] >> g & 1)) continue;
                 const float* cs = s.band_sum.data() + k * band_size + std::size_t(y - y0) * sw;

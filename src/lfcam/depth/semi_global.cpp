@@ -91,8 +91,7 @@ CostVolume AggregateSemiGlobal(const CostVolume& volume, const cv::Mat& guide,
   sum.width = w;
   sum.height = h;
   sum.labels = n;
-  sum.cost.resize(volume.cost.size());  // zeroed row by row, in parallel
-  tbb::parallel_for(0, h, [&](int y) { std::fill_n(sum.at(0, y), std::size_t(w) * n, 0); });
+  sum.cost.resize(volume.cost.size());  // not zeroed: the first path writes every sum
   const auto padded = [&](std::vector<Cost>& row, int samples) {
     row.assign(std::size_t(samples) * stride, Cost(kHuge));
   };
@@ -108,7 +107,10 @@ CostVolume AggregateSemiGlobal(const CostVolume& volume, const cv::Mat& guide,
         prev_min = i == 0 ? Start(volume.at(x, y), b.data(), n)
                           : Step(volume.at(x, y), a.data(), prev_min, b.data(), n, p1,
                                  p2_between(x, y, x - dx, y), shift(x, y, dx, 0));
-        Accumulate(b.data(), sum.at(x, y), n);
+        if (dx > 0)
+          std::copy_n(b.data() + 1, n, sum.at(x, y));
+        else
+          Accumulate(b.data(), sum.at(x, y), n);
         std::swap(a, b);
       }
     });
