@@ -135,16 +135,16 @@ struct NodeAgent::Impl {
                         {reinterpret_cast<const std::uint8_t*>(text.data()), text.size()});
   }
 
-  std::optional<ClockOffset> ClockStatus() const {
+  std::optional<ClockOffset> ClockStatus(std::chrono::steady_clock::duration max_age) const {
     if (options.simulated_clock_offset_ns != 0)
       return ClockOffset{double(options.simulated_clock_offset_ns) / 1e6,
                          "simulated (--simulate-clock-offset-ms)"};
-    return ChronyClockOffset();
+    return ChronyClockOffset(max_age);
   }
 
   nlohmann::json Status() {
     SystemStatus system = ReadSystemStatus(options.captures);
-    system.clock = ClockStatus();
+    system.clock = ClockStatus(kStatusClockMaxAge);
     CameraProbe probe;
     {
       std::unique_lock lock(camera_mutex, std::try_to_lock);
@@ -203,7 +203,8 @@ struct NodeAgent::Impl {
         return Refusal{409, "settings",
                        fmt::format("settings differ from the array's: {}", fmt::join(diffs, ", "))};
     }
-    if (const auto clock = ClockStatus(); clock && std::abs(clock->offset_ms) > max_offset_ms)
+    if (const auto clock = ClockStatus(kCaptureClockMaxAge);
+        clock && std::abs(clock->offset_ms) > max_offset_ms)
       return Refusal{409, "clock",
                      fmt::format("clock offset {:.1f} ms ({}) exceeds {:.1f} ms", clock->offset_ms,
                                  clock->source, max_offset_ms)};

@@ -48,14 +48,14 @@ std::optional<ClockOffset> ParseChronyTracking(const std::string& line) {
   }
 }
 
-std::optional<ClockOffset> ChronyClockOffset() {
+std::optional<ClockOffset> ChronyClockOffset(std::chrono::steady_clock::duration max_age) {
   static std::mutex mutex;
   static std::chrono::steady_clock::time_point read_at;
   static std::optional<ClockOffset> cached;
   static bool ever = false;
   std::lock_guard lock(mutex);
   const auto now = std::chrono::steady_clock::now();
-  if (!ever || now - read_at > std::chrono::seconds(5)) {
+  if (!ever || now - read_at > max_age) {
     const auto line = FirstLineOf("chronyc -c tracking 2>/dev/null");
     cached = line ? ParseChronyTracking(*line) : std::nullopt;
     read_at = now;
@@ -90,7 +90,7 @@ SystemStatus ReadSystemStatus(const std::filesystem::path& folder) {
         break;
       }
   }
-  s.clock = ChronyClockOffset();
+  s.clock = ChronyClockOffset(kStatusClockMaxAge);
   return s;
 }
 

@@ -2,6 +2,7 @@
 // What a node reports of its machine: CPU temperature and throttling (a Raspberry Pi that runs
 // hot slows down), free disk and memory, and how far its clock is from the array's time source
 // as chrony sees it. Each is empty where the machine does not say.
+#include <chrono>
 #include <cstdint>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -27,9 +28,15 @@ struct SystemStatus {
 // `folder`: the capture folder, whose file system's free space counts.
 SystemStatus ReadSystemStatus(const std::filesystem::path& folder);
 
-// chrony's view of this clock (`chronyc -c tracking`), cached for a few seconds; nullopt when
-// chrony is not running or not synchronised.
-std::optional<ClockOffset> ChronyClockOffset();
+// chrony's view of this clock (`chronyc -c tracking`, a process of its own), read again when the
+// last reading is older than `max_age`; nullopt when chrony is not running or not synchronised.
+std::optional<ClockOffset> ChronyClockOffset(std::chrono::steady_clock::duration max_age);
+// A status request reads the clock afresh (ReadSystemStatus). A capture request, between its
+// arrival and its trigger time, takes the reading the host's status request just before it made
+// (`lfcam capture shoot` asks every node's status first), so that no process starts in that
+// window: a hundred nodes on one machine each starting one made triggers late (docs/robustness.md).
+inline constexpr std::chrono::seconds kStatusClockMaxAge{1};
+inline constexpr std::chrono::seconds kCaptureClockMaxAge{60};
 
 // Parses one line of `chronyc -c tracking` (CSV); nullopt when it is not one.
 std::optional<ClockOffset> ParseChronyTracking(const std::string& line);
