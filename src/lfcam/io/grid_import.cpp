@@ -310,13 +310,15 @@ std::optional<ImportedGrid> GridFromIndices(GridNaming naming, const std::vector
   std::vector<std::pair<int, int>> top_left;  // (row from the top, col from the left)
   if (naming == GridNaming::kHci) {
     int cols = 0, rows = 0;
-    if (hci) {
-      cols = hci->cams_x, rows = hci->cams_y;
+    if (hci && hci->cams_x) {
+      cols = *hci->cams_x, rows = *hci->cams_y;
     } else {
       cols = rows = int(std::lround(std::sqrt(double(named.size()))));
       if (std::size_t(cols * rows) != named.size()) {
-        *why = fmt::format("{} views are not a square grid, and there is no {} to say its shape",
-                           named.size(), kHciParametersName);
+        *why =
+            fmt::format("{} views are not a square grid, and {} to say its shape", named.size(),
+                        hci ? fmt::format("{} gives no num_cams_x, num_cams_y", kHciParametersName)
+                            : fmt::format("there is no {}", kHciParametersName));
         return std::nullopt;
       }
     }
@@ -342,8 +344,8 @@ std::optional<ImportedGrid> GridFromIndices(GridNaming naming, const std::vector
                        g.cols, kMaxViewsPerSide);
     return std::nullopt;
   }
-  g.pitch_mm = hci ? hci->baseline_mm : 1.0;
-  g.positions_known = hci.has_value();
+  g.pitch_mm = hci && hci->baseline_mm ? *hci->baseline_mm : 1.0;
+  g.positions_known = hci && hci->baseline_mm;
   g.views.resize(std::size_t(g.rows * g.cols));
   for (int r = 0; r < g.rows; ++r)
     for (int c = 0; c < g.cols; ++c)

@@ -2,9 +2,11 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <initializer_list>
 
 #include "lfcam/core/error.h"
 #include "lfcam/core/limits.h"
@@ -27,17 +29,20 @@ std::string Lower(std::string_view s) {
 
 }  // namespace
 
-double HciParameters::focal_px() const {
-  return focal_length_mm * std::max(width_px, height_px) / sensor_size_mm;
+std::optional<double> HciParameters::focal_px() const {
+  if (!focal_length_mm || !sensor_size_mm || !width_px || !height_px) return std::nullopt;
+  return *focal_length_mm * std::max(*width_px, *height_px) / *sensor_size_mm;
 }
 
 double HciParameters::DepthOfDisparity(double d) const {
-  const double fb = baseline_mm * focal_px();
-  return fb * focus_distance_mm / (d * focus_distance_mm + fb);
+  if (!metric()) throw Error("parameters.cfg: no metric geometry to turn a disparity into depth");
+  const double fb = *baseline_mm * *focal_px();
+  return fb * *focus_distance_mm / (d * *focus_distance_mm + fb);
 }
 
 double HciParameters::DisparityOfDepth(double depth_mm) const {
-  return baseline_mm * focal_px() * (1.0 / depth_mm - 1.0 / focus_distance_mm);
+  if (!metric()) throw Error("parameters.cfg: no metric geometry to turn a depth into disparity");
+  return *baseline_mm * *focal_px() * (1.0 / depth_mm - 1.0 / *focus_distance_mm);
 }
 
 HciParameters ParseHciParameters(std::string_view text, const std::string& where) {
@@ -89,19 +94,27 @@ HciParameters ParseHciParameters(std::string_view text, const std::string& where
                               v.substr(0, 40)));
     return value;
   };
-  auto positive = [&](const std::string& key, double max) {
-    const double v = *number(key, true);
-    if (!(v > 0) || v > max)
+  auto positive = [&](const std::string& key, double max) -> std::optional<double> {
+    const auto v = number(key, false);
+    if (v && (!(*v > 0) || *v > max))
       throw Error(fmt::format("{}: line {}: {} = {} must be positive (at most {})", where,
-                              line_of[key], key, v, max));
+                              line_of[key], key, *v, max));
     return v;
   };
-  auto count = [&](const std::string& key, double max) {
-    const double v = positive(key, max);
-    if (v != std::floor(v))
+  auto count = [&](const std::string& key, double max) -> std::optional<int> {
+    const auto v = positive(key, max);
+    if (!v) return std::nullopt;
+    if (*v != std::floor(*v))
       throw Error(
-          fmt::format("{}: line {}: {} = {} must be a whole number", where, line_of[key], key, v));
-    return int(v);
+          fmt::format("{}: line {}: {} = {} must be a whole number", where, line_of[key], key, *v));
+    return int(*v);
+  };
+  // Keys that go together: all of `keys` or none.
+  auto together = [&](std::initializer_list<const char*> keys, const char* what) {
+    std::string given, missing;
+    for (const char* key : keys) (p.values.count(key) ? given : missing) += std::string(" ") + key;
+    if (!given.empty() && !missing.empty())
+      throw Error(fmt::format("{}:{} given without{} ({})", where, given, missing, what));
   };
   p.focal_length_mm = positive("intrinsics.focal_length_mm", 1e6);
   p.width_px = count("intrinsics.image_resolution_x_px", kMaxImageSide);
@@ -110,9 +123,22 @@ HciParameters ParseHciParameters(std::string_view text, const std::string& where
   p.cams_x = count("extrinsics.num_cams_x", kMaxViewsPerSide);
   p.cams_y = count("extrinsics.num_cams_y", kMaxViewsPerSide);
   p.baseline_mm = positive("extrinsics.baseline_mm", 1e9);
-  p.focus_distance_mm = 1000.0 * positive("extrinsics.focus_distance_m", 1e9);
+  if (const auto focus_m = positive("extrinsics.focus_distance_m", 1e9))
+    p.focus_distance_mm = 1000.0 * *focus_m;
   p.disp_min = number("meta.disp_min", false);
   p.disp_max = number("meta.disp_max", false);
+  together({"intrinsics.image_resolution_x_px", "intrinsics.image_resolution_y_px"},
+           "the image's two sides go together");
+  together({"extrinsics.num_cams_x", "extrinsics.num_cams_y"}, "the grid's two counts go together");
+  if (p.focal_length_mm || p.sensor_size_mm)
+    together({"intrinsics.focal_length_mm", "intrinsics.sensor_size_mm",
+              "intrinsics.image_resolution_x_px", "intrinsics.image_resolution_y_px"},
+             "a focal length in pixels needs the lens's, the sensor's size and the image's");
+  if (p.focus_distance_mm && !p.baseline_mm)
+    throw Error(fmt::format(
+        "{}: line {}: extrinsics.focus_distance_m given without extrinsics.baseline_mm (a "
+        "distance in millimetres needs the cameras' spacing in millimetres)",
+        where, line_of["extrinsics.focus_distance_m"]));
   return p;
 }
 

@@ -43,8 +43,9 @@ TEST(HciParameters, ReadsTheRigAndItsDisparityLaw) {
   const HciParameters p = ParseHciParameters(kParameters, "parameters.cfg");
   EXPECT_EQ(p.width_px, 64);
   EXPECT_EQ(p.cams_y, 3);
-  EXPECT_DOUBLE_EQ(p.focal_px(), 100.0 * 64 / 35);
-  EXPECT_DOUBLE_EQ(p.focus_distance_mm, 4250.0);
+  EXPECT_TRUE(p.metric());
+  EXPECT_DOUBLE_EQ(*p.focal_px(), 100.0 * 64 / 35);
+  EXPECT_DOUBLE_EQ(*p.focus_distance_mm, 4250.0);
   EXPECT_EQ(*p.disp_min, -2.0);
   EXPECT_EQ(p.values.at("meta.scene"), "example");
   // Zero disparity at the focus distance; the law and its inverse agree.
@@ -69,7 +70,13 @@ TEST(HciParameters, BadFilesAreRefusedNamingTheLineAndTheKey) {
     s.replace(s.find(from), from.size(), to);
     return s;
   };
-  refused(replaced("baseline_mm = 90.0", ""), "p.cfg: extrinsics.baseline_mm is missing");
+  refused(replaced("baseline_mm = 90.0", ""),
+          "line 12: extrinsics.focus_distance_m given without extrinsics.baseline_mm");
+  refused(replaced("sensor_size_mm = 35", ""),
+          "p.cfg: intrinsics.focal_length_mm intrinsics.image_resolution_x_px "
+          "intrinsics.image_resolution_y_px given without intrinsics.sensor_size_mm");
+  refused(replaced("num_cams_y = 3", ""),
+          "p.cfg: extrinsics.num_cams_x given without extrinsics.num_cams_y");
   refused(replaced("baseline_mm = 90.0", "baseline_mm = ninety"),
           "line 11: extrinsics.baseline_mm = 'ninety' is not a number");
   refused(replaced("baseline_mm = 90.0", "baseline_mm = -90"),
@@ -103,6 +110,61 @@ TEST(HciParameters, ABenchmarkFolderWithItImportsMetrically) {
   EXPECT_NEAR(grid.view(1, 2).x_mm - grid.view(1, 1).x_mm, 90.0, 1e-12);
   EXPECT_NEAR(geo.PrincipalPoint(90, 0).x() - geo.PrincipalPoint(0, 0).x(),
               geo.focal_px * 90 / 4250, 1e-9);
+  fs::remove_all(dir);
+}
+
+// Folders made elsewhere in the benchmark's format often give only the grid, the image size and
+// the disparity range: they import in disparity units, every unit assumed and said.
+constexpr const char* kPartialParameters = R"([intrinsics]
+image_resolution_x_px = 64
+image_resolution_y_px = 48
+
+[extrinsics]
+num_cams_x = 3
+num_cams_y = 2
+
+[meta]
+disp_min = -1.2
+disp_max = 2.5
+)";
+
+TEST(HciParameters, APartialFileGivesWhatItHasAndTheImportAssumesTheRest) {
+  const HciParameters p = ParseHciParameters(kPartialParameters, "parameters.cfg");
+  EXPECT_FALSE(p.metric());
+  EXPECT_FALSE(p.focal_px().has_value());
+  EXPECT_FALSE(p.baseline_mm.has_value());
+  EXPECT_EQ(p.cams_x, 3);
+  EXPECT_EQ(*p.disp_max, 2.5);
+  EXPECT_THROW(p.DepthOfDisparity(0.0), Error);
+
+  const fs::path dir =
+      fs::temp_directory_path() / ("lfcam_hci_partial_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream(dir / kHciParametersName) << kPartialParameters;
+  // Six views: no square grid, so the shape can only come from the file.
+  for (int i = 0; i < 6; ++i)
+    cv::imwrite((dir / fmt::format("input_Cam{:03d}.png", i)).string(),
+                cv::Mat(48, 64, CV_8UC3, cv::Scalar(10 * i, 20, 30)));
+  const ImportedGrid grid = ScanGridFolder(dir, false);
+  EXPECT_EQ(grid.naming, GridNaming::kHci);
+  EXPECT_EQ(grid.rows, 2);
+  EXPECT_EQ(grid.cols, 3);
+  EXPECT_EQ(grid.view(1, 0).file, "input_Cam000.png");  // the top left
+  EXPECT_FALSE(grid.positions_known);
+  const RectifiedGeometry geo = ResolveRectifiedGeometry(grid, {});
+  EXPECT_DOUBLE_EQ(geo.pitch_mm, 1.0);
+  EXPECT_DOUBLE_EQ(geo.focal_px, 64.0);  // the larger image side
+  ASSERT_EQ(geo.assumed.size(), 3u);     // the spacing, the focal length, the zero-disparity plane
+  EXPECT_NE(geo.assumed[0].find("1 unit apart"), std::string::npos) << geo.assumed[0];
+  // Without the file, six views are refused: they are not a square grid.
+  fs::remove(dir / kHciParametersName);
+  try {
+    ScanGridFolder(dir, false);
+    ADD_FAILURE() << "six views without parameters.cfg were accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("not a square grid"), std::string::npos) << e.what();
+  }
   fs::remove_all(dir);
 }
 
