@@ -3,13 +3,13 @@
 #include "lfcam/io/hci_parameters.h"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
 
 #include "lfcam/core/error.h"
+#include "lfcam/core/test_support.h"
 #include "lfcam/io/grid_import.h"
 #include "lfcam/io/rectified_import.h"
 
@@ -87,14 +87,19 @@ TEST(HciParameters, BadFilesAreRefusedNamingTheLineAndTheKey) {
   refused(good + "[extrinsics]\nbaseline_mm = 1\n", "extrinsics.baseline_mm is given twice");
 }
 
-TEST(HciParameters, ABenchmarkFolderWithItImportsMetrically) {
-  const fs::path dir = fs::temp_directory_path() / ("lfcam_hci_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  std::ofstream(dir / kHciParametersName) << kParameters;
-  for (int i = 0; i < 9; ++i)
+// A benchmark folder of `views` views of 64 x 48 (input_Cam000.png ...) with `parameters` as its
+// parameters.cfg, in a scratch directory of the running test.
+fs::path HciFolder(const char* parameters, int views) {
+  const fs::path dir = testing::MakeScratchDir("lfcam_hci");
+  std::ofstream(dir / kHciParametersName) << parameters;
+  for (int i = 0; i < views; ++i)
     cv::imwrite((dir / fmt::format("input_Cam{:03d}.png", i)).string(),
                 cv::Mat(48, 64, CV_8UC3, cv::Scalar(10 * i, 20, 30)));
+  return dir;
+}
+
+TEST(HciParameters, ABenchmarkFolderWithItImportsMetrically) {
+  const fs::path dir = HciFolder(kParameters, 9);
   cv::imwrite((dir / "valid_mask.png").string(), cv::Mat(48, 64, CV_8UC1, cv::Scalar(255)));
   const ImportedGrid grid = ScanGridFolder(dir, false);
   EXPECT_EQ(grid.naming, GridNaming::kHci);
@@ -110,7 +115,6 @@ TEST(HciParameters, ABenchmarkFolderWithItImportsMetrically) {
   EXPECT_NEAR(grid.view(1, 2).x_mm - grid.view(1, 1).x_mm, 90.0, 1e-12);
   EXPECT_NEAR(geo.PrincipalPoint(90, 0).x() - geo.PrincipalPoint(0, 0).x(),
               geo.focal_px * 90 / 4250, 1e-9);
-  fs::remove_all(dir);
 }
 
 // Folders made elsewhere in the benchmark's format often give only the grid, the image size and
@@ -137,15 +141,8 @@ TEST(HciParameters, APartialFileGivesWhatItHasAndTheImportAssumesTheRest) {
   EXPECT_EQ(*p.disp_max, 2.5);
   EXPECT_THROW(p.DepthOfDisparity(0.0), Error);
 
-  const fs::path dir =
-      fs::temp_directory_path() / ("lfcam_hci_partial_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  std::ofstream(dir / kHciParametersName) << kPartialParameters;
   // Six views: no square grid, so the shape can only come from the file.
-  for (int i = 0; i < 6; ++i)
-    cv::imwrite((dir / fmt::format("input_Cam{:03d}.png", i)).string(),
-                cv::Mat(48, 64, CV_8UC3, cv::Scalar(10 * i, 20, 30)));
+  const fs::path dir = HciFolder(kPartialParameters, 6);
   const ImportedGrid grid = ScanGridFolder(dir, false);
   EXPECT_EQ(grid.naming, GridNaming::kHci);
   EXPECT_EQ(grid.rows, 2);
@@ -159,13 +156,8 @@ TEST(HciParameters, APartialFileGivesWhatItHasAndTheImportAssumesTheRest) {
   EXPECT_NE(geo.assumed[0].find("1 unit apart"), std::string::npos) << geo.assumed[0];
   // Without the file, six views are refused: they are not a square grid.
   fs::remove(dir / kHciParametersName);
-  try {
-    ScanGridFolder(dir, false);
-    ADD_FAILURE() << "six views without parameters.cfg were accepted";
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("not a square grid"), std::string::npos) << e.what();
-  }
-  fs::remove_all(dir);
+  const std::string refused = testing::ErrorOf([&] { ScanGridFolder(dir, false); });
+  EXPECT_NE(refused.find("not a square grid"), std::string::npos) << refused;
 }
 
 }  // namespace
