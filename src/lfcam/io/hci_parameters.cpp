@@ -80,12 +80,9 @@ HciParameters ParseHciParameters(std::string_view text, const std::string& where
     line_of[full] = line_number;
   }
 
-  auto number = [&](const std::string& key, bool required) -> std::optional<double> {
+  auto number = [&](const std::string& key) -> std::optional<double> {
     const auto it = p.values.find(key);
-    if (it == p.values.end()) {
-      if (required) throw Error(fmt::format("{}: {} is missing", where, key));
-      return std::nullopt;
-    }
+    if (it == p.values.end()) return std::nullopt;
     const std::string& v = it->second;
     double value = 0;
     const auto [ptr, ec] = std::from_chars(v.data(), v.data() + v.size(), value);
@@ -95,7 +92,7 @@ HciParameters ParseHciParameters(std::string_view text, const std::string& where
     return value;
   };
   auto positive = [&](const std::string& key, double max) -> std::optional<double> {
-    const auto v = number(key, false);
+    const auto v = number(key);
     if (v && (!(*v > 0) || *v > max))
       throw Error(fmt::format("{}: line {}: {} = {} must be positive (at most {})", where,
                               line_of[key], key, *v, max));
@@ -125,15 +122,16 @@ HciParameters ParseHciParameters(std::string_view text, const std::string& where
   p.baseline_mm = positive("extrinsics.baseline_mm", 1e9);
   if (const auto focus_m = positive("extrinsics.focus_distance_m", 1e9))
     p.focus_distance_mm = 1000.0 * *focus_m;
-  p.disp_min = number("meta.disp_min", false);
-  p.disp_max = number("meta.disp_max", false);
+  p.disp_min = number("meta.disp_min");
+  p.disp_max = number("meta.disp_max");
   together({"intrinsics.image_resolution_x_px", "intrinsics.image_resolution_y_px"},
            "the image's two sides go together");
   together({"extrinsics.num_cams_x", "extrinsics.num_cams_y"}, "the grid's two counts go together");
   if (p.focal_length_mm || p.sensor_size_mm)
     together({"intrinsics.focal_length_mm", "intrinsics.sensor_size_mm",
               "intrinsics.image_resolution_x_px", "intrinsics.image_resolution_y_px"},
-             "a focal length in pixels needs the lens's, the sensor's size and the image's");
+             "a focal length in pixels needs the lens's focal length, the sensor's size and the "
+             "image's");
   if (p.focus_distance_mm && !p.baseline_mm)
     throw Error(fmt::format(
         "{}: line {}: extrinsics.focus_distance_m given without extrinsics.baseline_mm (a "
