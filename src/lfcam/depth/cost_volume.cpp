@@ -235,20 +235,23 @@ void CountRow(const std::vector<std::pair<std::size_t, Shift>>& shifted,
 
 // Row y of a plane's cost: each half-array's sums over the window (its edge repeated, as
 // cv::boxFilter's BORDER_REPLICATE), the cheapest half-array whose count exceeds `min_count`;
-// infinity where none does. Each sum is taken in the same order as a running sum from zero would
-// (the same floats), but written rather than added to zeroed rows, and the choice made without a
-// branch, so that the loops vectorise (docs/benchmarks.md).
+// where none does (near the frame's edges, where the views on one side no longer see the
+// sample), the cheapest pair of opposite half-arrays (the views off a line through the reference)
+// whose count exceeds `pair_min_count`; infinity where none does. Each sum is taken in the same
+// order as a running sum from zero would (the same floats), but written rather than added to zeroed
+// rows, and the choice made without a branch, so that the loops vectorise (docs/benchmarks.md).
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
 __attribute__((target_clones("arch=x86-64-v3", "default")))
 #endif
 void WindowedBest(const PlaneScratch& ps, int y, int w, int h, int ring, int radius,
-                  float min_count, Scratch& s, float* best) {
+                  float min_count, float pair_min_count, Scratch& s, float* best) {
   const std::size_t sw = std::size_t(w);
-  s.window_sum.resize(4 * sw);
+  s.window_sum.resize((2 + 2 * kHalves) * sw);
   float* vs = s.window_sum.data();  // sums and counts down the window's rows, per column
   float* vc = vs + sw;
-  float* bs = vs + 2 * sw;  // those summed across the window: the whole window's
-  float* bc = vs + 3 * sw;
+  // Those summed across the window, the whole window's, per half-array.
+  float* const window_sums = vs + 2 * sw;
+  float* const window_counts = window_sums + kHalves * sw;
   // Sums along the row over the window, the row's ends repeated.
   const auto across = [&](const float* v, float* out) {
     if (radius == 1 && w >= 2) {
@@ -284,6 +287,8 @@ void WindowedBest(const PlaneScratch& ps, int y, int w, int h, int ring, int rad
         vc[x] += rc[x];
       }
     }
+    float* bs = window_sums + std::size_t(g) * sw;
+    float* bc = window_counts + std::size_t(g) * sw;
     across(vs, bs);
     across(vc, bc);
     // min_count > 0, so the division is safe wherever it is taken.
@@ -291,7 +296,20 @@ void WindowedBest(const PlaneScratch& ps, int y, int w, int h, int ring, int rad
       best[x] = std::min(
           best[x], bs[x] / std::max(bc[x], min_count) + (bc[x] > min_count ? 0.0f : kNotEnough));
   }
-  for (std::size_t x = 0; x < sw; ++x) best[x] = best[x] >= kNotEnough ? INFINITY : best[x];
+  // The pairs of opposite half-arrays, where no half-array counts. Within a sweep that keeps the
+  // same views at every plane their counts are every plane's, so the choice between half-arrays
+  // and pairs is every plane's too (docs/depth.md, "The frame's edges").
+  // (Few samples: those along the frame's edges. A branch per sample, well predicted.)
+  for (std::size_t x = 0; x < sw; ++x) {
+    if (best[x] < kNotEnough) continue;
+    float fallback = INFINITY;
+    for (int g = 0; g < kHalves / 2; ++g) {
+      const std::size_t a = std::size_t(g) * sw + x, b = std::size_t(g + kHalves / 2) * sw + x;
+      const float c = window_counts[a] + window_counts[b];
+      if (c > pair_min_count) fallback = std::min(fallback, (window_sums[a] + window_sums[b]) / c);
+    }
+    best[x] = fallback;
+  }
 }
 
 }  // namespace
@@ -460,6 +478,11 @@ CostVolume SweepViews::Sweep(const std::vector<double>& q, double gradient_share
   }
   const float min_count =
       float(std::min(2, largest_half) * (2 * radius + 1) * (2 * radius + 1)) - 0.01f;
+  // Where none has two, a pair of opposite half-arrays counts where one view sees the sample; only
+  // where every plane is over the same views (elsewhere it would be over other views at each).
+  const float pair_min_count = options_.same_views_at_every_plane
+                                   ? float((2 * radius + 1) * (2 * radius + 1)) - 0.01f
+                                   : INFINITY;
   // Where each view sees the reference's samples at both ends of the planes (and so at every
   // plane between: a sample's image moves along a line as the plane moves): a shift's rectangle,
   // or a homography's mask.
@@ -497,6 +520,7 @@ CostVolume SweepViews::Sweep(const std::vector<double>& q, double gradient_share
     sweep.gradient_weight = terms.gradient_weight;
     sweep.window_radius = radius;
     sweep.min_count = min_count;
+    sweep.pair_min_count = pair_min_count;
     sweep.most = most;
     bool shifts = true;
     for (int i = 0; i < n && shifts; ++i)
@@ -665,8 +689,8 @@ CostVolume SweepViews::Sweep(const std::vector<double>& q, double gradient_share
         const int last = y1 == h ? h - 1 : y1 - 1 - radius;
         for (int y = next_out; y <= last; ++y) {
           for (int j = 0; j < planes; ++j)
-            WindowedBest(s.planes[std::size_t(j)], y, w, h, ring, radius, min_count, s,
-                         s.best.data() + std::size_t(j) * sw);
+            WindowedBest(s.planes[std::size_t(j)], y, w, h, ring, radius, min_count, pair_min_count,
+                         s, s.best.data() + std::size_t(j) * sw);
           std::uint16_t* out = volume.cost.data() + std::size_t(y) * sw * std::size_t(n) + i0;
           for (int x = 0; x < w; ++x, out += n)
             for (int j = 0; j < planes; ++j) {

@@ -15,6 +15,7 @@
 // views whose grid offset lies within 90 degrees of one of 8 directions a 45 degrees apart), each
 // half-array's cost is averaged over a small window, and the cheapest half-array counts.
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <opencv2/core.hpp>
@@ -34,8 +35,9 @@ struct CostVolumeOptions {
   int window_radius = 1;      // the half-arrays' averaging window (box) radius in samples
   double scale = 1.0;         // > 1: match at 1/scale of the views' resolution (coarse sweeps)
   // A view counts at a sample only if it sees the sample at every plane swept, so that every
-  // plane's cost there is over the same views (docs/depth.md, "The frame's edges"). Off for
-  // sweeps over a wide bracket of depths (EstimateDepthRange), where no view would remain.
+  // plane's cost there is over the same views (docs/depth.md, "The frame's edges"); where no
+  // half-array keeps two such views, a pair of opposite half-arrays counts. Off for sweeps over a
+  // wide bracket of depths (EstimateDepthRange), where no view would remain.
   bool same_views_at_every_plane = false;
   // Each view's brightness made the reference's, channel by channel (a gain from their means over
   // the middle of the frame): for views narrowly apart, which see the same things (a plenoptic
@@ -115,7 +117,10 @@ struct ShiftedSweep {
   std::vector<Read> reads;  // [label * views.size() + view]
   float color_cap = 0, gradient_cap = 0, color_weight = 0, gradient_weight = 0;
   int window_radius = 0;
-  float min_count = 0;     // a half-array counts where its windowed count exceeds this
+  float min_count = 0;  // a half-array counts where its windowed count exceeds this
+  // Where no half-array counts, a pair of opposite half-arrays (g and g + 4) counts where theirs
+  // exceeds this (infinity: never).
+  float pair_min_count = INFINITY;
   std::uint16_t most = 0;  // the cost where no half-array counts
 };
 

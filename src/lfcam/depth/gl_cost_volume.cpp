@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <limits>
 
 #include "lfcam/core/error.h"
 #include "lfcam/depth/shaders/sweep_costs.comp.h"
@@ -204,6 +205,9 @@ CostVolume GlCostVolume::SweepOnGlThread(const ShiftedSweep& sweep) {
   glUniform2i(glGetUniformLocation(window_program_, "size"), w, h);
   glUniform1i(glGetUniformLocation(window_program_, "radius"), std::max(0, sweep.window_radius));
   glUniform1f(glGetUniformLocation(window_program_, "min_count"), sweep.min_count);
+  // (infinity as the largest float: never exceeded, and finite in any GLSL implementation)
+  glUniform1f(glGetUniformLocation(window_program_, "pair_min_count"),
+              std::min(sweep.pair_min_count, std::numeric_limits<float>::max()));
   glUniform1f(glGetUniformLocation(window_program_, "unit"), float(CostVolume::kCostUnit));
   glUniform1ui(glGetUniformLocation(window_program_, "most"), sweep.most);
   static_assert(ShiftedSweep::kChannels == 5, "four channels interleaved and one alone");

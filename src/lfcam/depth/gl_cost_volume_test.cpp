@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
@@ -45,13 +47,19 @@ GlCostVolume* SharedEngine(std::string* why) {
     GTEST_SKIP() << "no GL 4.3 context could be made: " << why_no_gl;      \
   }
 
-TEST(GlCostVolume, SweepsTheSameVolumeAsTheCpu) {
+// At reach 2 from (2, 3) (24 views: every half-array full, some cut by the frame's edge; off
+// centre, so the half-arrays differ in size), and at reach 1 from (1, 4), where along the frame's
+// edges no half-array keeps two views and pairs of opposite half-arrays count instead.
+class GlCostVolumeAgreement : public ::testing::TestWithParam<std::array<int, 3>> {};
+
+TEST_P(GlCostVolumeAgreement, SweepsTheSameVolumeAsTheCpu) {
   LFCAM_ENGINE_OR_SKIP(engine);
   const LightField lf = testing::TwoPlaneLightField(testing::TwoPlaneScene());
+  const auto [reach, row, col] = GetParam();
   CostVolumeOptions options;
-  options.reach = 2;  // 24 views: every half-array full, some cut by the frame's edge
+  options.reach = reach;
   options.same_views_at_every_plane = true;
-  const SweepViews views(lf, 2, 3, options);  // off centre: the half-arrays differ in size
+  const SweepViews views(lf, row, col, options);
   const std::vector<double> q = testing::SweepPlanes(24);
   const int before = engine->tally().gpu_sweeps;
   const CostVolume cpu = views.Sweep(q, 0.7);
@@ -75,6 +83,10 @@ TEST(GlCostVolume, SweepsTheSameVolumeAsTheCpu) {
   const auto [lo, hi] = std::minmax_element(cpu.cost.begin(), cpu.cost.end());
   EXPECT_GT(int(*hi) - int(*lo), 600);
 }
+
+INSTANTIATE_TEST_SUITE_P(ReachAndView, GlCostVolumeAgreement,
+                         ::testing::Values(std::array<int, 3>{2, 2, 3},
+                                           std::array<int, 3>{1, 1, 4}));
 
 TEST(GlCostVolume, EstimatesTheSameDepthMaps) {
   LFCAM_ENGINE_OR_SKIP(engine);

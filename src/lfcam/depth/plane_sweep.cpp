@@ -234,11 +234,10 @@ DepthMap EstimateDepth(const LightField& lf, int row, int col, const PlaneSweepO
   if (!range.valid())
     throw Error(fmt::format("invalid depth range {} .. {} mm", range.near_mm, range.far_mm));
   CostVolumeOptions volume_options = VolumeOptions(options, 1.0);
-  // Every plane over the same views where a half-array keeps enough of them near the frame's
-  // edges: reach 2 or more (a half-array of 10 or more views). At reach 1 (3 views a half-array,
-  // `--all`) the rule leaves the edges' samples without views and costs more than it gains
+  // Every plane over the same views near the frame's edges; where that leaves no half-array two
+  // views (at reach 1, `--all`'s, 3 views a half-array), a pair of opposite half-arrays counts
   // (docs/depth.md, "The frame's edges").
-  volume_options.same_views_at_every_plane = volume_options.reach >= 2;
+  volume_options.same_views_at_every_plane = true;
   const double q_near = 1.0 / range.near_mm, q_far = 1.0 / range.far_mm;
   // Views narrowly apart see the same things: their brightness is made the reference's.
   volume_options.equalise_brightness =

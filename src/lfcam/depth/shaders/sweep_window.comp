@@ -1,6 +1,7 @@
 // One plane of the plane sweep's cost volume from its half-arrays' sums (sweep_costs.comp):
 // each half-array's sum and count over a box window (the edge repeated), its mean where enough
-// of its views see the sample, and the cheapest half-array's, as 16-bit cost units, into the
+// of its views see the sample, and the cheapest half-array's (where none has enough, the
+// cheapest pair of opposite half-arrays'), as 16-bit cost units, into the
 // volume at the plane's label (SweepViews::Sweep in depth/cost_volume.cpp does the same).
 layout(local_size_x = 16, local_size_y = 8) in;
 
@@ -12,6 +13,7 @@ uniform int plane;
 uniform ivec2 size;
 uniform int radius;
 uniform float min_count;
+uniform float pair_min_count;  // a pair of opposite half-arrays, where no half-array counts
 uniform float unit;
 uniform uint most;
 
@@ -41,6 +43,15 @@ void main() {
       found = true;
     }
   }
+  if (!found)
+    for (int g = 0; g < 4; ++g) {
+      const float c = c0[g] + c1[g];
+      if (c > pair_min_count) {
+        const float mean = (s0[g] + s1[g]) / c;
+        best = found ? min(best, mean) : mean;
+        found = true;
+      }
+    }
   const uint value = found ? uint(floor(best * unit + 0.5)) : most;
   imageStore(volume, ivec3(plane, p.x, p.y), uvec4(value, 0u, 0u, 0u));
 }
