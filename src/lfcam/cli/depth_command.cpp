@@ -45,7 +45,18 @@ nlohmann::json Summary(const DepthMap& map) {
           {"min_mm", std::isfinite(lo) ? lo : 0.0},
           {"max_mm", std::isfinite(hi) ? hi : 0.0},
           {"mean_mm", n > 0 ? sum / n : 0.0},
-          {"confident_share", n > 0 ? confident / n : 0.0}};
+          {"confident_share", n > 0 ? confident / n : 0.0},
+          {"noise_levels", map.noise_levels},
+          {"read_sigma", map.read_sigma}};
+}
+
+// Says how noisy views were read, when they were.
+void PrintNoisyViews(const nlohmann::json& summary) {
+  if (summary["read_sigma"].get<double>() <= 0) return;
+  fmt::print(
+      "  the views are noisy (about {:.1f} levels in 8 bits): matched through a Gaussian of {:.1f} "
+      "samples rather than Keys' cubic (docs/depth.md, \"Noisy views\")\n",
+      summary["noise_levels"].get<double>(), summary["read_sigma"].get<double>());
 }
 
 // The GPU engine --backend asks for, or none (the CPU): gl must find a GL 4.3 context; auto
@@ -209,6 +220,7 @@ void AddDepthCommand(CLI::App& app) {
       if (engine) PrintEngineReport(report["gpu"]);
       fmt::print("wrote {} depth maps to {} (range {:.0f} .. {:.0f} mm) in {:.1f} s\n", set.count(),
                  f->out, set.range().near_mm, set.range().far_mm, seconds());
+      PrintNoisyViews(report["central"]);
       return;
     }
     const DepthMap map = EstimateDepth(lf, row, col, options);
@@ -237,6 +249,7 @@ void AddDepthCommand(CLI::App& app) {
         f->out, row, col, map.n_s(), map.n_t(), s["min_mm"].get<double>(),
         s["max_mm"].get<double>(), 100.0 * s["confident_share"].get<double>(),
         report["confidence"].get<std::string>(), report["preview"].get<std::string>(), seconds());
+    PrintNoisyViews(s);
     if (!f->disparity_pfm.empty())
       fmt::print(
           "wrote {} (disparity between neighbouring views, st samples; {} unknown written "

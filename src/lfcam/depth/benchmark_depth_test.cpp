@@ -70,7 +70,7 @@ struct SimulatedScore {
   double moved_row100 = 0;    // MSE x 100 of the truth against itself moved one row
 };
 
-SimulatedScore ScoreSimulatedRig(double pitch_mm, double falloff = 0.0) {
+SimulatedScore ScoreSimulatedRig(double pitch_mm, double falloff = 0.0, double noise = 0.0) {
   Scene scene = MakePaperScene();
   scene.rig.array.pitch_mm = pitch_mm;
   SimulateLightFieldOptions o;
@@ -85,6 +85,13 @@ SimulatedScore ScoreSimulatedRig(double pitch_mm, double falloff = 0.0) {
       std::uint8_t* p = lf.mutable_view_data(r, c);
       for (std::size_t i = 0; i < std::size_t(o.n_s) * o.n_t * 3; ++i)
         p[i] = cv::saturate_cast<std::uint8_t>(p[i] * gain);
+      if (noise > 0) {  // each view's own noise, the same from run to run
+        cv::RNG rng(std::uint64_t(1000 + 9 * r + c));
+        cv::Mat n(o.n_t, o.n_s * 3, CV_32F);
+        rng.fill(n, cv::RNG::NORMAL, 0.0, noise);
+        for (std::size_t i = 0; i < std::size_t(o.n_s) * o.n_t * 3; ++i)
+          p[i] = cv::saturate_cast<std::uint8_t>(p[i] + n.ptr<float>()[i]);
+      }
     }
   const DepthTruth truth = GroundTruthDepth(scene, lf, 4, 4);
   const cv::Mat t = DisparityOf(lf, truth.map), d = DisparityOf(lf, EstimateDepth(lf, 4, 4, {}));
@@ -110,9 +117,10 @@ SimulatedScore ScoreSimulatedRig(double pitch_mm, double falloff = 0.0) {
   SimulatedScore s{100.0 * bad / total, 100.0 * (squared[0] + squared[1]) / total,
                    100.0 * squared[1] / total, 100.0 * moved_row / total};
   std::cout << fmt::format(
-      "[depth benchmark] paper scene, 9 x 9 rig {} mm apart, brightness falloff {}: BadPix0.07 "
-      "{:.2f}%, MSEx100 {:.3f} (silhouettes {:.3f}; the truth moved one row scores {:.3f})\n",
-      pitch_mm, falloff, s.badpix, s.mse100, s.silhouettes100, s.moved_row100);
+      "[depth benchmark] paper scene, 9 x 9 rig {} mm apart, brightness falloff {}, noise {}: "
+      "BadPix0.07 {:.2f}%, MSEx100 {:.3f} (silhouettes {:.3f}; the truth moved one row scores "
+      "{:.3f})\n",
+      pitch_mm, falloff, noise, s.badpix, s.mse100, s.silhouettes100, s.moved_row100);
   return s;
 }
 
@@ -135,6 +143,17 @@ TEST(DepthOnABenchmarkLikeScene, MeetsTheTargetsWhereTheTruthIsRegistered) {
 // by the brightness, then cut off the nearest objects).
 TEST(DepthOnABenchmarkLikeScene, IgnoresBrightnessThatChangesFromViewToView) {
   EXPECT_LE(ScoreSimulatedRig(2.0, 0.1).badpix, 5.0);
+}
+
+// Noisy views (Gaussian noise of 8 levels in every view): Keys' cubic reads pass a sample's noise
+// whole at whole-sample shifts and 0.41 of its variance halfway between samples, so the planes at
+// which the farthest views fall halfway matched better by that alone, and the estimate came in
+// terraces a quarter of a pixel apart. Noisy views are now read through a Gaussian (docs/depth.md,
+// "Noisy views"): measured 13.96% and 1.40, against 31.93% and 2.59 with Keys' reads.
+TEST(DepthOnABenchmarkLikeScene, HoldsUpOnNoisyViews) {
+  const SimulatedScore s = ScoreSimulatedRig(5.0, 0.0, 8.0);
+  EXPECT_LE(s.badpix, 18.0);
+  EXPECT_LE(s.mse100, 1.8);
 }
 
 }  // namespace

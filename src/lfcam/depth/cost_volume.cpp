@@ -16,6 +16,7 @@
 #include "lfcam/core/color.h"
 #include "lfcam/core/error.h"
 #include "lfcam/core/keys_cubic.h"
+#include "lfcam/depth/noise_level.h"
 #include "lfcam/depth/plane_sweep.h"
 
 namespace lfcam {
@@ -25,6 +26,11 @@ constexpr int kChannels = 5;     // R, G, B (sRGB, 0 .. 1), the grey level's x a
 constexpr int kHalves = 8;       // half-arrays, their directions 45 degrees apart
 constexpr int kBandRows = 8;     // the rows the sweep takes through every view at a time
 constexpr int kGroupPlanes = 8;  // the most planes swept together
+// Views noisier than this (NoiseLevel, 8-bit levels) are read through a Gaussian of
+// kNoisyReadSigma samples (ReadWeights). Clean renders measure about 0.4, the real photographs
+// here (a Lytro camera's views, JPEG photographs) 0.5-0.8 (docs/depth.md, "Noisy views").
+constexpr double kNoisyLevels = 1.0;
+constexpr double kNoisyReadSigma = 1.3;
 static_assert(kChannels == ShiftedSweep::kChannels && kHalves == ShiftedSweep::kHalves);
 // The packed channels' units: sRGB levels exactly (0 .. 255); gradients (at most 1 in size) in
 // steps of 1/8192, finer than an 8-bit grey level's gradient (1/2040).
@@ -60,13 +66,36 @@ struct Shift {
   int inner_lo = 0, inner_hi = -1;  // the samples whose four horizontal taps lie inside the row
 };
 
+// The weights of a read at fraction f of a sample (taps at -1 - f, -f, 1 - f, 2 - f): Keys'
+// cubic, or with `read_sigma` > 0 a Gaussian of that many samples tapered to zero at 2 samples
+// (cos^2), normalised. Keys' kernel passes a sample's noise whole at f = 0 and 0.64 of its
+// variance at f = 0.5 (0.41 in two dimensions), so on noisy views the planes at which the
+// farther views fall between samples match better by that alone; the Gaussian passes nearly the
+// same share at every fraction (docs/depth.md, "Noisy views").
+std::array<float, 4> ReadWeights(double f, double read_sigma) {
+  if (read_sigma <= 0) return KeysCubicWeights(f);
+  std::array<float, 4> w{};
+  double total = 0;
+  for (int i = 0; i < 4; ++i) {
+    const double x = (i - 1) - f;
+    const double taper =
+        std::abs(x) < 2.0 ? std::pow(std::cos(std::numbers::pi * x / 4.0), 2) : 0.0;
+    const double value = std::exp(-x * x / (2.0 * read_sigma * read_sigma)) * taper;
+    w[std::size_t(i)] = float(value);
+    total += value;
+  }
+  for (float& v : w) v = float(v / total);
+  return w;
+}
+
 // `within`: also keep to these samples (x_lo .. y_hi), where given.
-Shift MakeShift(double tx, double ty, int w, int h, const Shift* within = nullptr) {
+Shift MakeShift(double tx, double ty, int w, int h, double read_sigma,
+                const Shift* within = nullptr) {
   Shift s;
   s.x0 = int(std::floor(tx));
   s.y0 = int(std::floor(ty));
-  s.wx = KeysCubicWeights(tx - s.x0);
-  s.wy = KeysCubicWeights(ty - s.y0);
+  s.wx = ReadWeights(tx - s.x0, read_sigma);
+  s.wy = ReadWeights(ty - s.y0, read_sigma);
   s.x_lo = std::max(0, int(std::ceil(-tx - 1e-6)));
   s.x_hi = std::min(w - 1, int(std::floor(w - 1 - tx + 1e-6)));
   s.y_lo = std::max(0, int(std::ceil(-ty - 1e-6)));
@@ -362,7 +391,13 @@ SweepViews::SweepViews(const LightField& lf, int row, int col, const CostVolumeO
     View v;
     cv::Mat rgb = ViewSrgb8(lf, r, c);
     if (rgb.cols != w || rgb.rows != h) cv::resize(rgb, rgb, {w, h}, 0, 0, cv::INTER_AREA);
-    if (r == row && c == col) reference_rgb8_ = rgb;
+    if (r == row && c == col) {
+      reference_rgb8_ = rgb;
+      if (options.adapt_to_noise) {
+        noise_level_ = NoiseLevel(rgb);
+        if (noise_level_ > kNoisyLevels) read_sigma_ = kNoisyReadSigma;
+      }
+    }
     cv::Mat f, grey, gx, gy;
     rgb.convertTo(f, CV_32F, 1.0 / 255.0);
     if (r == row && c == col) {
@@ -414,6 +449,21 @@ SweepViews::SweepViews(const LightField& lf, int row, int col, const CostVolumeO
   if (views_.empty())
     throw Error(
         fmt::format("depth needs at least two views; this light field has {}x{}", d.rows, d.cols));
+  // The Gaussian read is the shifted views' (ReadWeights); views warped by a homography (an
+  // st-plane turned from the array's plane) are read by OpenCV's cubic, which the reference must
+  // then match unfiltered.
+  for (const View& view : views_)
+    if (read_sigma_ > 0 && !IsShift(Homography(view, 2.0 * geometry_.st_depth))) read_sigma_ = 0;
+  if (read_sigma_ > 0) {
+    // The reference as a read at a whole sample sees it: the same kernel's three taps.
+    const std::array<float, 4> k = ReadWeights(0.0, read_sigma_);
+    const cv::Mat kernel = (cv::Mat_<float>(1, 3) << k[0], k[1], k[2]);
+    for (int c = 0; c < kChannels; ++c) {
+      cv::Mat channel(h, w, CV_32FC1, reference_.channels.data() + c * plane);
+      cv::sepFilter2D(channel, channel, CV_32F, kernel, kernel, cv::Point(-1, -1), 0,
+                      cv::BORDER_REPLICATE);
+    }
+  }
 }
 
 cv::Matx33d SweepViews::Homography(const View& view, double depth) const {
@@ -493,8 +543,8 @@ CostVolume SweepViews::Sweep(const std::vector<double>& q, double gradient_share
       const cv::Matx33d a = Homography(views_[v], 1.0 / q.front());
       const cv::Matx33d b = Homography(views_[v], 1.0 / q.back());
       if (IsShift(a) && IsShift(b)) {
-        const Shift sa = MakeShift(a(0, 2), a(1, 2), w, h);
-        stable[v] = MakeShift(b(0, 2), b(1, 2), w, h, &sa);
+        const Shift sa = MakeShift(a(0, 2), a(1, 2), w, h, read_sigma_);
+        stable[v] = MakeShift(b(0, 2), b(1, 2), w, h, read_sigma_, &sa);
         continue;
       }
       std::vector<float> at_b;
@@ -530,7 +580,7 @@ CostVolume SweepViews::Sweep(const std::vector<double>& q, double gradient_share
           shifts = false;
           break;
         }
-        const Shift shift = MakeShift(m(0, 2), m(1, 2), w, h,
+        const Shift shift = MakeShift(m(0, 2), m(1, 2), w, h, read_sigma_,
                                       options_.same_views_at_every_plane ? &stable[v] : nullptr);
         sweep.reads.push_back({shift.x0, shift.y0, shift.wx, shift.wy, shift.x_lo, shift.x_hi,
                                shift.y_lo, shift.y_hi});
@@ -555,7 +605,7 @@ CostVolume SweepViews::Sweep(const std::vector<double>& q, double gradient_share
       const cv::Matx33d m = Homography(view, depth);
       if (IsShift(m)) {
         ps.shifted.emplace_back(
-            v, MakeShift(m(0, 2), m(1, 2), w, h,
+            v, MakeShift(m(0, 2), m(1, 2), w, h, read_sigma_,
                          options_.same_views_at_every_plane ? &stable[v] : nullptr));
         continue;
       }

@@ -48,18 +48,34 @@ GlCostVolume* SharedEngine(std::string* why) {
   }
 
 // At reach 2 from (2, 3) (24 views: every half-array full, some cut by the frame's edge; off
-// centre, so the half-arrays differ in size), and at reach 1 from (1, 4), where along the frame's
-// edges no half-array keeps two views and pairs of opposite half-arrays count instead.
-class GlCostVolumeAgreement : public ::testing::TestWithParam<std::array<int, 3>> {};
+// centre, so the half-arrays differ in size), at reach 1 from (1, 4), where along the frame's
+// edges no half-array keeps two views and pairs of opposite half-arrays count instead, and with
+// noise of 6 levels added to every view, which are then read through a Gaussian.
+class GlCostVolumeAgreement : public ::testing::TestWithParam<std::array<int, 4>> {};
 
 TEST_P(GlCostVolumeAgreement, SweepsTheSameVolumeAsTheCpu) {
   LFCAM_ENGINE_OR_SKIP(engine);
-  const LightField lf = testing::TwoPlaneLightField(testing::TwoPlaneScene());
-  const auto [reach, row, col] = GetParam();
+  LightField lf = testing::TwoPlaneLightField(testing::TwoPlaneScene());
+  const auto [reach, row, col, noise] = GetParam();
   CostVolumeOptions options;
   options.reach = reach;
   options.same_views_at_every_plane = true;
+  if (noise > 0) {
+    const auto& d = lf.dims();
+    cv::RNG rng(5);
+    for (int r = 0; r < d.rows; ++r)
+      for (int c = 0; c < d.cols; ++c) {
+        cv::Mat view(d.n_t, d.n_s, CV_8UC3, lf.mutable_view_data(r, c));
+        cv::Mat n(view.size(), CV_32FC3);
+        rng.fill(n, cv::RNG::NORMAL, 0.0, double(noise));
+        cv::Mat noisy;
+        view.convertTo(noisy, CV_32FC3);
+        cv::Mat(noisy + n).convertTo(view, CV_8UC3);
+      }
+    options.adapt_to_noise = true;
+  }
   const SweepViews views(lf, row, col, options);
+  EXPECT_EQ(views.read_sigma() > 0, noise > 0) << "noise measured " << views.noise_level();
   const std::vector<double> q = testing::SweepPlanes(24);
   const int before = engine->tally().gpu_sweeps;
   const CostVolume cpu = views.Sweep(q, 0.7);
@@ -85,8 +101,9 @@ TEST_P(GlCostVolumeAgreement, SweepsTheSameVolumeAsTheCpu) {
 }
 
 INSTANTIATE_TEST_SUITE_P(ReachAndView, GlCostVolumeAgreement,
-                         ::testing::Values(std::array<int, 3>{2, 2, 3},
-                                           std::array<int, 3>{1, 1, 4}));
+                         ::testing::Values(std::array<int, 4>{2, 2, 3, 0},
+                                           std::array<int, 4>{1, 1, 4, 0},
+                                           std::array<int, 4>{2, 2, 3, 6}));
 
 TEST(GlCostVolume, EstimatesTheSameDepthMaps) {
   LFCAM_ENGINE_OR_SKIP(engine);

@@ -238,6 +238,7 @@ DepthMap EstimateDepth(const LightField& lf, int row, int col, const PlaneSweepO
   // views (at reach 1, `--all`'s, 3 views a half-array), a pair of opposite half-arrays counts
   // (docs/depth.md, "The frame's edges").
   volume_options.same_views_at_every_plane = true;
+  volume_options.adapt_to_noise = true;
   const double q_near = 1.0 / range.near_mm, q_far = 1.0 / range.far_mm;
   // Views narrowly apart see the same things: their brightness is made the reference's.
   volume_options.equalise_brightness =
@@ -301,6 +302,8 @@ DepthMap EstimateDepth(const LightField& lf, int row, int col, const PlaneSweepO
   map.row = row;
   map.col = col;
   map.range = range;
+  map.noise_levels = views.noise_level();
+  map.read_sigma = views.read_sigma();
   map.confidence = choice.confidence;
   map.depth.create(choice.label.size(), CV_32FC1);
   for (int y = 0; y < choice.label.rows; ++y)
