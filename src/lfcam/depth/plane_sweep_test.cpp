@@ -59,7 +59,8 @@ TEST_P(PlaneSweep, FindsTheDepthOfBothPlanesWhateverTheStPlanesTurn) {
   EXPECT_GE(ShareWithin(truth, map, 0, 0.01), 0.9);  // the wall (behind the st-plane)
   EXPECT_GE(ShareWithin(truth, map, 1, 0.01), 0.9);  // the plate (in front of it)
   // Confidence is high on the textured planes (uniqueness included: measured 0.31).
-  EXPECT_GT(cv::mean(map.confidence)[0], 0.25) << "noise " << map.noise_levels << " read " << map.read_sigma;
+  EXPECT_GT(cv::mean(map.confidence)[0], 0.25)
+      << "noise " << map.noise_levels << " read " << map.read_sigma;
 }
 
 INSTANTIATE_TEST_SUITE_P(StPlane, PlaneSweep, ::testing::Values(0.0, 12.0));
