@@ -5,18 +5,23 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <cctype>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <numbers>
 #include <opencv2/imgcodecs.hpp>
 
+#include "lfcam/depth/depth_map.h"
 #include "lfcam/depth/disparity_map.h"
 #include "lfcam/depth/plane_sweep.h"
 #include "lfcam/io/grid_import.h"
 #include "lfcam/io/rectified_import.h"
 #include "lfcam/sim/depth_truth.h"
 #include "lfcam/sim/scene.h"
+#include "lfcam/sim/shapes.h"
 #include "lfcam/sim/simulate_lightfield.h"
 
 namespace lfcam::benchmark_depth_test {
@@ -70,8 +75,8 @@ struct SimulatedScore {
   double moved_row100 = 0;    // MSE x 100 of the truth against itself moved one row
 };
 
-SimulatedScore ScoreSimulatedRig(double pitch_mm, double falloff = 0.0, double noise = 0.0) {
-  Scene scene = MakePaperScene();
+SimulatedScore ScoreSimulatedRig(Scene scene, double pitch_mm, double falloff = 0.0,
+                                 double noise = 0.0, const PlaneSweepOptions& options = {}) {
   scene.rig.array.pitch_mm = pitch_mm;
   SimulateLightFieldOptions o;
   o.rows = o.cols = 9;
@@ -94,7 +99,17 @@ SimulatedScore ScoreSimulatedRig(double pitch_mm, double falloff = 0.0, double n
       }
     }
   const DepthTruth truth = GroundTruthDepth(scene, lf, 4, 4);
-  const cv::Mat t = DisparityOf(lf, truth.map), d = DisparityOf(lf, EstimateDepth(lf, 4, 4, {}));
+  const DepthMap estimate = EstimateDepth(lf, 4, 4, options);
+  const cv::Mat t = DisparityOf(lf, truth.map), d = DisparityOf(lf, estimate);
+  if (const char* dir = std::getenv("LFCAM_FIDELITY_OUT")) {  // the maps, to look at
+    std::string name = fmt::format("benchmark_like_{}_{}mm", scene.name, pitch_mm);
+    for (char& c : name)
+      if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+    WriteDepthFiles(fs::path(dir) / (name + "_estimate.png"), estimate);
+    DepthMap same_range = truth.map;
+    same_range.range = estimate.range;
+    WriteDepthFiles(fs::path(dir) / (name + "_truth.png"), same_range);
+  }
   const int border = 15, edge_reach = 3;
   // [0]: away from depth edges; [1]: within 3 samples of another object (the silhouettes).
   double squared[2] = {0, 0}, moved_row = 0;
@@ -117,10 +132,10 @@ SimulatedScore ScoreSimulatedRig(double pitch_mm, double falloff = 0.0, double n
   SimulatedScore s{100.0 * bad / total, 100.0 * (squared[0] + squared[1]) / total,
                    100.0 * squared[1] / total, 100.0 * moved_row / total};
   std::cout << fmt::format(
-      "[depth benchmark] paper scene, 9 x 9 rig {} mm apart, brightness falloff {}, noise {}: "
+      "[depth benchmark] {} scene, 9 x 9 rig {} mm apart, brightness falloff {}, noise {}: "
       "BadPix0.07 {:.2f}%, MSEx100 {:.3f} (silhouettes {:.3f}; the truth moved one row scores "
       "{:.3f})\n",
-      pitch_mm, falloff, noise, s.badpix, s.mse100, s.silhouettes100, s.moved_row100);
+      scene.name, pitch_mm, falloff, noise, s.badpix, s.mse100, s.silhouettes100, s.moved_row100);
   return s;
 }
 
@@ -128,7 +143,7 @@ SimulatedScore ScoreSimulatedRig(double pitch_mm, double falloff = 0.0, double n
 // targets hold, silhouettes included (docs/depth.md, "A seventh round"): what antinous'
 // silhouettes lose is their truth's registration.
 TEST(DepthOnABenchmarkLikeScene, MeetsTheTargetsWhereTheTruthIsRegistered) {
-  const SimulatedScore s = ScoreSimulatedRig(5.0);
+  const SimulatedScore s = ScoreSimulatedRig(MakePaperScene(), 5.0);
   // Measured 4.66%, 0.60 and 0.51 against 1.66 (before the range took in faint surfaces: 34.7%,
   // the back wall all at the range's far end).
   EXPECT_LE(s.badpix, 5.0);
@@ -142,7 +157,7 @@ TEST(DepthOnABenchmarkLikeScene, MeetsTheTargetsWhereTheTruthIsRegistered) {
 // equalising 8.53%, and 18.5% with it in the final sweep only: the range's coarse sweep, misled
 // by the brightness, then cut off the nearest objects).
 TEST(DepthOnABenchmarkLikeScene, IgnoresBrightnessThatChangesFromViewToView) {
-  EXPECT_LE(ScoreSimulatedRig(2.0, 0.1).badpix, 5.0);
+  EXPECT_LE(ScoreSimulatedRig(MakePaperScene(), 2.0, 0.1).badpix, 5.0);
 }
 
 // Noisy views (Gaussian noise of 8 levels in every view): Keys' cubic reads pass a sample's noise
@@ -151,9 +166,93 @@ TEST(DepthOnABenchmarkLikeScene, IgnoresBrightnessThatChangesFromViewToView) {
 // terraces a quarter of a pixel apart. Noisy views are now read through a Gaussian (docs/depth.md,
 // "Noisy views"): measured 13.96% and 1.40, against 31.93% and 2.59 with Keys' reads.
 TEST(DepthOnABenchmarkLikeScene, HoldsUpOnNoisyViews) {
-  const SimulatedScore s = ScoreSimulatedRig(5.0, 0.0, 8.0);
+  const SimulatedScore s = ScoreSimulatedRig(MakePaperScene(), 5.0, 0.0, 8.0);
   EXPECT_LE(s.badpix, 18.0);
   EXPECT_LE(s.mse100, 1.8);
+}
+
+Texture Faint(Texture t, double contrast, double scale) {
+  const Vec3 mid = 0.5 * (t.color_a + t.color_b);
+  t.color_a = mid + contrast * (t.color_a - mid);
+  t.color_b = mid + contrast * (t.color_b - mid);
+  t.scale_mm *= scale;
+  return t;
+}
+
+Scene Fainter(Scene scene, double contrast, double scale) {
+  for (auto& o : scene.objects) o.texture = Faint(o.texture, contrast, scale);
+  scene.name += fmt::format(" (contrast {}, features x{})", contrast, scale);
+  return scene;
+}
+
+Scene SlopesScene() {
+  Scene scene = MakePaperScene();
+  scene.name = "slopes";
+  scene.objects.clear();
+  auto turned_y = [](double deg) {
+    const double a = deg * std::numbers::pi / 180.0;
+    return Vec3(std::cos(a), 0.0, -std::sin(a));
+  };
+  auto turned_x = [](double deg) {
+    const double a = deg * std::numbers::pi / 180.0;
+    return Vec3(0.0, std::cos(a), -std::sin(a));
+  };
+  scene.Add("wall",
+            std::make_shared<RectangleShape>(Vec3(300, 275, -1400), Vec3::UnitX(), Vec3::UnitY(),
+                                             1500, 1500),
+            Texture{Pattern::kNoise, {0.1, 0.15, 0.3}, {0.9, 0.8, 0.6}, 20, 3});
+  scene.Add(
+      "ramp y50",
+      std::make_shared<RectangleShape>(Vec3(170, 390, -300), turned_y(50), Vec3::UnitY(), 110, 80),
+      Texture{Pattern::kNoise, {0.6, 0.1, 0.05}, {0.95, 0.9, 0.3}, 10, 9});
+  scene.Add(
+      "ramp x45",
+      std::make_shared<RectangleShape>(Vec3(430, 390, 200), Vec3::UnitX(), turned_x(45), 100, 90),
+      Texture{Pattern::kNoise, {0.1, 0.5, 0.1}, {0.8, 0.9, 0.7}, 12, 5});
+  scene.Add("ball", std::make_shared<SphereShape>(Vec3(290, 150, -200), 110.0),
+            Texture{Pattern::kNoise, {0.5, 0.4, 0.3}, {0.95, 0.85, 0.8}, 15, 7});
+  scene.Add(
+      "ramp y-65",
+      std::make_shared<RectangleShape>(Vec3(470, 150, -700), turned_y(-65), Vec3::UnitY(), 150, 90),
+      Texture{Pattern::kNoise, {0.3, 0.3, 0.6}, {0.9, 0.9, 0.95}, 14, 11});
+  return scene;
+}
+
+Scene SlatsScene() {
+  Scene scene = MakePaperScene();
+  scene.name = "slats";
+  scene.objects.clear();
+  scene.Add("wall",
+            std::make_shared<RectangleShape>(Vec3(300, 275, -1400), Vec3::UnitX(), Vec3::UnitY(),
+                                             1500, 1500),
+            Texture{Pattern::kNoise, {0.1, 0.15, 0.3}, {0.9, 0.8, 0.6}, 20, 3});
+  for (int i = 0; i < 9; ++i)
+    scene.Add(fmt::format("slat {}", i),
+              std::make_shared<RectangleShape>(Vec3(80 + 55 * i, 275, 150), Vec3::UnitX(),
+                                               Vec3::UnitY(), 2.0 + i, 200),
+              Texture{Pattern::kNoise, {0.6, 0.1, 0.05}, {0.95, 0.9, 0.3}, 6, 9u + i});
+  return scene;
+}
+
+// Slanted planes (turned 45 to 65 degrees) and a ball in front of a wall, their textures faint
+// (15% of their contrast) and three times as coarse: the benchmark's slopes, where only the
+// local planes and the slant prior keep the estimate off terraces (docs/depth.md, "Scenes of the
+// benchmark's kinds"). Measured 1.12% and 0.41 (without the fit and the prior: 2.25%).
+TEST(DepthOnABenchmarkLikeScene, HoldsOnFaintSlopes) {
+  const SimulatedScore s = ScoreSimulatedRig(Fainter(SlopesScene(), 0.15, 3.0), 5.0);
+  EXPECT_LE(s.badpix, 1.6);
+  EXPECT_LE(s.mse100, 0.6);
+}
+
+// Nine upright slats 4 to 20 mm wide (3 to 14 samples) 3.45 m from the cameras, in front of a wall
+// at 5 m: thin occluders, whose silhouettes must be where the truth's are. Measured 0.06%, MSE x
+// 100 0.071, the silhouettes 0.064 against 0.145 for the truth moved one row (without the
+// weighted-median clean-up: 3.12% and 3.77, the slats fattened).
+TEST(DepthOnABenchmarkLikeScene, KeepsThinOccludersInPlace) {
+  const SimulatedScore s = ScoreSimulatedRig(SlatsScene(), 5.0);
+  EXPECT_LE(s.badpix, 0.5);
+  EXPECT_LE(s.mse100, 0.3);
+  EXPECT_LE(s.silhouettes100, 0.6 * s.moved_row100);
 }
 
 }  // namespace
