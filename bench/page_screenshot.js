@@ -41,7 +41,11 @@ const chrome = spawn('chromium', [
   '--no-first-run', '--disable-background-networking', '--disable-component-update',
   '--disable-sync', '--hide-scrollbars', `--user-data-dir=${profile}`,
   `--window-size=${options.size[0]},${options.size[1]}`, '--remote-debugging-pipe', 'about:blank',
-], {stdio: ['ignore', 'ignore', 'pipe', 'pipe', 'pipe']});
+], {
+  stdio: ['ignore', 'ignore', 'pipe', 'pipe', 'pipe'],
+  // Chromium's own temporary folders (org.chromium.Chromium.*) inside the profile, which goes.
+  env: {...process.env, TMPDIR: profile},
+});
 let stderr = '';
 chrome.stderr.on('data', (d) => { stderr += d; });
 

@@ -17,6 +17,7 @@
 
 #include "lfcam/capture/local_array_test_support.h"
 #include "lfcam/cli/cli_test_support.h"
+#include "lfcam/core/test_support.h"
 #include "lfcam/node/request_signature.h"
 #include "lfcam/session/session.h"
 
@@ -54,7 +55,7 @@ TEST(EmulatedArm64Node, ThePisAgentAnswersStatusConfigureShootAndFetchUnderEmula
   const std::string emulator = EnvOr("LFCAM_ARM64_EMULATOR", "/usr/bin/qemu-aarch64-static");
   ASSERT_TRUE(fs::exists(emulator)) << emulator << " (Debian's qemu-user-static)";
 
-  const fs::path dir = fs::temp_directory_path() / fmt::format("lfcam_arm64_node_{}", ::getpid());
+  const fs::path dir = testing::MakeScratchDir("lfcam_arm64_node");  // gone when the test passes
   // A small array (emulation is slow): 2 x 2 nodes, each replaying photographs of its own, so
   // that every image that comes home can be told apart and checked against its source.
   LocalArray array(dir / "nodes", 2, 2, {"--backend", "replay"});
