@@ -210,9 +210,14 @@ RenderResult RenderReference(const LightField& lf, const VirtualCamera& camera,
   });
   result.rays_hit = hits_per_thread.combine(std::plus<>());
   result.path = frame.depth ? "reference (depth lookup)" : "reference";
-  result.rays = frame.cameras ? result.rays_hit
-                              : static_cast<long long>(camera.width()) * camera.height() *
-                                    static_cast<long long>(frame.lens_points.size());
+  // An antialiased pinhole pixel of the depth lookup casts its 2 x 2 film points
+  // (RenderPixelDepth); otherwise a pixel casts one ray a lens sample.
+  const long long rays_per_pixel = frame.depth && frame.antialias && camera.is_pinhole()
+                                       ? 4
+                                       : static_cast<long long>(frame.lens_points.size());
+  result.rays = frame.cameras
+                    ? result.rays_hit
+                    : static_cast<long long>(camera.width()) * camera.height() * rays_per_pixel;
   return result;
 }
 

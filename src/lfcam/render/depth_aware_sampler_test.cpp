@@ -97,6 +97,21 @@ TEST_F(DepthLookup, RefocusedThroughAnApertureBeatsBothLookups) {
   }
 }
 
+// The rays a frame counts are the rays it cast: an antialiased pinhole pixel casts four (the
+// command's "% of rays hit the slab" said 400% before).
+TEST_F(DepthLookup, CountsTheRaysAnAntialiasedPixelCasts) {
+  CpuRenderOptions o;
+  o.interpolation = Interpolation::kDepth;
+  o.depth = truth_;
+  o.antialias = true;
+  const VirtualCamera camera = Camera(lf_->slab().uv.center());
+  const RenderResult r = RenderLightFieldCpu(*lf_, camera, o);
+  const long long pixels = static_cast<long long>(camera.width()) * camera.height();
+  EXPECT_EQ(r.rays, 4 * pixels);
+  EXPECT_GT(r.rays_hit, 3 * pixels);
+  EXPECT_LE(r.rays_hit, r.rays);
+}
+
 TEST_F(DepthLookup, NeedsDepthMapsAndTheLensSamplesIntegrator) {
   const VirtualCamera camera = Camera(lf_->slab().uv.center(), 64);
   CpuRenderOptions o;

@@ -570,8 +570,11 @@ double GlRenderer::RenderDepth(const LightField& lf, const VirtualCamera& camera
   glBindTexture(GL_TEXTURE_2D_ARRAY, views_);
   glBindImageTexture(0, output_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
   CheckGl("setting the frame's parameters");
-  // The rays a pixel casts, as the CPU counts them (its lens samples; a pinhole's one).
-  last_lens_count_ = static_cast<long long>(camera.lens_samples().size());
+  // The rays a pixel casts, as the CPU counts them (its lens samples; a pinhole's one, or its
+  // 2 x 2 film points when antialiased).
+  last_lens_count_ = options.antialias && camera.is_pinhole()
+                         ? 4
+                         : static_cast<long long>(camera.lens_samples().size());
   last_note_ = " (depth lookup)";
   return Dispatch(camera, options);
 }
