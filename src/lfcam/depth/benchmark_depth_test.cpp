@@ -1,7 +1,8 @@
 // The depth estimate on a scene of the HCI 4D Light Field Benchmark (../shared/data/hci-antinous,
-// when present), and on a simulated scene of the benchmark's kind whose truth is registered to
-// its views, scored as the benchmark scores it: BadPix(0.07) and MSE x 100 over the centre view
-// less a 15-pixel border (docs/depth.md, "On the field's benchmark" and "A seventh round").
+// when present), and on simulated scenes of the benchmark's kinds (the `paper` scene, slopes,
+// thin occluders) whose truth is registered to their views, scored as the benchmark scores it:
+// BadPix(0.07) and MSE x 100 over the centre view less a 15-pixel border (docs/depth.md, "On the
+// field's benchmark", "A seventh round" and "Scenes of the benchmark's kinds").
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
