@@ -10,8 +10,10 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <iostream>
+#include <map>
 #include <numbers>
 #include <opencv2/imgcodecs.hpp>
 
@@ -76,8 +78,17 @@ struct SimulatedScore {
   double moved_row100 = 0;    // MSE x 100 of the truth against itself moved one row
 };
 
-SimulatedScore ScoreSimulatedRig(Scene scene, double pitch_mm, double falloff = 0.0,
-                                 double noise = 0.0, const PlaneSweepOptions& options = {}) {
+// The rig's light field and the centre view's truth, simulated once a process for each scene and
+// pitch (two tests read the same rig: the simulation is most of a test's time).
+struct SimulatedRig {
+  LightField lf;
+  DepthTruth truth;
+};
+
+const SimulatedRig& SimulateRig(Scene scene, double pitch_mm) {
+  static std::map<std::string, SimulatedRig> rigs;
+  const std::string key = fmt::format("{}@{}", scene.name, pitch_mm);
+  if (const auto found = rigs.find(key); found != rigs.end()) return found->second;
   scene.rig.array.pitch_mm = pitch_mm;
   SimulateLightFieldOptions o;
   o.rows = o.cols = 9;
@@ -85,6 +96,19 @@ SimulatedScore ScoreSimulatedRig(Scene scene, double pitch_mm, double falloff = 
   o.n_t = 384;
   o.supersampling = 3;
   LightField lf = SimulateLightField(scene, o);
+  DepthTruth truth = GroundTruthDepth(scene, lf, 4, 4);
+  return rigs.emplace(key, SimulatedRig{std::move(lf), std::move(truth)}).first->second;
+}
+
+SimulatedScore ScoreSimulatedRig(const Scene& scene, double pitch_mm, double falloff = 0.0,
+                                 double noise = 0.0, const PlaneSweepOptions& options = {}) {
+  const SimulatedRig& rig = SimulateRig(scene, pitch_mm);
+  const LightFieldDims& o = rig.lf.dims();
+  // A copy of its samples, which the brightness and the noise then change.
+  LightField lf(o, rig.lf.sample_type(), rig.lf.slab());
+  for (int r = 0; r < 9; ++r)
+    for (int c = 0; c < 9; ++c)
+      std::memcpy(lf.mutable_view_data(r, c), rig.lf.view_data(r, c), o.samples_per_view() * 3);
   for (int r = 0; r < 9; ++r)
     for (int c = 0; c < 9; ++c) {
       const double gain = 1.0 - falloff * ((r - 4) * (r - 4) + (c - 4) * (c - 4)) / 32.0;
@@ -99,7 +123,7 @@ SimulatedScore ScoreSimulatedRig(Scene scene, double pitch_mm, double falloff = 
           p[i] = cv::saturate_cast<std::uint8_t>(p[i] + n.ptr<float>()[i]);
       }
     }
-  const DepthTruth truth = GroundTruthDepth(scene, lf, 4, 4);
+  const DepthTruth& truth = rig.truth;
   const DepthMap estimate = EstimateDepth(lf, 4, 4, options);
   const cv::Mat t = DisparityOf(lf, truth.map), d = DisparityOf(lf, estimate);
   if (const char* dir = std::getenv("LFCAM_FIDELITY_OUT")) {  // the maps, to look at
