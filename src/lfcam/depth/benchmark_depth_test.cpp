@@ -18,6 +18,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "lfcam/depth/depth_map.h"
+#include "lfcam/depth/depth_test_scene.h"
 #include "lfcam/depth/disparity_map.h"
 #include "lfcam/depth/plane_sweep.h"
 #include "lfcam/io/grid_import.h"
@@ -211,9 +212,7 @@ Scene Fainter(Scene scene, double contrast, double scale) {
 }
 
 Scene SlopesScene() {
-  Scene scene = MakePaperScene();
-  scene.name = "slopes";
-  scene.objects.clear();
+  Scene scene = testing::WallScene("slopes");
   auto turned_y = [](double deg) {
     const double a = deg * std::numbers::pi / 180.0;
     return Vec3(std::cos(a), 0.0, -std::sin(a));
@@ -222,10 +221,6 @@ Scene SlopesScene() {
     const double a = deg * std::numbers::pi / 180.0;
     return Vec3(0.0, std::cos(a), -std::sin(a));
   };
-  scene.Add("wall",
-            std::make_shared<RectangleShape>(Vec3(300, 275, -1400), Vec3::UnitX(), Vec3::UnitY(),
-                                             1500, 1500),
-            Texture{Pattern::kNoise, {0.1, 0.15, 0.3}, {0.9, 0.8, 0.6}, 20, 3});
   scene.Add(
       "ramp y50",
       std::make_shared<RectangleShape>(Vec3(170, 390, -300), turned_y(50), Vec3::UnitY(), 110, 80),
@@ -244,13 +239,7 @@ Scene SlopesScene() {
 }
 
 Scene SlatsScene() {
-  Scene scene = MakePaperScene();
-  scene.name = "slats";
-  scene.objects.clear();
-  scene.Add("wall",
-            std::make_shared<RectangleShape>(Vec3(300, 275, -1400), Vec3::UnitX(), Vec3::UnitY(),
-                                             1500, 1500),
-            Texture{Pattern::kNoise, {0.1, 0.15, 0.3}, {0.9, 0.8, 0.6}, 20, 3});
+  Scene scene = testing::WallScene("slats");
   for (int i = 0; i < 9; ++i)
     scene.Add(fmt::format("slat {}", i),
               std::make_shared<RectangleShape>(Vec3(80 + 55 * i, 275, 150), Vec3::UnitX(),

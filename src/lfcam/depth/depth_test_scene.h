@@ -7,6 +7,7 @@
 #include <cmath>
 #include <memory>
 #include <numbers>
+#include <string>
 #include <vector>
 
 #include "lfcam/sim/scene.h"
@@ -14,16 +15,23 @@
 
 namespace lfcam::testing {
 
-inline Scene TwoPlaneScene(double turn_deg = 0.0) {
+// The `paper` scene's rig with nothing in it but a textured wall 5 m from the array: the
+// background of the tests' own scenes.
+inline Scene WallScene(const std::string& name) {
   Scene scene = MakePaperScene();
-  scene.name = "two planes";
+  scene.name = name;
   scene.objects.clear();
-  const double a = turn_deg * std::numbers::pi / 180.0;
-  scene.rig.board.x_axis = Vec3(std::cos(a), 0.0, -std::sin(a));
   scene.Add("wall",
             std::make_shared<RectangleShape>(Vec3(300, 275, -1400), Vec3::UnitX(), Vec3::UnitY(),
                                              1500, 1500),
             Texture{Pattern::kNoise, {0.1, 0.15, 0.3}, {0.9, 0.8, 0.6}, 20, 3});
+  return scene;
+}
+
+inline Scene TwoPlaneScene(double turn_deg = 0.0) {
+  Scene scene = WallScene("two planes");
+  const double a = turn_deg * std::numbers::pi / 180.0;
+  scene.rig.board.x_axis = Vec3(std::cos(a), 0.0, -std::sin(a));
   scene.Add(
       "plate",
       std::make_shared<RectangleShape>(Vec3(330, 250, 400), Vec3::UnitX(), Vec3::UnitY(), 110, 90),
