@@ -218,8 +218,9 @@ void AddDepthCommand(CLI::App& app) {
         return;
       }
       if (engine) PrintEngineReport(report["gpu"]);
-      fmt::print("wrote {} depth maps to {} (range {:.0f} .. {:.0f} mm) in {:.1f} s\n", set.count(),
-                 f->out, set.range().near_mm, set.range().far_mm, seconds());
+      fmt::print("wrote {} depth maps to {} (range {:.0f} .. {:.0f} {}) in {:.1f} s\n", set.count(),
+                 f->out, set.range().near_mm, set.range().far_mm, WorldLengthUnit(lf.metadata()),
+                 seconds());
       PrintNoisyViews(report["central"]);
       return;
     }
@@ -244,11 +245,12 @@ void AddDepthCommand(CLI::App& app) {
     if (engine) PrintEngineReport(report["gpu"]);
     const nlohmann::json& s = report["map"];
     fmt::print(
-        "wrote {} (view {},{}: {}x{}, {:.0f} .. {:.0f} mm, {:.0f}% confident), {} and {} in "
+        "wrote {} (view {},{}: {}x{}, {:.0f} .. {:.0f} {}, {:.0f}% confident), {} and {} in "
         "{:.1f} s\n",
         f->out, row, col, map.n_s(), map.n_t(), s["min_mm"].get<double>(),
-        s["max_mm"].get<double>(), 100.0 * s["confident_share"].get<double>(),
-        report["confidence"].get<std::string>(), report["preview"].get<std::string>(), seconds());
+        s["max_mm"].get<double>(), WorldLengthUnit(lf.metadata()),
+        100.0 * s["confident_share"].get<double>(), report["confidence"].get<std::string>(),
+        report["preview"].get<std::string>(), seconds());
     PrintNoisyViews(s);
     if (!f->disparity_pfm.empty())
       fmt::print(

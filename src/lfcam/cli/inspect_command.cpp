@@ -165,12 +165,17 @@ void AddInfoCommand(CLI::App& app) {
     fmt::print("  size          {:.1f} MB of samples, {:.1f} MB on disk ({})\n",
                j["sample_bytes"].get<double>() / 1e6, h.file_bytes / 1e6,
                j["compression"].get<std::string>());
-    fmt::print("  uv (array)    p_ca {}  rows {}  cols {}  pitch_mm {}\n", Vec(s.uv.p_ca),
-               s.uv.rows, s.uv.cols, s.uv.pitch_mm);
+    const std::string unit = WorldLengthUnit(h.metadata);
+    if (unit != "mm")
+      fmt::print(
+          "  lengths       in units of the cameras' spacing, not mm (the import knew no scale; "
+          "import with --pitch-mm for mm)\n");
+    fmt::print("  uv (array)    p_ca {}  rows {}  cols {}  pitch {} {}\n", Vec(s.uv.p_ca),
+               s.uv.rows, s.uv.cols, s.uv.pitch_mm, unit);
     fmt::print("                u_ca {}  v_ca {}  n_ca {}\n", Vec(s.uv.u_ca), Vec(s.uv.v_ca),
                Vec(s.uv.n_ca));
-    fmt::print("  st (view window) origin {}  x {}  y {}  {} x {} mm\n", Vec(s.st.origin),
-               Vec(s.st.x_axis), Vec(s.st.y_axis), s.st.width_mm, s.st.height_mm);
+    fmt::print("  st (view window) origin {}  x {}  y {}  {} x {} {}\n", Vec(s.st.origin),
+               Vec(s.st.x_axis), Vec(s.st.y_axis), s.st.width_mm, s.st.height_mm, unit);
     fmt::print("  st domain     [{}, {}] x [{}, {}]\n", s.st_domain.s0, s.st_domain.s1,
                s.st_domain.t0, s.st_domain.t1);
     if (!h.st_offsets.empty()) {
@@ -183,7 +188,7 @@ void AddInfoCommand(CLI::App& app) {
           "along s, {}..{} along t\n",
           k0, k1, l0, l1);
     }
-    fmt::print("  plane gap     {:.1f} mm\n", s.separation_mm());
+    fmt::print("  plane gap     {:.1f} {}\n", s.separation_mm(), unit);
     // Metadata: in full when short; else each top-level field, long values elided.
     const std::string metadata = JsonToText(h.metadata);
     if (metadata.size() <= 160) {

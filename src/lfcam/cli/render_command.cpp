@@ -34,11 +34,13 @@ namespace {
 double Degrees(double radians) { return radians * 180.0 / std::numbers::pi; }
 
 // `samples`: what each pixel averages (the renderer's n_ls lens rays, the oracle's samples).
-std::string DescribeCamera(const VirtualCamera& camera, const std::string& samples) {
+// `unit`: the light field's world lengths' (WorldLengthUnit); f is the film's, in mm.
+std::string DescribeCamera(const VirtualCamera& camera, const std::string& samples,
+                           const std::string& unit) {
   const auto& p = camera.params();
-  return fmt::format("{}x{}, f {} mm, d_o {} mm, d_l {} mm, {}, fov {:.3f} deg ({})", p.width,
-                     p.height, p.focal_length_mm, p.focus_distance_mm, p.aperture_mm, samples,
-                     Degrees(camera.field_of_view_rad()),
+  return fmt::format("{}x{}, f {} mm, d_o {} {}, d_l {} {}, {}, fov {:.3f} deg ({})", p.width,
+                     p.height, p.focal_length_mm, p.focus_distance_mm, unit, p.aperture_mm, unit,
+                     samples, Degrees(camera.field_of_view_rad()),
                      p.breathing ? "breathing" : "no breathing");
 }
 
@@ -156,10 +158,12 @@ void AddRenderCommand(CLI::App& app) {
         "wrote {}: {}; {:.1f} ms{} (median of {}, {} renderer), {:.1f}% of rays hit the slab\n",
         flags->out,
         DescribeCamera(
-            camera, options.integrator != Integrator::kLensSamples
-                        ? fmt::format("cameras integrator, {:.1f} cameras a pixel",
-                                      double(result.rays_hit) / (camera.width() * camera.height()))
-                        : fmt::format("{} lens samples", camera.lens_samples().size())),
+            camera,
+            options.integrator != Integrator::kLensSamples
+                ? fmt::format("cameras integrator, {:.1f} cameras a pixel",
+                              double(result.rays_hit) / (camera.width() * camera.height()))
+                : fmt::format("{} lens samples", camera.lens_samples().size()),
+            WorldLengthUnit(lf.metadata())),
         times_ms[times_ms.size() / 2],
         renderer->uses_gl() && gpu_ms[gpu_ms.size() / 2] >= 0
             ? fmt::format(", {:.2f} ms on the GPU", gpu_ms[gpu_ms.size() / 2])
@@ -204,8 +208,9 @@ void AddOracleCommand(CLI::App& app) {
     progress.finish();
     WriteImage(flags->out, image);
     fmt::print("wrote {}: oracle of scene '{}', {}; {:.1f} s\n", flags->out, scene.name,
-               DescribeCamera(camera, fmt::format("{} samples a pixel",
-                                                  OracleSamplesPerPixel(camera, options))),
+               DescribeCamera(
+                   camera,
+                   fmt::format("{} samples a pixel", OracleSamplesPerPixel(camera, options)), "mm"),
                SecondsSince(start));
   });
 }

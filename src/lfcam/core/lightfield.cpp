@@ -169,4 +169,12 @@ Vec3 LightField::camera_center(int row, int col) const {
   return slab_.uv.camera_center(row, col);
 }
 
+std::string WorldLengthUnit(const nlohmann::json& metadata) {
+  if (!metadata.is_object() || !metadata.contains("import")) return "mm";
+  const nlohmann::json& import = metadata["import"];
+  if (!import.is_object() || !import.contains("length_unit") || !import["length_unit"].is_string())
+    return "mm";
+  return import["length_unit"].get<std::string>() == "units" ? "units" : "mm";
+}
+
 }  // namespace lfcam

@@ -75,6 +75,11 @@ class SampleBuffer {
   std::uint64_t serial_ = 0;
 };
 
+// The unit of a light field's world lengths (its metadata): "mm", or "units" where its import
+// had no metric scale and took the cameras' spacing as 1 (views named by grid index only, no
+// --pitch-mm: lengths are then in units of that spacing, and `info`, `render` and `depth` say so).
+std::string WorldLengthUnit(const nlohmann::json& metadata);
+
 class LightField {
  public:
   LightField() = default;

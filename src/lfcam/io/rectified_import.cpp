@@ -52,12 +52,13 @@ Vec2 GridOrigin(const ImportedGrid& g, double pitch_mm) {
 
 RectifiedGeometry ResolveRectifiedGeometry(const ImportedGrid& g, const ImportOptions& o) {
   RectifiedGeometry r;
-  const std::string units = g.positions_known ? "mm" : "units";
+  const std::string units = g.positions_known || o.pitch_mm ? "mm" : "units";
   // The pitch: named positions, parameters.cfg or the flag; else unit.
   if (o.pitch_mm && g.positions_known)
     throw Error(fmt::format("the {} views give their positions: --pitch-mm does not apply",
                             ToString(g.naming)));
   r.pitch_mm = o.pitch_mm.value_or(g.pitch_mm);
+  r.metric = g.positions_known || o.pitch_mm.has_value();
   if (!g.positions_known && !o.pitch_mm)
     r.assumed.push_back(fmt::format(
         "the cameras 1 unit apart (the names give grid indices only; --pitch-mm sets it)"));
@@ -215,6 +216,7 @@ LightField ImportRectifiedViews(const fs::path& dir, const ImportedGrid& g,
                      {"st_distance_mm", z0},
                      {"pitch_mm", pitch},
                      {"units", geo.assumed.empty() ? "mm" : "assumed (see assumed)"},
+                     {"length_unit", geo.metric ? "mm" : "units"},
                      {"assumed", geo.assumed},
                      {"stored", "sample for sample (each view's own pixels)"},
                      {"missing", g.missing},

@@ -170,6 +170,21 @@ TEST(RectifiedImport, IndexNamedViewsImportSampleForSampleWithTheTrueDisparityLa
   EXPECT_EQ(
       cv::norm(cv::imread(out), cv::imread((dir / grid.view(3, 1).file).string()), cv::NORM_INF),
       0);
+  // No scale was known, so its lengths are in units of the cameras' spacing, and every command
+  // says so instead of "mm"; with --pitch-mm they are millimetres.
+  EXPECT_EQ(WorldLengthUnit(lf.metadata()), "units");
+  EXPECT_NE(run.output.find(" units, d_l 0 units,"), std::string::npos) << run.output;
+  run = testing::Lfcam("info " + file);
+  EXPECT_NE(run.output.find("in units of the cameras' spacing, not mm"), std::string::npos)
+      << run.output;
+  EXPECT_NE(run.output.find("plane gap"), std::string::npos) << run.output;
+  EXPECT_EQ(run.output.find(" mm\n"), std::string::npos) << run.output;
+  ImportOptions metric;
+  metric.pitch_mm = 2.0;
+  const RectifiedGeometry metric_geo = ResolveRectifiedGeometry(grid, metric);
+  EXPECT_TRUE(metric_geo.metric);
+  EXPECT_FALSE(geo.metric);
+  EXPECT_EQ(WorldLengthUnit(ImportRectifiedViews(dir, grid, metric_geo).metadata()), "mm");
   for (const auto& [flags, status, what] :
        {std::tuple{"--as-camera 3,1 --size 64", 2, "--size does not go with --as-camera"},
         {"--as-camera 3,1 --focal-length 50", 2, "--focal-length does not go with --as-camera"},
