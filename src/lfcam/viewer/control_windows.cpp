@@ -36,12 +36,19 @@ bool DrawCameraWindow(ViewSettings& view, const LightField& lf, double rig_posit
   // The sliders span the light field's own scale (an imported one may be in assumed units).
   const double separation = std::max(std::abs(slab.separation_mm()), 1e-3);
   const double array_size = std::max(array.width_mm(), array.height_mm());
+  // World lengths in the light field's unit (an import with no scale: the cameras' spacing,
+  // WorldLengthUnit); the film's focal length is always in mm. The "###" ids keep each
+  // widget's state whatever its label says.
+  const std::string unit = WorldLengthUnit(lf.metadata());
+  const auto label = [&](const char* name, const char* id) {
+    return fmt::format("{} ({})###{}", name, unit, id);
+  };
   bool changed = false;
   VirtualCameraParams& p = view.camera;
   ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
   if (ImGui::Begin("Camera (F2)", open, ImGuiWindowFlags_AlwaysAutoResize)) {
     ImGui::PushItemWidth(ImGui::GetFontSize() * 16);
-    changed |= DragVec3("eye (mm)", p.eye, 2.0f);
+    changed |= DragVec3(label("eye", "eye").c_str(), p.eye, unit == "mm" ? 2.0f : 0.02f);
     Vec3 forward = (p.look_at - p.eye).normalized();
     double yaw = std::atan2(forward.x(), -forward.z()) * 180 / M_PI;
     double pitch = std::asin(std::clamp(forward.y(), -1.0, 1.0)) * 180 / M_PI;
@@ -54,9 +61,10 @@ bool DrawCameraWindow(ViewSettings& view, const LightField& lf, double rig_posit
       changed = true;
     }
     changed |= SliderLog("focal length f (mm)", p.focal_length_mm, 20, 2000, "%.1f");
-    changed |= SliderLog("focus distance d_o (mm)", p.focus_distance_mm, separation / 8,
-                         separation * 15, separation < 100 ? "%.2f" : "%.0f");
-    changed |= SliderLog("aperture d_l (mm)", p.aperture_mm, 0, 4 * array_size, "%.2f");
+    changed |= SliderLog(label("focus distance d_o", "d_o").c_str(), p.focus_distance_mm,
+                         separation / 8, separation * 15, separation < 100 ? "%.2f" : "%.0f");
+    changed |=
+        SliderLog(label("aperture d_l", "d_l").c_str(), p.aperture_mm, 0, 4 * array_size, "%.2f");
     changed |= ImGui::Checkbox("focus breathing", &p.breathing);
     if (ImGui::Button("reset to the array's centre view (R)")) {
       p = ResetToArrayCentre(p, array);

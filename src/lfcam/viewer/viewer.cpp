@@ -175,9 +175,11 @@ class Viewer {
       VirtualCameraParams p = view_.camera;
       p.focus_distance_mm = std::max(probe.focus_distance_mm, MinFocusDistance(p));
       SetView(p);
+      const std::string unit = WorldLengthUnit(lf().metadata());
       stats_.status =
-          fmt::format("focus: {:.0f} mm at ({:.0f}, {:.0f}), confidence {:.2f}, {} cameras",
-                      probe.focus_distance_mm, x, y, probe.confidence, probe.cameras);
+          fmt::format("focus: {:.{}f} {} at ({:.0f}, {:.0f}), confidence {:.2f}, {} cameras",
+                      probe.focus_distance_mm, unit == "mm" ? 0 : 2, unit, x, y, probe.confidence,
+                      probe.cameras);
     }
     std::printf("%s\n", stats_.status.c_str());
     std::fflush(stdout);

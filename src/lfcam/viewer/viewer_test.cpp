@@ -257,7 +257,8 @@ TEST_F(Viewer, OpensAnImportedRigAsItsCentralCamera) {
         "print\n"
         "screenshot " +
             Path("rig_shot.png") + "\ncamera 0 2\nwait\nscreenshot " + Path("rig_corner.png") +
-            "\ncamera 0.5 2\nwait\nscreenshot " + Path("rig_between.png") + "\nquit\n");
+            "\ncamera 0.5 2\nwait\nscreenshot " + Path("rig_between.png") +
+            "\nclick 64 48\nwait\nkey F2\ncapture " + Path("rig_window.png") + "\nquit\n");
   run = View(Path("rig.lf") + " --script " + Path("rig.script") + " --window 128x96");
   ASSERT_EQ(run.status, 0) << run.output;
   const auto line = run.output.find("{\"camera\"");
@@ -276,6 +277,9 @@ TEST_F(Viewer, OpensAnImportedRigAsItsCentralCamera) {
   cv::Mat between;
   cv::addWeighted(corner, 0.5, above, 0.5, 0, between);
   EXPECT_LE(cv::norm(cv::imread(Path("rig_between.png")), between, cv::NORM_INF), 2);
+  // Lengths in the rig's own unit (no scale was given): click to focus says so, as info does.
+  EXPECT_NE(run.output.find(" units at (64, 48)"), std::string::npos) << run.output;
+  EXPECT_EQ(run.output.find(" mm at ("), std::string::npos) << run.output;
   // A light field without its cameras, or a camera off the grid, is refused naming the line.
   Write("off.script", "camera 5 0\nquit\n");
   run = View(Path("rig.lf") + " --script " + Path("off.script") + " --window 128x96");
