@@ -81,6 +81,12 @@ else()
   lfcam_package_docs(host lfcam)
   lfcam_man_page(lfcam host "capture, calibrate and render 4D light fields")
   set(CPACK_COMPONENTS_ALL host)
+  # FFmpeg is opened when a video is written (share/ffmpeg_library.h), not linked, so
+  # dpkg-shlibdeps cannot see it: its packages by the headers' major versions (libavformat59
+  # brings libavcodec59 and libavutil57).
+  string(REGEX MATCH "^[0-9]+" lfcam_avformat_major "${LIBAV_libavformat_VERSION}")
+  string(REGEX MATCH "^[0-9]+" lfcam_swscale_major "${LIBAV_libswscale_VERSION}")
+  set(lfcam_ffmpeg_packages "libavformat${lfcam_avformat_major}, libswscale${lfcam_swscale_major}")
   # python3-lfcam: `import lfcam` for Debian's python3 (docs/python.md).
   if(TARGET lfcam_python)
     install(TARGETS lfcam_python LIBRARY DESTINATION lib/python3/dist-packages COMPONENT python)
@@ -92,7 +98,7 @@ else()
     string(REGEX REPLACE "\\.([0-9]+)$" "" lfcam_python_major "${lfcam_python_version}")
     math(EXPR lfcam_python_next "${CMAKE_MATCH_1} + 1")
     set(CPACK_DEBIAN_PYTHON_PACKAGE_DEPENDS
-        "python3 (>= ${lfcam_python_version}), python3 (<< ${lfcam_python_major}.${lfcam_python_next}), python3-numpy")
+        "python3 (>= ${lfcam_python_version}), python3 (<< ${lfcam_python_major}.${lfcam_python_next}), python3-numpy, ${lfcam_ffmpeg_packages}")
     string(CONCAT CPACK_DEBIAN_PYTHON_DESCRIPTION
         "Python module of lfcam, the 4D light field camera system\n"
         "import lfcam: open a light field (its views as NumPy arrays over the\n"
@@ -103,6 +109,7 @@ else()
         "lfcam's messages.")
   endif()
   set(CPACK_DEBIAN_HOST_PACKAGE_NAME lfcam)
+  set(CPACK_DEBIAN_HOST_PACKAGE_DEPENDS "${lfcam_ffmpeg_packages}")
   set(CPACK_DEBIAN_HOST_PACKAGE_SECTION graphics)
   string(CONCAT CPACK_DEBIAN_HOST_DESCRIPTION
       "do-it-yourself 4D light field camera system\n"

@@ -60,6 +60,28 @@ TEST_F(RenderVideoCli, AFocusSweepIsTheRendersOfItsFrames) {
   EXPECT_LT(CompareImages(video.frames[0], video.frames[6]).psnr_db, 30.0);
 }
 
+// FFmpeg and the codec libraries it brings are opened when a video is written, not at every
+// start (share/ffmpeg_library.h): the loader's own account of the files it opens says so.
+TEST_F(RenderVideoCli, OpensFfmpegOnlyToWriteAVideo) {
+  const auto loaded = [](const std::string& args) {
+    return testing::RunOnce(fmt::format("LD_DEBUG=files {} {} 2>&1", LFCAM_CLI_PATH, args));
+  };
+  const auto still = loaded(
+      fmt::format("render {} --size 64x48 --out {} --quiet", Input("still.lf"), Path("a.png")));
+  ASSERT_EQ(still.status, 0) << still.output;
+  ASSERT_NE(still.output.find("file=libopencv_core.so"), std::string::npos) << still.output;
+  EXPECT_EQ(still.output.find("libavformat"), std::string::npos);
+  EXPECT_EQ(still.output.find("libavcodec"), std::string::npos);
+  const auto video =
+      loaded(fmt::format("render {} --size 64x48 --focus-distance 3400:5200 --frames 2 --video {} "
+                         "--quiet",
+                         Input("still.lf"), Path("a.mp4")));
+  ASSERT_EQ(video.status, 0) << video.output;
+  EXPECT_NE(video.output.find("file=libavformat.so"), std::string::npos);
+  EXPECT_NE(video.output.find("dynamically loaded by"), std::string::npos);
+  EXPECT_EQ(testing::DecodeMp4(Path("a.mp4")).frames.size(), 2u);
+}
+
 TEST_F(RenderVideoCli, APathPassesThroughItsSavedViews) {
   const auto view = [&](const std::string& name, double x, double focus) {
     std::ofstream(Path(name)) << fmt::format(
