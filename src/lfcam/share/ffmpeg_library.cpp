@@ -24,50 +24,54 @@ std::vector<Library> Libraries() {
            fmt::format("libswscale{}", LIBSWSCALE_VERSION_MAJOR)}};
 }
 
-struct Loaded {
-  FfmpegLibrary library;
-  std::string error;  // empty when every function was found
+struct Opened {
+  std::vector<void*> handles;  // kept open for the life of the process (FFmpeg keeps state)
+  std::string sonames;
+  std::string error;  // empty when every library opened
 };
 
-Loaded Load() {
-  Loaded loaded;
-  const std::vector<Library> libraries = Libraries();
-  std::vector<void*> handles;
-  for (const Library& l : libraries) {
-    // Kept open for the life of the process (FFmpeg keeps global state).
-    void* handle = ::dlopen(l.soname.c_str(), RTLD_NOW | RTLD_LOCAL);
-    if (handle == nullptr) {
-      const char* why = ::dlerror();
-      loaded.error = fmt::format(
-          "writing a video needs FFmpeg's {} (Debian's package {}: apt-get install {}): {}",
-          l.soname, l.package, l.package, why ? why : "cannot be opened");
-      return loaded;
+const Opened& Open() {
+  static const Opened opened = [] {
+    Opened o;
+    for (const Library& l : Libraries()) {
+      o.sonames += (o.sonames.empty() ? "" : ", ") + l.soname;
+      void* handle = ::dlopen(l.soname.c_str(), RTLD_NOW | RTLD_LOCAL);
+      if (handle == nullptr) {
+        const char* why = ::dlerror();
+        o.error = fmt::format(
+            "writing a video needs FFmpeg's {} (Debian's package {}: apt-get install {}): {}",
+            l.soname, l.package, l.package, why ? why : "cannot be opened");
+        return o;
+      }
+      o.handles.push_back(handle);
     }
-    handles.push_back(handle);
-  }
-  const auto find = [&](const char* name) -> void* {
-    for (void* handle : handles)
-      if (void* symbol = ::dlsym(handle, name)) return symbol;
-    if (loaded.error.empty())
-      loaded.error = fmt::format(
-          "this FFmpeg ({}, {}) has no function {}: lfcam was built for "
-          "another version of it",
-          libraries[0].soname, libraries[1].soname, name);
-    return nullptr;
-  };
-#define LFCAM_FFMPEG_FIND(name) \
-  loaded.library.name = reinterpret_cast<decltype(loaded.library.name)>(find(#name));
-  LFCAM_FFMPEG_FUNCTIONS(LFCAM_FFMPEG_FIND)
-#undef LFCAM_FFMPEG_FIND
-  return loaded;
+    return o;
+  }();
+  return opened;
 }
 
 }  // namespace
 
+void* FfmpegFunction(const char* name) {
+  const Opened& opened = Open();
+  if (!opened.error.empty()) throw Error(opened.error);
+  for (void* handle : opened.handles)
+    if (void* function = ::dlsym(handle, name)) return function;
+  throw Error(
+      fmt::format("this FFmpeg ({}) has no function {}: lfcam was built for another "
+                  "version of it",
+                  opened.sonames, name));
+}
+
 const FfmpegLibrary& Ffmpeg() {
-  static const Loaded loaded = Load();
-  if (!loaded.error.empty()) throw Error(loaded.error);
-  return loaded.library;
+  static const FfmpegLibrary library = [] {
+    FfmpegLibrary l;
+#define LFCAM_FFMPEG_FIND(name) l.name = reinterpret_cast<decltype(l.name)>(FfmpegFunction(#name));
+    LFCAM_FFMPEG_FUNCTIONS(LFCAM_FFMPEG_FIND)
+#undef LFCAM_FFMPEG_FIND
+    return l;
+  }();
+  return library;
 }
 
 }  // namespace lfcam

@@ -62,8 +62,12 @@ struct FfmpegLibrary {
 };
 
 // FFmpeg, opened on the first call (once a process, from any thread). Throws lfcam::Error
-// naming the library that could not be opened or the function it lacks, and the Debian package
-// that provides it.
+// naming the library that could not be opened and the Debian package that provides it, or the
+// function it lacks.
 const FfmpegLibrary& Ffmpeg();
+
+// One FFmpeg function by name (what Ffmpeg() is made of; the tests' MP4 reader finds the
+// decoder's this way). Throws as Ffmpeg() does.
+void* FfmpegFunction(const char* name);
 
 }  // namespace lfcam
