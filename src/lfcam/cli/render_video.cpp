@@ -157,7 +157,8 @@ void RenderVideoCommand(const VideoRenderInput& input, const VideoFlags& video,
     path = CameraPath::Sweep(path.At(0), sweep);
   }
   const VirtualCameraParams start = path.At(0);
-  FlagValue("--size", [&] { RequireMp4Frame(start.width, start.height, mp4); });
+  // A size the video cannot have is a usage error (it says so); FFmpeg missing is not.
+  RequireMp4Frame(start.width, start.height, mp4);
 
   DepthSet depth;
   if (options.interpolation == Interpolation::kDepth) {

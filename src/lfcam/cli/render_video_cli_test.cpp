@@ -80,6 +80,20 @@ TEST_F(RenderVideoCli, OpensFfmpegOnlyToWriteAVideo) {
   EXPECT_NE(video.output.find("file=libavformat.so"), std::string::npos);
   EXPECT_NE(video.output.find("dynamically loaded by"), std::string::npos);
   EXPECT_EQ(testing::DecodeMp4(Path("a.mp4")).frames.size(), 2u);
+  // Where FFmpeg cannot be opened (here a file that is no library stands in its place), the
+  // video is refused saying which package to install, as an error of the machine, not a flag;
+  // nothing is written.
+  fs::create_directories(Path("no_ffmpeg"));
+  std::ofstream(Path(fmt::format("no_ffmpeg/libavformat.so.{}", LIBAVFORMAT_VERSION_MAJOR)))
+      << "not a library\n";
+  const auto refused = testing::RunOnce(fmt::format(
+      "LD_LIBRARY_PATH={} {} render {} --size 64x48 --focus-distance 3400:5200 --frames 2 "
+      "--video {} --quiet 2>&1",
+      Path("no_ffmpeg"), LFCAM_CLI_PATH, Input("still.lf"), Path("b.mp4")));
+  EXPECT_EQ(refused.status, 1) << refused.output;
+  EXPECT_NE(refused.output.find("apt-get install libavformat"), std::string::npos)
+      << refused.output;
+  EXPECT_FALSE(fs::exists(Path("b.mp4")));
 }
 
 TEST_F(RenderVideoCli, APathPassesThroughItsSavedViews) {
