@@ -63,15 +63,4 @@ void* FfmpegFunction(const char* name) {
                   opened.sonames, name));
 }
 
-const FfmpegLibrary& Ffmpeg() {
-  static const FfmpegLibrary library = [] {
-    FfmpegLibrary l;
-#define LFCAM_FFMPEG_FIND(name) l.name = reinterpret_cast<decltype(l.name)>(FfmpegFunction(#name));
-    LFCAM_FFMPEG_FUNCTIONS(LFCAM_FFMPEG_FIND)
-#undef LFCAM_FFMPEG_FIND
-    return l;
-  }();
-  return library;
-}
-
 }  // namespace lfcam

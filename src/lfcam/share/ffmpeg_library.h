@@ -55,19 +55,33 @@ extern "C" {
 
 namespace lfcam {
 
+// One FFmpeg function by name, from the libraries opened on the first call (once a process,
+// from any thread). Throws lfcam::Error naming the library that could not be opened and the
+// Debian package that provides it, or the function it lacks.
+void* FfmpegFunction(const char* name);
+
+// A table of FFmpeg functions, one member per name of a list such as LFCAM_FFMPEG_FUNCTIONS:
+//   struct Table { LIST(LFCAM_FFMPEG_MEMBER)  void Find() { LIST(LFCAM_FFMPEG_FIND) } };
+// FfmpegTable<Table>() finds them once a process and throws as FfmpegFunction does.
+#define LFCAM_FFMPEG_MEMBER(name) decltype(&::name) name = nullptr;
+#define LFCAM_FFMPEG_FIND(name) \
+  name = reinterpret_cast<decltype(name)>(::lfcam::FfmpegFunction(#name));
+template <typename Table>
+const Table& FfmpegTable() {
+  static const Table table = [] {
+    Table t;
+    t.Find();
+    return t;
+  }();
+  return table;
+}
+
 struct FfmpegLibrary {
-#define LFCAM_FFMPEG_POINTER(name) decltype(&::name) name = nullptr;
-  LFCAM_FFMPEG_FUNCTIONS(LFCAM_FFMPEG_POINTER)
-#undef LFCAM_FFMPEG_POINTER
+  LFCAM_FFMPEG_FUNCTIONS(LFCAM_FFMPEG_MEMBER)
+  void Find() { LFCAM_FFMPEG_FUNCTIONS(LFCAM_FFMPEG_FIND) }
 };
 
-// FFmpeg, opened on the first call (once a process, from any thread). Throws lfcam::Error
-// naming the library that could not be opened and the Debian package that provides it, or the
-// function it lacks.
-const FfmpegLibrary& Ffmpeg();
-
-// One FFmpeg function by name (what Ffmpeg() is made of; the tests' MP4 reader finds the
-// decoder's this way). Throws as Ffmpeg() does.
-void* FfmpegFunction(const char* name);
+// FFmpeg's functions that lfcam calls, found on the first call.
+inline const FfmpegLibrary& Ffmpeg() { return FfmpegTable<FfmpegLibrary>(); }
 
 }  // namespace lfcam

@@ -27,21 +27,11 @@ namespace lfcam::testing {
 // clang-format on
 
 struct FfmpegDecoder {
-#define LFCAM_FFMPEG_POINTER(name) decltype(&::name) name = nullptr;
-  LFCAM_FFMPEG_DECODER_FUNCTIONS(LFCAM_FFMPEG_POINTER)
-#undef LFCAM_FFMPEG_POINTER
+  LFCAM_FFMPEG_DECODER_FUNCTIONS(LFCAM_FFMPEG_MEMBER)
+  void Find() { LFCAM_FFMPEG_DECODER_FUNCTIONS(LFCAM_FFMPEG_FIND) }
 };
 
-inline const FfmpegDecoder& Decoder() {
-  static const FfmpegDecoder decoder = [] {
-    FfmpegDecoder d;
-#define LFCAM_FFMPEG_FIND(name) d.name = reinterpret_cast<decltype(d.name)>(FfmpegFunction(#name));
-    LFCAM_FFMPEG_DECODER_FUNCTIONS(LFCAM_FFMPEG_FIND)
-#undef LFCAM_FFMPEG_FIND
-    return d;
-  }();
-  return decoder;
-}
+inline const FfmpegDecoder& Decoder() { return FfmpegTable<FfmpegDecoder>(); }
 
 struct DecodedMp4 {
   std::vector<cv::Mat> frames;  // RGB, CV_8UC3
