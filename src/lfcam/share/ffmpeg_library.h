@@ -2,7 +2,7 @@
 // FFmpeg's libraries (libavformat, libavcodec, libavutil, libswscale: Debian's packages), opened
 // when lfcam first writes a video rather than when it starts. They and the codec libraries they
 // bring are about 80 of the 250 shared libraries lfcam would otherwise load at every start, and
-// 30% of its start-up (0.24 -> 0.17 s for `lfcam --version`; docs/benchmarks.md, "Start-up"),
+// 30% of its start-up (0.26 -> 0.19 s for `lfcam --version`; docs/benchmarks.md, "Start-up"),
 // paid by every command, script and `import lfcam`, most of which write no video.
 //
 // The entry points are FFmpeg's own declarations (decltype of each), so a call through them is
@@ -10,8 +10,6 @@
 extern "C" {
 #include <libavcodec/avcodec.h>
 #include <libavformat/avformat.h>
-#include <libavutil/imgutils.h>
-#include <libavutil/opt.h>
 #include <libswscale/swscale.h>
 }
 
