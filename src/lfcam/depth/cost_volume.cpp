@@ -1,6 +1,7 @@
 #include "lfcam/depth/cost_volume.h"
 
 #include <fmt/format.h>
+#include <sys/mman.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -9,6 +10,7 @@
 #include <array>
 #include <cmath>
 #include <cstdlib>
+#include <new>
 #include <numbers>
 #include <opencv2/imgproc.hpp>
 #include <utility>
@@ -20,6 +22,22 @@
 #include "lfcam/depth/plane_sweep.h"
 
 namespace lfcam {
+
+void* AllocateVolumeMemory(std::size_t bytes) {
+  constexpr std::size_t kHugePage = std::size_t(2) << 20, kLarge = std::size_t(4) << 20;
+  const bool large = bytes >= kLarge;
+  const std::size_t alignment = large ? kHugePage : 64;
+  const std::size_t size =
+      (std::max<std::size_t>(bytes, 1) + alignment - 1) / alignment * alignment;
+  void* block = std::aligned_alloc(alignment, size);
+  if (!block) throw std::bad_alloc();
+  // Advice only: where the kernel has no transparent huge pages the call fails and nothing
+  // changes.
+  if (large) ::madvise(block, size, MADV_HUGEPAGE);
+  return block;
+}
+
+void FreeVolumeMemory(void* block) noexcept { std::free(block); }
 namespace {
 
 constexpr int kChannels = 5;     // R, G, B (sRGB, 0 .. 1), the grey level's x and y gradients

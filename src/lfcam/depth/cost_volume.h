@@ -66,8 +66,16 @@ struct SweepGeometry {
 };
 SweepGeometry GeometryOf(const LightField& lf, int row, int col, const CostVolumeOptions& options);
 
+// Memory for a cost volume: blocks of 4 MB and more aligned to 2 MB and offered to the kernel
+// for transparent huge pages (madvise), so that a fresh volume of tens of megabytes faults in a
+// page per 2 MB rather than per 4 kB (docs/benchmarks.md, "Depth for every view"). Freed with
+// FreeVolumeMemory.
+void* AllocateVolumeMemory(std::size_t bytes);
+void FreeVolumeMemory(void* block) noexcept;
+
 // An allocator whose value-less construction leaves an element uninitialised, so that a volume
-// of hundreds of megabytes whose every element is written anyway is not zeroed first.
+// of hundreds of megabytes whose every element is written anyway is not zeroed first; its
+// memory comes from AllocateVolumeMemory.
 template <class T>
 struct UninitialisedAllocator : std::allocator<T> {
   template <class U>
@@ -77,6 +85,8 @@ struct UninitialisedAllocator : std::allocator<T> {
   UninitialisedAllocator() = default;
   template <class U>
   UninitialisedAllocator(const UninitialisedAllocator<U>&) noexcept {}
+  T* allocate(std::size_t n) { return static_cast<T*>(AllocateVolumeMemory(n * sizeof(T))); }
+  void deallocate(T* p, std::size_t) noexcept { FreeVolumeMemory(p); }
   template <class U>
   void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>) {
     ::new (static_cast<void*>(p)) U;

@@ -1,14 +1,131 @@
+// The fit vectorised across a row's samples with Highway's dynamic dispatch (as the renderer's
+// kernels, render/simd_kernels.cpp): this file is compiled once per instruction set
+// (foreach_target.h includes it again for each), and HWY_DYNAMIC_DISPATCH picks the best the
+// machine supports. Each lane is one sample; the neighbourhood's sums are taken offset by
+// offset, so every load is a contiguous run of the maps, padded so that no lane needs a bounds
+// check (docs/benchmarks.md, "The local planes, vectorised").
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "lfcam/depth/local_planes.cpp"
 #include "lfcam/depth/local_planes.h"
 
+#include <hwy/foreach_target.h>  // must come before highway.h
+#include <hwy/highway.h>
+// After highway.h, once per instruction set:
+#include <hwy/contrib/math/math-inl.h>
+
+#ifndef LFCAM_DEPTH_LOCAL_PLANES_ONCE
+#define LFCAM_DEPTH_LOCAL_PLANES_ONCE
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <limits>
 #include <vector>
 
 #include "lfcam/core/error.h"
 
+namespace lfcam::local_planes {
+
+// The maps a fit reads, planar float, each row padded by `radius` samples either side and to a
+// whole number of vectors: labels NaN there (so that no gap test passes), weights and colours 0.
+struct PaddedMaps {
+  int width = 0, height = 0, radius = 0;
+  std::size_t stride = 0;                              // floats a padded row
+  std::vector<float> label, red, green, blue, weight;  // weight: max(confidence, floor)
+  // Where row y's sample x is: x + radius into the padded row.
+  std::size_t At(int y, int x) const { return std::size_t(y) * stride + std::size_t(x + radius); }
+};
+
+// The fit's constants, as the kernel takes them.
+struct FitConstants {
+  std::vector<float> space;  // the distance weight per offset, (2r + 1)² of them, row by row
+  float colour_scale = 0;    // −1 / (2 σ²), σ in 8-bit levels
+  float gap = 0;             // max_label_gap
+};
+
+// The nine sums of one vector of samples, lane by lane (Sums::kCount floats each).
+struct Sums {
+  static constexpr int kCount = 9;  // 1, dx, dy, dx², dy², dx·dy, l, l·dx, l·dy
+};
+
+}  // namespace lfcam::local_planes
+#endif  // LFCAM_DEPTH_LOCAL_PLANES_ONCE
+
+HWY_BEFORE_NAMESPACE();
 namespace lfcam {
+namespace HWY_NAMESPACE {
+namespace {
+
+namespace hn = hwy::HWY_NAMESPACE;
+using DF = hn::ScalableTag<float>;
+using VF = hn::Vec<DF>;
+
+// The weighted sums over the neighbourhoods of samples [x0, x0 + lanes) of row y, into
+// `sums` (Sums::kCount runs of `lanes` floats: s0, sx, sy, sxx, syy, sxy, sl, slx, sly), the
+// labels taken relative to each sample's own.
+void NeighbourhoodSumsT(const local_planes::PaddedMaps& m, const local_planes::FitConstants& c,
+                        int y, int x0, float* sums) {
+  const DF d;
+  const int r = m.radius, side = 2 * r + 1;
+  const std::size_t centre = m.At(y, x0);
+  const VF own = hn::LoadU(d, m.label.data() + centre);
+  const VF red0 = hn::LoadU(d, m.red.data() + centre);
+  const VF green0 = hn::LoadU(d, m.green.data() + centre);
+  const VF blue0 = hn::LoadU(d, m.blue.data() + centre);
+  const VF gap = hn::Set(d, c.gap), colour_scale = hn::Set(d, c.colour_scale);
+  VF s0 = hn::Zero(d), sx = s0, sy = s0, sxx = s0, syy = s0, sxy = s0, sl = s0, slx = s0, sly = s0;
+  for (int dy = -r; dy <= r; ++dy) {
+    const int yy = y + dy;
+    if (yy < 0 || yy >= m.height) continue;
+    const VF fy = hn::Set(d, float(dy));
+    const float* space = c.space.data() + std::size_t((dy + r) * side + r);
+    for (int dx = -r; dx <= r; ++dx) {
+      const std::size_t at = m.At(yy, x0 + dx);
+      VF l = hn::Sub(hn::LoadU(d, m.label.data() + at), own);
+      const auto near = hn::Le(hn::Abs(l), gap);  // false for NaN: the padding
+      const VF dr = hn::Sub(hn::LoadU(d, m.red.data() + at), red0);
+      const VF dg = hn::Sub(hn::LoadU(d, m.green.data() + at), green0);
+      const VF db = hn::Sub(hn::LoadU(d, m.blue.data() + at), blue0);
+      const VF d2 = hn::MulAdd(dr, dr, hn::MulAdd(dg, dg, hn::Mul(db, db)));
+      const VF colour = hn::Exp(d, hn::Mul(d2, colour_scale));
+      const VF w = hn::IfThenElseZero(near, hn::Mul(hn::Mul(colour, hn::Set(d, space[dx])),
+                                                    hn::LoadU(d, m.weight.data() + at)));
+      l = hn::IfThenElseZero(near, l);
+      const VF fx = hn::Set(d, float(dx));
+      const VF wx = hn::Mul(w, fx), wy = hn::Mul(w, fy);
+      s0 = hn::Add(s0, w);
+      sx = hn::Add(sx, wx);
+      sy = hn::Add(sy, wy);
+      sxx = hn::MulAdd(wx, fx, sxx);
+      syy = hn::MulAdd(wy, fy, syy);
+      sxy = hn::MulAdd(wx, fy, sxy);
+      sl = hn::MulAdd(w, l, sl);
+      slx = hn::MulAdd(wx, l, slx);
+      sly = hn::MulAdd(wy, l, sly);
+    }
+  }
+  const std::size_t lanes = hn::Lanes(d);
+  int k = 0;
+  for (const VF& v : {s0, sx, sy, sxx, syy, sxy, sl, slx, sly})
+    hn::StoreU(v, d, sums + std::size_t(k++) * lanes);
+}
+
+int LanesT() { return int(hn::Lanes(DF())); }
+
+}  // namespace
+}  // namespace HWY_NAMESPACE
+}  // namespace lfcam
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace lfcam {
+namespace {
+
+HWY_EXPORT(NeighbourhoodSumsT);
+HWY_EXPORT(LanesT);
+
+}  // namespace
 
 cv::Mat FitLocalPlanes(const cv::Mat& label, const cv::Mat& guide_rgb8, const cv::Mat& confidence,
                        const LocalPlaneOptions& options, cv::Mat* slopes) {
@@ -18,68 +135,78 @@ cv::Mat FitLocalPlanes(const cv::Mat& label, const cv::Mat& guide_rgb8, const cv
         "FitLocalPlanes: labels, guide and confidence must be float, RGB8 and float maps "
         "of one size");
   const int w = label.cols, h = label.rows, r = std::max(0, options.radius);
-  // The weights' factors as tables: distance per offset, colour per squared 8-bit difference.
-  std::vector<float> space(std::size_t((2 * r + 1) * (2 * r + 1)));
+  const int lanes = HWY_DYNAMIC_DISPATCH(LanesT)();
+  const int vectors = (w + lanes - 1) / lanes;
+  local_planes::PaddedMaps m;
+  m.width = w;
+  m.height = h;
+  m.radius = r;
+  m.stride = std::size_t(vectors * lanes + 2 * r);
+  const std::size_t padded = m.stride * std::size_t(h);
+  m.label.assign(padded, std::numeric_limits<float>::quiet_NaN());
+  for (auto* map : {&m.red, &m.green, &m.blue, &m.weight}) map->assign(padded, 0.0f);
+  const float floor = float(options.min_confidence);
+  for (int y = 0; y < h; ++y) {
+    const float* l = label.ptr<float>(y);
+    const float* c = confidence.ptr<float>(y);
+    const cv::Vec3b* g = guide_rgb8.ptr<cv::Vec3b>(y);
+    for (int x = 0; x < w; ++x) {
+      const std::size_t at = m.At(y, x);
+      m.label[at] = l[x];
+      m.red[at] = g[x][0];
+      m.green[at] = g[x][1];
+      m.blue[at] = g[x][2];
+      m.weight[at] = std::max(c[x], floor);
+    }
+  }
+  local_planes::FitConstants constants;
+  constants.space.resize(std::size_t((2 * r + 1) * (2 * r + 1)));
   for (int dy = -r; dy <= r; ++dy)
     for (int dx = -r; dx <= r; ++dx)
-      space[std::size_t((dy + r) * (2 * r + 1) + dx + r)] =
+      constants.space[std::size_t((dy + r) * (2 * r + 1) + dx + r)] =
           float(std::exp(-(dx * dx + dy * dy) / (2.0 * options.sigma_space * options.sigma_space)));
-  constexpr int kMaxColour = 3 * 255 * 255;
-  std::vector<float> colour(kMaxColour + 1);
   const double s = options.sigma_colour * 255.0;
-  for (int d2 = 0; d2 <= kMaxColour; ++d2)
-    colour[std::size_t(d2)] = float(std::exp(-d2 / (2 * s * s)));
-  const float gap = float(options.max_label_gap), floor = float(options.min_confidence);
+  constants.colour_scale = float(-1.0 / (2 * s * s));
+  constants.gap = float(options.max_label_gap);
 
   cv::Mat out = label.clone();
   if (slopes && (slopes->type() != CV_32FC2 || slopes->size() != label.size()))
     *slopes = cv::Mat(label.size(), CV_32FC2, cv::Scalar(0, 0));
+  const auto refit = [&](const float* c, int x) {
+    return x < w && c[x] < options.refit_below_confidence;
+  };
   tbb::parallel_for(0, h, [&](int y) {
-    for (int x = 0; x < w; ++x) {
-      if (!(confidence.at<float>(y, x) < options.refit_below_confidence)) continue;
-      const float own = label.at<float>(y, x);
-      const cv::Vec3b c0 = guide_rgb8.at<cv::Vec3b>(y, x);
-      // Sums over the neighbourhood of weight times 1, dx, dy, dx², dy², dx·dy, label,
-      // label·dx, label·dy; labels taken relative to the sample's own (better conditioned).
-      double s0 = 0, sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0, sl = 0, slx = 0, sly = 0;
-      for (int dy = -r; dy <= r; ++dy) {
-        const int yy = y + dy;
-        if (yy < 0 || yy >= h) continue;
-        const float* lrow = label.ptr<float>(yy);
-        const float* crow = confidence.ptr<float>(yy);
-        const cv::Vec3b* grow = guide_rgb8.ptr<cv::Vec3b>(yy);
-        for (int dx = -r; dx <= r; ++dx) {
-          const int xx = x + dx;
-          if (xx < 0 || xx >= w) continue;
-          const float l = lrow[xx] - own;
-          if (!(std::abs(l) <= gap)) continue;
-          const int dr = int(grow[xx][0]) - c0[0], dg = int(grow[xx][1]) - c0[1],
-                    db = int(grow[xx][2]) - c0[2];
-          const double wgt = double(space[std::size_t((dy + r) * (2 * r + 1) + dx + r)]) *
-                             colour[std::size_t(dr * dr + dg * dg + db * db)] *
-                             std::max(crow[xx], floor);
-          s0 += wgt, sx += wgt * dx, sy += wgt * dy;
-          sxx += wgt * dx * dx, syy += wgt * dy * dy, sxy += wgt * dx * dy;
-          sl += wgt * l, slx += wgt * l * dx, sly += wgt * l * dy;
+    const float* c = confidence.ptr<float>(y);
+    std::vector<float> sums(std::size_t(local_planes::Sums::kCount * lanes));
+    for (int x0 = 0; x0 < w; x0 += lanes) {
+      bool any = false;
+      for (int i = 0; i < lanes && !any; ++i) any = refit(c, x0 + i);
+      if (!any) continue;
+      HWY_DYNAMIC_DISPATCH(NeighbourhoodSumsT)(m, constants, y, x0, sums.data());
+      for (int i = 0; i < lanes; ++i) {
+        const int x = x0 + i;
+        if (!refit(c, x)) continue;
+        const auto sum = [&](int k) { return double(sums[std::size_t(k * lanes + i)]); };
+        const double s0 = sum(0), sx = sum(1), sy = sum(2), sxx = sum(3), syy = sum(4),
+                     sxy = sum(5), sl = sum(6), slx = sum(7), sly = sum(8);
+        if (s0 <= 0) continue;
+        // The normal equations [s0 sx sy; sx sxx sxy; sy sxy syy] [a b c]' = [sl slx sly]',
+        // the slopes lightly damped (a neighbourhood along a line fixes no slope across it).
+        const double damp = 1e-3 * s0;
+        const double a11 = s0, a12 = sx, a13 = sy, a22 = sxx + damp, a23 = sxy, a33 = syy + damp;
+        const double c11 = a22 * a33 - a23 * a23, c12 = a13 * a23 - a12 * a33,
+                     c13 = a12 * a23 - a13 * a22;
+        const double det = a11 * c11 + a12 * c12 + a13 * c13;
+        if (!(std::abs(det) > 1e-12 * s0 * s0 * s0)) continue;
+        const double a = (sl * c11 + slx * c12 + sly * c13) / det;
+        out.at<float>(y, x) = label.at<float>(y, x) + float(a);
+        if (slopes) {
+          const double c22 = a11 * a33 - a13 * a13, c23 = a12 * a13 - a11 * a23,
+                       c33 = a11 * a22 - a12 * a12;
+          const double b = (sl * c12 + slx * c22 + sly * c23) / det,
+                       cc = (sl * c13 + slx * c23 + sly * c33) / det;
+          slopes->at<cv::Vec2f>(y, x) = {float(b), float(cc)};
         }
-      }
-      if (s0 <= 0) continue;
-      // The normal equations [s0 sx sy; sx sxx sxy; sy sxy syy] [a b c]' = [sl slx sly]',
-      // the slopes lightly damped (a neighbourhood along a line fixes no slope across it).
-      const double damp = 1e-3 * s0;
-      const double a11 = s0, a12 = sx, a13 = sy, a22 = sxx + damp, a23 = sxy, a33 = syy + damp;
-      const double c11 = a22 * a33 - a23 * a23, c12 = a13 * a23 - a12 * a33,
-                   c13 = a12 * a23 - a13 * a22;
-      const double det = a11 * c11 + a12 * c12 + a13 * c13;
-      if (!(std::abs(det) > 1e-12 * s0 * s0 * s0)) continue;
-      const double a = (sl * c11 + slx * c12 + sly * c13) / det;
-      out.at<float>(y, x) = own + float(a);
-      if (slopes) {
-        const double c22 = a11 * a33 - a13 * a13, c23 = a12 * a13 - a11 * a23,
-                     c33 = a11 * a22 - a12 * a12;
-        const double b = (sl * c12 + slx * c22 + sly * c23) / det,
-                     c = (sl * c13 + slx * c23 + sly * c33) / det;
-        slopes->at<cv::Vec2f>(y, x) = {float(b), float(c)};
       }
     }
   });
@@ -87,3 +214,4 @@ cv::Mat FitLocalPlanes(const cv::Mat& label, const cv::Mat& guide_rgb8, const cv
 }
 
 }  // namespace lfcam
+#endif  // HWY_ONCE
