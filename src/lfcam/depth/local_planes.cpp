@@ -44,10 +44,8 @@ struct FitConstants {
   float gap = 0;             // max_label_gap
 };
 
-// The nine sums of one vector of samples, lane by lane (Sums::kCount floats each).
-struct Sums {
-  static constexpr int kCount = 9;  // 1, dx, dy, dx², dy², dx·dy, l, l·dx, l·dy
-};
+// The sums a sample's fit takes: of 1, dx, dy, dx², dy², dx·dy, l, l·dx and l·dy, each weighted.
+constexpr int kSums = 9;
 
 }  // namespace lfcam::local_planes
 #endif  // LFCAM_DEPTH_LOCAL_PLANES_ONCE
@@ -62,7 +60,7 @@ using DF = hn::ScalableTag<float>;
 using VF = hn::Vec<DF>;
 
 // The weighted sums over the neighbourhoods of samples [x0, x0 + lanes) of row y, into
-// `sums` (Sums::kCount runs of `lanes` floats: s0, sx, sy, sxx, syy, sxy, sl, slx, sly), the
+// `sums` (kSums runs of `lanes` floats: s0, sx, sy, sxx, syy, sxy, sl, slx, sly), the
 // labels taken relative to each sample's own.
 void NeighbourhoodSumsT(const local_planes::PaddedMaps& m, const local_planes::FitConstants& c,
                         int y, int x0, float* sums) {
@@ -177,7 +175,7 @@ cv::Mat FitLocalPlanes(const cv::Mat& label, const cv::Mat& guide_rgb8, const cv
   };
   tbb::parallel_for(0, h, [&](int y) {
     const float* c = confidence.ptr<float>(y);
-    std::vector<float> sums(std::size_t(local_planes::Sums::kCount * lanes));
+    std::vector<float> sums(std::size_t(local_planes::kSums * lanes));
     for (int x0 = 0; x0 < w; x0 += lanes) {
       bool any = false;
       for (int i = 0; i < lanes && !any; ++i) any = refit(c, x0 + i);
