@@ -38,6 +38,7 @@ void* AllocateVolumeMemory(std::size_t bytes) {
 }
 
 void FreeVolumeMemory(void* block) noexcept { std::free(block); }
+
 namespace {
 
 constexpr int kChannels = 5;     // R, G, B (sRGB, 0 .. 1), the grey level's x and y gradients

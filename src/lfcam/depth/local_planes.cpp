@@ -3,7 +3,7 @@
 // (foreach_target.h includes it again for each), and HWY_DYNAMIC_DISPATCH picks the best the
 // machine supports. Each lane is one sample; the neighbourhood's sums are taken offset by
 // offset, so every load is a contiguous run of the maps, padded so that no lane needs a bounds
-// check (docs/benchmarks.md, "The local planes, vectorised").
+// check (docs/benchmarks.md, "Depth for every view").
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "lfcam/depth/local_planes.cpp"
 #include "lfcam/depth/local_planes.h"
@@ -123,6 +123,28 @@ namespace {
 HWY_EXPORT(NeighbourhoodSumsT);
 HWY_EXPORT(LanesT);
 
+// The plane label = a + b·dx + c·dy from a sample's sums (s0, sx, sy, sxx, syy, sxy, sl, slx,
+// sly): the normal equations [s0 sx sy; sx sxx sxy; sy sxy syy] [a b c]' = [sl slx sly]', the
+// slopes lightly damped (a neighbourhood along a line fixes no slope across it). False where
+// nothing counted or the system is singular.
+bool SolvePlane(const double (&sum)[local_planes::kSums], double (&plane)[3]) {
+  const double s0 = sum[0], sx = sum[1], sy = sum[2], sxx = sum[3], syy = sum[4], sxy = sum[5],
+               sl = sum[6], slx = sum[7], sly = sum[8];
+  if (s0 <= 0) return false;
+  const double damp = 1e-3 * s0;
+  const double a11 = s0, a12 = sx, a13 = sy, a22 = sxx + damp, a23 = sxy, a33 = syy + damp;
+  const double c11 = a22 * a33 - a23 * a23, c12 = a13 * a23 - a12 * a33,
+               c13 = a12 * a23 - a13 * a22;
+  const double det = a11 * c11 + a12 * c12 + a13 * c13;
+  if (!(std::abs(det) > 1e-12 * s0 * s0 * s0)) return false;
+  const double c22 = a11 * a33 - a13 * a13, c23 = a12 * a13 - a11 * a23,
+               c33 = a11 * a22 - a12 * a12;
+  plane[0] = (sl * c11 + slx * c12 + sly * c13) / det;
+  plane[1] = (sl * c12 + slx * c22 + sly * c23) / det;
+  plane[2] = (sl * c13 + slx * c23 + sly * c33) / det;
+  return true;
+}
+
 }  // namespace
 
 cv::Mat FitLocalPlanes(const cv::Mat& label, const cv::Mat& guide_rgb8, const cv::Mat& confidence,
@@ -184,27 +206,13 @@ cv::Mat FitLocalPlanes(const cv::Mat& label, const cv::Mat& guide_rgb8, const cv
       for (int i = 0; i < lanes; ++i) {
         const int x = x0 + i;
         if (!refit(c, x)) continue;
-        const auto sum = [&](int k) { return double(sums[std::size_t(k * lanes + i)]); };
-        const double s0 = sum(0), sx = sum(1), sy = sum(2), sxx = sum(3), syy = sum(4),
-                     sxy = sum(5), sl = sum(6), slx = sum(7), sly = sum(8);
-        if (s0 <= 0) continue;
-        // The normal equations [s0 sx sy; sx sxx sxy; sy sxy syy] [a b c]' = [sl slx sly]',
-        // the slopes lightly damped (a neighbourhood along a line fixes no slope across it).
-        const double damp = 1e-3 * s0;
-        const double a11 = s0, a12 = sx, a13 = sy, a22 = sxx + damp, a23 = sxy, a33 = syy + damp;
-        const double c11 = a22 * a33 - a23 * a23, c12 = a13 * a23 - a12 * a33,
-                     c13 = a12 * a23 - a13 * a22;
-        const double det = a11 * c11 + a12 * c12 + a13 * c13;
-        if (!(std::abs(det) > 1e-12 * s0 * s0 * s0)) continue;
-        const double a = (sl * c11 + slx * c12 + sly * c13) / det;
-        out.at<float>(y, x) = label.at<float>(y, x) + float(a);
-        if (slopes) {
-          const double c22 = a11 * a33 - a13 * a13, c23 = a12 * a13 - a11 * a23,
-                       c33 = a11 * a22 - a12 * a12;
-          const double b = (sl * c12 + slx * c22 + sly * c23) / det,
-                       cc = (sl * c13 + slx * c23 + sly * c33) / det;
-          slopes->at<cv::Vec2f>(y, x) = {float(b), float(cc)};
-        }
+        double sum[local_planes::kSums];
+        for (int k = 0; k < local_planes::kSums; ++k)
+          sum[k] = double(sums[std::size_t(k * lanes + i)]);
+        double plane[3];
+        if (!SolvePlane(sum, plane)) continue;
+        out.at<float>(y, x) = label.at<float>(y, x) + float(plane[0]);
+        if (slopes) slopes->at<cv::Vec2f>(y, x) = {float(plane[1]), float(plane[2])};
       }
     }
   });
