@@ -24,17 +24,14 @@
 #include <vector>
 
 #include "lfcam/core/error.h"
+#include "lfcam/depth/padded_label_maps.h"
 
 namespace lfcam::local_planes {
 
-// The maps a fit reads, planar float, each row padded by `radius` samples either side and to a
-// whole number of vectors: labels NaN there (so that no gap test passes), weights and colours 0.
-struct PaddedMaps {
-  int width = 0, height = 0, radius = 0;
-  std::size_t stride = 0;                              // floats a padded row
-  std::vector<float> label, red, green, blue, weight;  // weight: max(confidence, floor)
-  // Where row y's sample x is: x + radius into the padded row.
-  std::size_t At(int y, int x) const { return std::size_t(y) * stride + std::size_t(x + radius); }
+// The maps a fit reads: the labels and colours, and beside them, laid out alike (padding 0), each
+// sample's weight, max(confidence, floor).
+struct PaddedMaps : PaddedLabelMaps {
+  std::vector<float> weight;
 };
 
 // The fit's constants, as the kernel takes them.
@@ -156,28 +153,13 @@ cv::Mat FitLocalPlanes(const cv::Mat& label, const cv::Mat& guide_rgb8, const cv
         "of one size");
   const int w = label.cols, h = label.rows, r = std::max(0, options.radius);
   const int lanes = HWY_DYNAMIC_DISPATCH(LanesT)();
-  const int vectors = (w + lanes - 1) / lanes;
   local_planes::PaddedMaps m;
-  m.width = w;
-  m.height = h;
-  m.radius = r;
-  m.stride = std::size_t(vectors * lanes + 2 * r);
-  const std::size_t padded = m.stride * std::size_t(h);
-  m.label.assign(padded, std::numeric_limits<float>::quiet_NaN());
-  for (auto* map : {&m.red, &m.green, &m.blue, &m.weight}) map->assign(padded, 0.0f);
+  static_cast<PaddedLabelMaps&>(m) = PadLabelMaps(label, guide_rgb8, r, lanes);
+  m.weight.assign(m.label.size(), 0.0f);
   const float floor = float(options.min_confidence);
   for (int y = 0; y < h; ++y) {
-    const float* l = label.ptr<float>(y);
     const float* c = confidence.ptr<float>(y);
-    const cv::Vec3b* g = guide_rgb8.ptr<cv::Vec3b>(y);
-    for (int x = 0; x < w; ++x) {
-      const std::size_t at = m.At(y, x);
-      m.label[at] = l[x];
-      m.red[at] = g[x][0];
-      m.green[at] = g[x][1];
-      m.blue[at] = g[x][2];
-      m.weight[at] = std::max(c[x], floor);
-    }
+    for (int x = 0; x < w; ++x) m.weight[m.At(y, x)] = std::max(c[x], floor);
   }
   local_planes::FitConstants constants;
   constants.space.resize(std::size_t((2 * r + 1) * (2 * r + 1)));

@@ -2,15 +2,12 @@
 
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <mutex>
 #include <opencv2/imgproc.hpp>
-#include <opencv2/ximgproc/weighted_median_filter.hpp>
 #include <optional>
 #include <vector>
 
@@ -18,6 +15,7 @@
 #include "lfcam/depth/cost_volume.h"
 #include "lfcam/depth/local_planes.h"
 #include "lfcam/depth/semi_global.h"
+#include "lfcam/depth/weighted_median.h"
 
 namespace lfcam {
 namespace {
@@ -30,6 +28,7 @@ constexpr double kPopulousShare = 0.02;  // the share of the view's samples that
                                          // count for the range, unconfident but unique
 constexpr int kBroadApart = 4;           // planes apart for that uniqueness
 constexpr double kOutlierPixels = 0.4;   // the clean-up's threshold: nearest view's shift, samples
+constexpr double kOutlierColourSigma = 25.5;  // the clean-up's colour weight, 8-bit levels
 constexpr double kPlaneGapPixels =
     0.3;                              // the plane fit's neighbours: nearest view's shift, samples
 constexpr int kWidePlaneRadius = 10;  // the second plane fit's radius, samples
@@ -120,36 +119,6 @@ Choice Choose(const CostVolume& decide, const CostVolume& match, double truncati
     }
   });
   return out;
-}
-
-// Outliers: a sample more than `threshold` planes from the weighted median of its neighbours of
-// similar colour (led by the reference view) takes that median. Only outliers: the median
-// quantises, and a slanted surface's smooth labels would take steps.
-void CleanOutliers(const cv::Mat& guide_rgb8, int radius, double threshold, cv::Mat& label) {
-  cv::Mat median;
-  {
-    // OpenCV 4.6's weighted median is not safe to run twice at once (two views' maps estimated
-    // in parallel crash in it): one at a time.
-    // Isolated: the filter runs on TBB, and a thread waiting in it must not take up another
-    // view's estimate, which would come here again and wait on this thread's own lock. And it
-    // clusters the guide's colours by k-means seeded from the calling thread's RNG
-    // (cv::theRNG()), whose state depends on what that thread ran before: seeded the same for
-    // every call, so that a map does not depend on which thread estimated it, or after what.
-    static std::mutex one_at_a_time;
-    std::lock_guard lock(one_at_a_time);
-    cv::RNG& rng = cv::theRNG();
-    const std::uint64_t saved = rng.state;
-    rng.state = 0xffffffffu;  // OpenCV's own initial state
-    tbb::this_task_arena::isolate([&] {
-      cv::ximgproc::weightedMedianFilter(guide_rgb8, label, median, radius, 25.5,
-                                         cv::ximgproc::WMF_EXP);
-    });
-    rng.state = saved;
-  }
-  for (int y = 0; y < label.rows; ++y)
-    for (int x = 0; x < label.cols; ++x)
-      if (std::abs(median.at<float>(y, x) - label.at<float>(y, x)) > threshold)
-        label.at<float>(y, x) = median.at<float>(y, x);
 }
 
 }  // namespace
@@ -267,8 +236,11 @@ DepthMap EstimateDepth(const LightField& lf, int row, int col, const PlaneSweepO
       const int radius = options.refine_radius > 0
                              ? options.refine_radius
                              : std::max(2, int(std::lround(std::min(d.n_s, d.n_t) / 70.0)));
-      CleanOutliers(views.reference_rgb8(), radius, std::max(2.0, kOutlierPixels / per_plane),
-                    choice.label);
+      // Outliers: a sample more than the threshold from the weighted median of its neighbours
+      // of similar colour (led by the reference view) takes that median.
+      ReplaceOutliersByWeightedMedian(
+          views.reference_rgb8(),
+          {radius, kOutlierColourSigma, std::max(2.0, kOutlierPixels / per_plane)}, choice.label);
     }
     if (options.fit_local_planes) {
       LocalPlaneOptions fit;

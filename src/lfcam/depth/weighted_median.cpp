@@ -1,0 +1,192 @@
+// The outlier test vectorised across a row's samples with Highway's dynamic dispatch (as
+// depth/local_planes.cpp): this file is compiled once per instruction set (foreach_target.h
+// includes it again for each), and HWY_DYNAMIC_DISPATCH picks the best the machine supports.
+// Each lane is one sample; the neighbourhood is taken offset by offset, so every load is a
+// contiguous run of planar maps, padded so that no lane needs a bounds check.
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "lfcam/depth/weighted_median.cpp"
+#include "lfcam/depth/weighted_median.h"
+
+#include <hwy/foreach_target.h>  // must come before highway.h
+#include <hwy/highway.h>
+// After highway.h, once per instruction set:
+#include <hwy/contrib/math/math-inl.h>
+
+#ifndef LFCAM_DEPTH_WEIGHTED_MEDIAN_ONCE
+#define LFCAM_DEPTH_WEIGHTED_MEDIAN_ONCE
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <vector>
+
+#include "lfcam/core/error.h"
+#include "lfcam/depth/padded_label_maps.h"
+
+namespace lfcam::weighted_median {
+
+// What the kernel gives each sample: the neighbourhood's weight, and the weights of its labels
+// below label − threshold and above label + threshold.
+constexpr int kSums = 3;
+
+}  // namespace lfcam::weighted_median
+#endif  // LFCAM_DEPTH_WEIGHTED_MEDIAN_ONCE
+
+HWY_BEFORE_NAMESPACE();
+namespace lfcam {
+namespace HWY_NAMESPACE {
+namespace {
+
+namespace hn = hwy::HWY_NAMESPACE;
+using DF = hn::ScalableTag<float>;
+using VF = hn::Vec<DF>;
+
+// The sums over the neighbourhoods of samples [x0, x0 + lanes) of row y, into `sums` (kSums runs
+// of `lanes` floats: all, below, above).
+void OutlierSumsT(const PaddedLabelMaps& m, float colour_scale, float threshold, int y, int x0,
+                  float* sums) {
+  const DF d;
+  const int r = m.radius;
+  const std::size_t centre = m.At(y, x0);
+  const VF own = hn::LoadU(d, m.label.data() + centre);
+  const VF low = hn::Sub(own, hn::Set(d, threshold)), high = hn::Add(own, hn::Set(d, threshold));
+  const VF red0 = hn::LoadU(d, m.red.data() + centre);
+  const VF green0 = hn::LoadU(d, m.green.data() + centre);
+  const VF blue0 = hn::LoadU(d, m.blue.data() + centre);
+  const VF scale = hn::Set(d, colour_scale);
+  VF all = hn::Zero(d), below = all, above = all;
+  for (int yy = std::max(0, y - r); yy <= std::min(m.height - 1, y + r); ++yy)
+    for (int dx = -r; dx <= r; ++dx) {
+      const std::size_t at = m.At(yy, x0 + dx);
+      const VF l = hn::LoadU(d, m.label.data() + at);
+      const VF dr = hn::Sub(hn::LoadU(d, m.red.data() + at), red0);
+      const VF dg = hn::Sub(hn::LoadU(d, m.green.data() + at), green0);
+      const VF db = hn::Sub(hn::LoadU(d, m.blue.data() + at), blue0);
+      const VF d2 = hn::MulAdd(dr, dr, hn::MulAdd(dg, dg, hn::Mul(db, db)));
+      const VF w = hn::Exp(d, hn::Mul(d2, scale));
+      all = hn::Add(all, hn::IfThenElseZero(hn::Eq(l, l), w));  // NaN: the padding, unknowns
+      below = hn::Add(below, hn::IfThenElseZero(hn::Lt(l, low), w));
+      above = hn::Add(above, hn::IfThenElseZero(hn::Gt(l, high), w));
+    }
+  const std::size_t lanes = hn::Lanes(d);
+  hn::StoreU(all, d, sums);
+  hn::StoreU(below, d, sums + lanes);
+  hn::StoreU(above, d, sums + 2 * lanes);
+}
+
+int LanesT() { return int(hn::Lanes(DF())); }
+
+}  // namespace
+}  // namespace HWY_NAMESPACE
+}  // namespace lfcam
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace lfcam {
+namespace {
+
+HWY_EXPORT(OutlierSumsT);
+HWY_EXPORT(LanesT);
+
+struct Weighted {
+  float label;
+  double weight;
+};
+
+// The smallest label whose weight, with the weights of every smaller label, reaches `target`
+// (average linear time: a selection that keeps only the side the answer lies on). `items` is
+// reordered; its weights sum to at least `target` > 0.
+float WeightedSelect(std::vector<Weighted>& items, double target) {
+  auto begin = items.begin(), end = items.end();
+  float largest = -std::numeric_limits<float>::infinity();
+  for (const Weighted& i : items) largest = std::max(largest, i.label);
+  while (end - begin > 1) {
+    const float pivot = (begin + (end - begin) / 2)->label;
+    const auto less =
+        std::partition(begin, end, [&](const Weighted& i) { return i.label < pivot; });
+    const auto equal =
+        std::partition(less, end, [&](const Weighted& i) { return i.label == pivot; });
+    double below = 0, at = 0;
+    for (auto i = begin; i != less; ++i) below += i->weight;
+    for (auto i = less; i != equal; ++i) at += i->weight;
+    if (below >= target) {
+      end = less;
+    } else if (below + at >= target) {
+      return pivot;
+    } else {
+      target -= below + at;
+      begin = equal;
+    }
+  }
+  return begin == end ? largest : begin->label;  // empty only by rounding: the largest label
+}
+
+}  // namespace
+
+int ReplaceOutliersByWeightedMedian(const cv::Mat& guide_rgb8, const WeightedMedianOptions& options,
+                                    cv::Mat& label) {
+  if (label.type() != CV_32FC1 || guide_rgb8.type() != CV_8UC3 || guide_rgb8.size() != label.size())
+    throw Error(
+        "ReplaceOutliersByWeightedMedian: labels and guide must be float and RGB8 maps "
+        "of one size");
+  if (!(options.sigma_levels > 0) || !(options.threshold >= 0))
+    throw Error(
+        "ReplaceOutliersByWeightedMedian: the colour sigma must be positive and the "
+        "threshold not negative");
+  const int w = label.cols, h = label.rows, r = std::max(0, options.radius);
+  if (w == 0 || h == 0) return 0;
+  const int lanes = HWY_DYNAMIC_DISPATCH(LanesT)();
+  const PaddedLabelMaps m = PadLabelMaps(label, guide_rgb8, r, lanes);
+  const double s = options.sigma_levels;
+  const float colour_scale = float(-1.0 / (2 * s * s));
+  const float threshold = float(options.threshold);
+
+  cv::Mat out = label.clone();
+  std::atomic<int> replaced{0};
+  tbb::enumerable_thread_specific<std::vector<Weighted>> scratch;
+  tbb::parallel_for(0, h, [&](int y) {
+    std::vector<float> sums(std::size_t(weighted_median::kSums * lanes));
+    std::vector<Weighted>& items = scratch.local();
+    int count = 0;
+    for (int x0 = 0; x0 < w; x0 += lanes) {
+      HWY_DYNAMIC_DISPATCH(OutlierSumsT)(m, colour_scale, threshold, y, x0, sums.data());
+      for (int i = 0; i < lanes && x0 + i < w; ++i) {
+        const float all = sums[std::size_t(i)], below = sums[std::size_t(lanes + i)],
+                    above = sums[std::size_t(2 * lanes + i)];
+        if (!(below >= 0.5f * all || above > 0.5f * all)) continue;  // false for NaN labels
+        // An outlier, or near enough to one that the median decides: the median itself.
+        const int x = x0 + i;
+        const std::size_t centre = m.At(y, x);
+        items.clear();
+        double total = 0;
+        for (int yy = std::max(0, y - r); yy <= std::min(h - 1, y + r); ++yy)
+          for (int xx = std::max(0, x - r); xx <= std::min(w - 1, x + r); ++xx) {
+            const std::size_t at = m.At(yy, xx);
+            const float l = m.label[at];
+            if (std::isnan(l)) continue;
+            const double dr = m.red[at] - m.red[centre], dg = m.green[at] - m.green[centre],
+                         db = m.blue[at] - m.blue[centre];
+            const double weight = std::exp((dr * dr + dg * dg + db * db) * colour_scale);
+            items.push_back({l, weight});
+            total += weight;
+          }
+        if (!(total > 0)) continue;
+        const float median = WeightedSelect(items, 0.5 * total);
+        if (std::abs(median - m.label[centre]) > threshold) {
+          out.at<float>(y, x) = median;
+          ++count;
+        }
+      }
+    }
+    replaced += count;
+  });
+  label = out;
+  return replaced;
+}
+
+}  // namespace lfcam
+#endif  // HWY_ONCE
