@@ -10,7 +10,7 @@ packages=(
   libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev libopencv-calib3d-dev
   # ChArUco boards (the aruco module); Debian's package also brings VTK and Open MPI along.
   libopencv-contrib-dev
-  libceres-dev libjpeg62-turbo-dev
+  libceres-dev libjpeg62-turbo-dev libpng-dev
   # The vectorised CPU renderer (Google Highway: portable SIMD, dispatched at run time).
   libhwy-dev
   # The GL renderer: OpenGL 4.3+ compute through EGL, headless (libepoxy loads the entry points);

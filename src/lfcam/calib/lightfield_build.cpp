@@ -12,7 +12,6 @@
 #include <cmath>
 #include <cstdint>
 #include <mutex>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <span>
 #include <vector>
@@ -36,19 +35,6 @@ struct ViewStats {
   std::vector<std::uint8_t> valid;
   std::vector<Vec3> after, before;  // linear, with and without the photometric correction
 };
-
-int ReductionFlags(int reduction) {
-  switch (reduction) {
-    case 2:
-      return cv::IMREAD_REDUCED_COLOR_2;
-    case 4:
-      return cv::IMREAD_REDUCED_COLOR_4;
-    case 8:
-      return cv::IMREAD_REDUCED_COLOR_8;
-    default:
-      return cv::IMREAD_COLOR;
-  }
-}
 
 struct ViewJob {
   int row, col;
@@ -78,7 +64,7 @@ DecodedRegion DecodeRegion(std::span<const std::uint8_t> bytes, const std::strin
     out.roi = cv::Rect(region.origin, out.rgb.size());
     return out;
   }
-  const cv::Mat bgr = DecodeImageBytes(bytes, name, ReductionFlags(reduction));
+  const cv::Mat bgr = DecodeImageBytes(bytes, name, ImageDecodeMode::kColour8, reduction);
   if (bgr.type() != CV_8UC3 || std::abs(bgr.cols - scaled.width) > 1 ||
       std::abs(bgr.rows - scaled.height) > 1)
     throw Error(fmt::format("{}: not an 8-bit colour image of {}x{} at 1/{} size", name,

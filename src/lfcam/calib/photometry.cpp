@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <mutex>
-#include <opencv2/imgcodecs.hpp>
 
 #include "lfcam/core/color.h"
 #include "lfcam/core/error.h"
@@ -83,10 +82,6 @@ PhotometryEstimate EstimatePhotometry(const std::filesystem::path& dir,
   int reduction = 1;
   while (reduction < 8 && std::max(calibration.width, calibration.height) / reduction > 1400)
     reduction *= 2;
-  const int flags = reduction == 1   ? cv::IMREAD_COLOR
-                    : reduction == 2 ? cv::IMREAD_REDUCED_COLOR_2
-                    : reduction == 4 ? cv::IMREAD_REDUCED_COLOR_4
-                                     : cv::IMREAD_REDUCED_COLOR_8;
   std::mutex mutex;
   const auto& images = world[0]->images;
   tbb::parallel_for(std::size_t(0), images.size(), [&](std::size_t index) {
@@ -97,7 +92,8 @@ PhotometryEstimate EstimatePhotometry(const std::filesystem::path& dir,
       try {
         const auto path = dir / image.file;
         const auto bytes = ReadFileBytes(path, kMaxEncodedImageBytes, "image file");
-        const cv::Mat bgr = DecodeImageBytes(bytes, path.string(), flags);
+        const cv::Mat bgr =
+            DecodeImageBytes(bytes, path.string(), ImageDecodeMode::kColour8, reduction);
         if (bgr.type() == CV_8UC3) seen[i] = ObserveSquares(bgr, reduction, c, board);
       } catch (const Error&) {
         // An unreadable world image: calibration has reported it; this camera is not corrected.

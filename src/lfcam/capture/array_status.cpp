@@ -2,12 +2,12 @@
 
 #include <fmt/format.h>
 
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "lfcam/capture/concurrency.h"
 #include "lfcam/capture/node_client.h"
 #include "lfcam/core/contact_sheet.h"
+#include "lfcam/core/image_io.h"
 #include "lfcam/core/json_input.h"
 #include "lfcam/session/session.h"
 
@@ -181,9 +181,9 @@ cv::Mat PreviewSheet(const ArrayConfig& array, const SharedKey& key, int tile_wi
     try {
       NodeClient client(n.address, key, {2.0, 30.0});
       const std::string jpeg = client.GetBytes(fmt::format("/v1/preview?width={}", tile_width));
-      cv::Mat bgr =
-          cv::imdecode(cv::Mat(1, int(jpeg.size()), CV_8UC1, (void*)jpeg.data()), cv::IMREAD_COLOR);
-      if (bgr.empty()) throw Error("the preview is not an image");
+      const cv::Mat bgr = DecodeImageBytes(
+          {reinterpret_cast<const std::uint8_t*>(jpeg.data()), jpeg.size()},
+          fmt::format("node ({},{})'s preview", n.row, n.col), ImageDecodeMode::kColour8);
       cv::cvtColor(bgr, tiles[slot], cv::COLOR_BGR2RGB);
     } catch (const Error& e) {
       labels[slot] += " " + std::string(e.what()).substr(0, 40);

@@ -5,7 +5,6 @@
 #include <cctype>
 #include <cstdlib>
 #include <memory>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <utility>
 #include <vector>
@@ -13,6 +12,7 @@
 #include "lfcam/core/atomic_file.h"
 #include "lfcam/core/color.h"
 #include "lfcam/core/error.h"
+#include "lfcam/core/image_codec.h"
 #include "lfcam/core/image_header.h"
 #include "lfcam/core/input_file.h"
 #include "lfcam/core/limits.h"
@@ -65,7 +65,7 @@ void CheckPngChunks(std::span<const std::uint8_t> b, const std::string& name) {
 }  // namespace
 
 cv::Mat DecodeImageBytes(std::span<const std::uint8_t> bytes, const std::string& name,
-                         int imread_flags) {
+                         ImageDecodeMode mode, int reduction) {
   ImageHeader header;
   try {
     header = ProbeImageHeader(bytes);
@@ -80,23 +80,14 @@ cv::Mat DecodeImageBytes(std::span<const std::uint8_t> bytes, const std::string&
   const double pixels = double(header.width) * header.height;
   RequireMemory(pixels * (header.channels * header.bits_per_channel / 8.0 + 3 + 12),
                 fmt::format("{}: decoding a {}x{} image", name, header.width, header.height));
-  cv::Mat m;
-  try {
-    m = cv::imdecode(
-        cv::Mat(1, int(bytes.size()), CV_8UC1, const_cast<std::uint8_t*>(bytes.data())),
-        imread_flags);
-  } catch (const cv::Exception&) {
-    m = cv::Mat();
-  }
+  if (reduction != 1 && reduction != 2 && reduction != 4 && reduction != 8)
+    throw Error(fmt::format("{}: internal: a reduction of {}", name, reduction));
+  std::string reason;
+  const cv::Mat m = header.format == "PNG" ? DecodePngBytes(bytes, mode, reduction, reason)
+                                           : DecodeJpegBytes(bytes, mode, reduction, reason);
   if (m.empty())
-    throw Error(
-        fmt::format("{}: not a readable {} image (corrupt or truncated)", name, header.format));
-  // cv::IMREAD_REDUCED_*_2, _4, _8 decode at 1/2, 1/4, 1/8 size (JPEG: scaled DCT, rounded up).
-  const int reduction = imread_flags < 0           ? 1
-                        : (imread_flags & 16) != 0 ? 2
-                        : (imread_flags & 32) != 0 ? 4
-                        : (imread_flags & 64) != 0 ? 8
-                                                   : 1;
+    throw Error(fmt::format("{}: not a readable {} image (corrupt or truncated: {})", name,
+                            header.format, reason));
   const int expected_w = (header.width + reduction - 1) / reduction;
   const int expected_h = (header.height + reduction - 1) / reduction;
   if (std::abs(m.cols - expected_w) > (reduction > 1) ||
@@ -109,7 +100,7 @@ cv::Mat DecodeImageBytes(std::span<const std::uint8_t> bytes, const std::string&
 
 cv::Mat ReadImageGray8(const std::filesystem::path& path) {
   const auto bytes = ReadFileBytes(path, kMaxEncodedImageBytes, "image file");
-  return DecodeImageBytes(bytes, path.string(), cv::IMREAD_GRAYSCALE);
+  return DecodeImageBytes(bytes, path.string(), ImageDecodeMode::kGray8);
 }
 
 cv::Mat ReadImageSrgb8(const std::filesystem::path& path) {
@@ -184,18 +175,14 @@ std::vector<std::uint8_t> EncodeImage(const std::filesystem::path& path, const c
     throw Error(fmt::format("{}: internal: bad image type", path.string()));
   cv::Mat bgr;
   cv::cvtColor(srgb, bgr, cv::COLOR_RGB2BGR);
-  std::vector<std::uint8_t> bytes;
-  bool ok = false;
   try {
-    const std::string ext = ImageExtension(path);
-    std::vector<int> params;
-    if (ext == ".jpg") params = {cv::IMWRITE_JPEG_QUALITY, jpeg_quality};
-    ok = cv::imencode(ext, bgr, bytes, params);
-  } catch (const cv::Exception&) {
-    ok = false;
+    return ImageExtension(path) == ".jpg" ? EncodeJpegBytes(bgr, jpeg_quality)
+                                          : EncodePngBytes(bgr);
+  } catch (const UsageError&) {
+    throw;
+  } catch (const Error& e) {
+    throw Error(fmt::format("{}: the image could not be encoded: {}", path.string(), e.what()));
   }
-  if (!ok) throw Error(fmt::format("{}: the image could not be encoded", path.string()));
-  return bytes;
 }
 
 }  // namespace

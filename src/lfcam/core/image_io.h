@@ -9,6 +9,8 @@
 #include <utility>
 #include <vector>
 
+#include "lfcam/core/image_codec.h"
+
 namespace lfcam {
 
 // Encoded image files larger than this are refused before they are read.
@@ -16,9 +18,9 @@ inline constexpr std::uint64_t kMaxEncodedImageBytes = std::uint64_t(1) << 30;
 
 // Decodes a PNG or JPEG held in memory (OpenCV's channel order, any depth) after checking its
 // header: at most kMaxImageSide a side and within the memory limit. `name` is for messages.
-// `imread_flags` as cv::imdecode takes them (default cv::IMREAD_UNCHANGED).
+// `mode` and `reduction` (1, 2, 4 or 8) as core/image_codec.h takes them.
 cv::Mat DecodeImageBytes(std::span<const std::uint8_t> bytes, const std::string& name,
-                         int imread_flags = -1);
+                         ImageDecodeMode mode = ImageDecodeMode::kUnchanged, int reduction = 1);
 
 // Reads an 8- or 16-bit PNG/JPEG as linear RGB float. Throws lfcam::Error naming the file.
 cv::Mat ReadImageLinear(const std::filesystem::path& path);

@@ -7,11 +7,11 @@
 #include <cstring>
 #include <map>
 #include <nlohmann/json.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "lfcam/core/atomic_file.h"
 #include "lfcam/core/error.h"
+#include "lfcam/core/image_codec.h"
 #include "lfcam/core/image_io.h"
 #include "lfcam/core/input_file.h"
 #include "lfcam/core/json_input.h"
@@ -107,8 +107,7 @@ std::string EncodeDepthPng(const DepthMap& map, const std::string& extra_json) {
       out[k] = std::uint16_t(1 + std::lround(x * 65534.0));
     }
   }
-  std::vector<std::uint8_t> png;
-  cv::imencode(".png", coded, png);
+  std::vector<std::uint8_t> png = EncodePngBytes(coded);
   nlohmann::json meta = nlohmann::json::parse(extra_json);
   meta["format"] = "lfcam-depth";
   meta["version"] = 1;
@@ -168,8 +167,7 @@ std::string EncodeConfidencePng(const DepthMap& map) {
     cv::flip(map.confidence, upright, 0);
     upright.convertTo(coded, CV_8U, 255.0);
   }
-  std::vector<std::uint8_t> png;
-  cv::imencode(".png", coded, png);
+  const std::vector<std::uint8_t> png = EncodePngBytes(coded);
   return {png.begin(), png.end()};
 }
 
@@ -236,10 +234,9 @@ cv::Mat DepthPreview(const DepthMap& map) {
 void WriteDepthFiles(const fs::path& path, const DepthMap& map, const std::string& extra_json) {
   const std::string depth = EncodeDepthPng(map, extra_json);
   const std::string confidence = EncodeConfidencePng(map);
-  std::vector<std::uint8_t> preview;
   cv::Mat bgr;
   cv::cvtColor(DepthPreview(map), bgr, cv::COLOR_RGB2BGR);
-  cv::imencode(".png", bgr, preview);
+  const std::vector<std::uint8_t> preview = EncodePngBytes(bgr);
   std::vector<std::unique_ptr<AtomicFileWriter>> writers;
   const auto add = [&](const fs::path& p, const void* data, std::size_t size) {
     writers.push_back(std::make_unique<AtomicFileWriter>(p));

@@ -6,11 +6,11 @@
 #include <atomic>
 #include <mutex>
 #include <nlohmann/json.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "lfcam/core/atomic_file.h"
 #include "lfcam/core/error.h"
+#include "lfcam/core/image_codec.h"
 #include "lfcam/core/input_file.h"
 #include "lfcam/core/json_input.h"
 #include "lfcam/core/limits.h"
@@ -117,8 +117,7 @@ void WriteDepthSet(const fs::path& dir, const DepthSet& set, const std::string& 
   if (set.has(cr, cc)) {
     cv::Mat bgr;
     cv::cvtColor(DepthPreview(set.at(cr, cc)), bgr, cv::COLOR_RGB2BGR);
-    std::vector<std::uint8_t> png;
-    cv::imencode(".png", bgr, png);
+    const std::vector<std::uint8_t> png = EncodePngBytes(bgr);
     add(dir / "preview.png", std::string(png.begin(), png.end()));
   }
   add(dir / "depth.json", index.dump(2) + "\n");

@@ -20,6 +20,7 @@
 #include "lfcam/cli/share_test_support.h"
 #include "lfcam/core/image_io.h"
 #include "lfcam/core/image_metrics.h"
+#include "lfcam/core/test_support.h"
 
 namespace lfcam {
 namespace {
