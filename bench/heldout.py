@@ -97,7 +97,7 @@ def main():
     lf = os.path.join(args.work, "kept.lf")
     depth = os.path.join(args.work, "kept_depth")
     t0 = time.time()
-    run([args.lfcam, "import", sub, "--out", lf, "--quiet"])
+    run([args.lfcam, "import", sub, "--out", lf, "--quiet"] + extra)
     if not os.path.exists(os.path.join(depth, "depth.json")):
         run([args.lfcam, "depth", lf, "--all", "--out", depth, "--quiet"]
             + shlex.split(args.depth_args))
