@@ -52,8 +52,9 @@ float DepthAwareSampler::DepthAt(int c, double k, double l) const {
   k -= camera.window.k;  // the view's own samples
   l -= camera.window.l;
   if (!(k >= -0.5 && k < n_s_ - 0.5 && l >= -0.5 && l < n_t_ - 0.5)) return NAN;
-  const int ki = std::clamp(int(std::lround(k)), 0, n_s_ - 1);
-  const int li = std::clamp(int(std::lround(l)), 0, n_t_ - 1);
+  // Nearest sample (k, l >= -0.5 here: rounding half up is lround's after the clamp).
+  const int ki = std::min(int(std::floor(k + 0.5)), n_s_ - 1);
+  const int li = std::min(int(std::floor(l + 0.5)), n_t_ - 1);
   return camera.depth[std::size_t(li) * camera.stride + std::size_t(ki)];
 }
 
@@ -77,14 +78,16 @@ double DepthAwareSampler::March(int c, const Vec3& origin, const Vec3& direction
   const double n_dir = n.dot(direction);
   if (n_dir >= 0.0) return -1.0;  // the ray runs away from the scene
   const double origin_depth = DepthOf(slab_, origin);
-  const auto point = [&](double q) {
-    return Vec3(origin + ((origin_depth - 1.0 / q) / n_dir) * direction);
-  };
+  // The ray's point at inverse depth q is origin + ((origin_depth - 1/q) / n_dir) direction:
+  // a + (1/q) b, projected into camera c's samples by one precomputed map.
+  const auto line =
+      colour_.ProjectLine(cameras_[std::size_t(c)].center,
+                          origin + (origin_depth / n_dir) * direction, (-1.0 / n_dir) * direction);
   // The range's part in front of the ray's origin.
   const double q_a = std::min(q_near_, 1.0 / (std::max(origin_depth, 0.0) + 1.0)), q_b = q_far_;
   if (!(q_a > q_b)) return -1.0;
   double k_a, l_a, k_b, l_b;
-  if (!Project(c, point(q_a), k_a, l_a) || !Project(c, point(q_b), k_b, l_b)) return -1.0;
+  if (!line.AtReciprocal(q_a, k_a, l_a) || !line.AtReciprocal(q_b, k_b, l_b)) return -1.0;
   const double travel = std::hypot(k_b - k_a, l_b - l_a);
   const int steps =
       std::clamp(int(std::ceil(std::max(2.0 * travel, (q_a - q_b) / unit_q_))), 4, 2048);
@@ -93,7 +96,7 @@ double DepthAwareSampler::March(int c, const Vec3& origin, const Vec3& direction
   for (int i = 0; i <= steps; ++i) {
     const double q = q_a + (q_b - q_a) * i / steps;
     double k, l;
-    const float d = Project(c, point(q), k, l) ? DepthAt(c, k, l) : NAN;
+    const float d = line.AtReciprocal(q, k, l) ? DepthAt(c, k, l) : NAN;
     if (!(std::isfinite(d) && d > 0.0f)) {
       have_previous = false;
       continue;

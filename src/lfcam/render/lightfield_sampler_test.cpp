@@ -93,6 +93,26 @@ TEST(LightFieldSampler, LinesThroughTheSlabFetchTheRightSample) {
   EXPECT_FALSE(sampler.Sample(Vec3(100, 50, 1000), Vec3(0.5, 0, -1), rgb));
 }
 
+TEST(LightFieldSampler, ALinesProjectionIsWhereEachOfItsPointsMeetsTheStPlane) {
+  const LightField lf = MakeMultilinearLightField();
+  const LightFieldSampler sampler(lf);
+  const Vec3 from = lf.slab().uv.camera_center(1, 2);
+  // A ray from in front of the array, aimed down and across the slab, at x = 1 / q along it.
+  const Vec3 a(30, -20, 900), b(0.02, 0.015, -1.0);
+  const auto line = sampler.ProjectLine(from, a, b);
+  for (const double q : {1.0 / 200, 1.0 / 1500, 1.0 / 4000, 1.0 / 90000}) {
+    double k, l, k_expected, l_expected;
+    ASSERT_TRUE(line.AtReciprocal(q, k, l));
+    ASSERT_TRUE(sampler.StSampleAt(from, a + (1.0 / q) * b, k_expected, l_expected));
+    EXPECT_NEAR(k, k_expected, 1e-9 * (1 + std::abs(k_expected))) << q;
+    EXPECT_NEAR(l, l_expected, 1e-9 * (1 + std::abs(l_expected))) << q;
+  }
+  // A line through `from` parallel to the st-plane meets it nowhere.
+  const auto parallel = sampler.ProjectLine(from, from, Vec3(1, 0, 0));
+  double k, l;
+  EXPECT_FALSE(parallel.AtReciprocal(0.5, k, l));
+}
+
 TEST(LightFieldSampler, ClampsToTheOutermostSamplesInsideTheWindows) {
   const LightField lf = MakeMultilinearLightField();
   const LightFieldSampler sampler(lf);
