@@ -65,6 +65,30 @@ bool StSampleAt(vec3 from, vec3 to, out vec2 kl) {
   return true;
 }
 
+// Where the lines from `from` through the points a + x b meet the st-plane, as a function of x
+// (LightFieldSampler::ProjectLine in C++): kl(x = 1/q) = k0l0 + (kl_a q + kl_b) / (w.x q + w.y).
+struct LineProjection {
+  vec2 k0l0, kl_a, kl_b, w;
+};
+LineProjection ProjectLine(vec3 from, vec3 a, vec3 b) {
+  const vec3 rel = from - st_origin, a_rel = a - from;
+  const float g = -dot(n_st, rel);
+  LineProjection line;
+  line.k0l0 = vec2((dot(rel, s_scaled) - grid_st.x) * grid_st.z - 0.5,
+                   (dot(rel, t_scaled) - grid_st.y) * grid_st.w - 0.5);
+  line.kl_a = g * grid_st.zw * vec2(dot(a_rel, s_scaled), dot(a_rel, t_scaled));
+  line.kl_b = g * grid_st.zw * vec2(dot(b, s_scaled), dot(b, t_scaled));
+  line.w = vec2(dot(n_st, a_rel), dot(n_st, b));
+  return line;
+}
+bool AtReciprocal(LineProjection line, float q, out vec2 kl) {
+  const float w = line.w.x * q + line.w.y;
+  kl = vec2(0.0);
+  if (w == 0.0) return false;
+  kl = line.k0l0 + (line.kl_a * q + line.kl_b) / w;
+  return true;
+}
+
 // Camera c's depth (mm) at the sample nearest to (k, l), or -1 outside its view or unknown.
 float DepthAt(int c, vec2 kl) {
   if (has_depth[c] == 0) return -1.0;
@@ -136,10 +160,11 @@ float March(int c, vec3 origin, vec3 direction) {
   const float origin_depth = DepthOf(origin);
   const float q_a = min(q_near, 1.0 / (max(origin_depth, 0.0) + 1.0)), q_b = q_far;
   if (!(q_a > q_b)) return -1.0;
+  // The ray's point at inverse depth q, PointAt(...), is a + (1/q) b: one map for the march.
+  const LineProjection line = ProjectLine(
+      camera_centre[c].xyz, origin + (origin_depth / n_dir) * direction, (-1.0 / n_dir) * direction);
   vec2 a, b;
-  if (!StSampleAt(camera_centre[c].xyz, PointAt(origin, direction, origin_depth, n_dir, q_a), a) ||
-      !StSampleAt(camera_centre[c].xyz, PointAt(origin, direction, origin_depth, n_dir, q_b), b))
-    return -1.0;
+  if (!AtReciprocal(line, q_a, a) || !AtReciprocal(line, q_b, b)) return -1.0;
   const float travel = length(b - a);
   const int steps = clamp(int(ceil(max(2.0 * travel, (q_a - q_b) / unit_q))), 4, 2048);
   bool have_previous = false;
@@ -147,10 +172,7 @@ float March(int c, vec3 origin, vec3 direction) {
   for (int i = 0; i <= steps; ++i) {
     const float q = q_a + (q_b - q_a) * float(i) / float(steps);
     vec2 kl;
-    const float d =
-        StSampleAt(camera_centre[c].xyz, PointAt(origin, direction, origin_depth, n_dir, q), kl)
-            ? DepthAt(c, kl)
-            : -1.0;
+    const float d = AtReciprocal(line, q, kl) ? DepthAt(c, kl) : -1.0;
     if (!(d > 0.0)) {
       have_previous = false;
       continue;
