@@ -161,8 +161,9 @@ float March(int c, vec3 origin, vec3 direction) {
   const float q_a = min(q_near, 1.0 / (max(origin_depth, 0.0) + 1.0)), q_b = q_far;
   if (!(q_a > q_b)) return -1.0;
   // The ray's point at inverse depth q, PointAt(...), is a + (1/q) b: one map for the march.
-  const LineProjection line = ProjectLine(
-      camera_centre[c].xyz, origin + (origin_depth / n_dir) * direction, (-1.0 / n_dir) * direction);
+  const LineProjection line =
+      ProjectLine(camera_centre[c].xyz, origin + (origin_depth / n_dir) * direction,
+                  (-1.0 / n_dir) * direction);
   vec2 a, b;
   if (!AtReciprocal(line, q_a, a) || !AtReciprocal(line, q_b, b)) return -1.0;
   const float travel = length(b - a);
