@@ -1,4 +1,5 @@
 // lfcam.depth(lf, row, col): a view's depth map by the plane sweep `lfcam depth` runs.
+#include <fmt/format.h>
 #include <pybind11/stl.h>
 
 #include <optional>

@@ -1,5 +1,6 @@
 // lfcam.export(lf, out, format): the views as PNGs with their cameras, NeRF's transforms.json or
 // a COLMAP model, as `lfcam export` writes them.
+#include <fmt/format.h>
 #include <pybind11/stl.h>
 
 #include "lfcam/core/error.h"

@@ -1,5 +1,6 @@
 // Python keyword arguments as lfcam's keyword values (cli/keyword_arguments.h): the one place
 // the module turns Python objects into flag values, and refuses what no flag takes.
+#include <fmt/format.h>
 #include <pybind11/stl.h>
 
 #include "lfcam/core/error.h"

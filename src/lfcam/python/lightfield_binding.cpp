@@ -1,5 +1,6 @@
 // lfcam.open and lfcam.LightField: a light field file (.lf) or a frame of a light field video
 // (.lfv), its samples as NumPy arrays over the file's own mapping (no copy), its geometry.
+#include <fmt/format.h>
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
 
