@@ -16,6 +16,7 @@
 #include "lfcam/core/lightfield_file.h"
 #include "lfcam/core/lightfield_video_file.h"
 #include "lfcam/core/progress.h"
+#include "lfcam/depth/cost_volume.h"
 #include "lfcam/depth/depth_set.h"
 #include "lfcam/depth/disparity_map.h"
 #include "lfcam/depth/gl_cost_volume.h"
@@ -47,16 +48,25 @@ nlohmann::json Summary(const DepthMap& map) {
           {"mean_mm", n > 0 ? sum / n : 0.0},
           {"confident_share", n > 0 ? confident / n : 0.0},
           {"noise_levels", map.noise_levels},
+          {"near_nyquist_share", map.near_nyquist_share},
           {"read_sigma", map.read_sigma}};
 }
 
-// Says how noisy views were read, when they were.
+// Says how noisy or sharp views were read, when they were read through a Gaussian.
 void PrintNoisyViews(const nlohmann::json& summary) {
   if (summary["read_sigma"].get<double>() <= 0) return;
-  fmt::print(
-      "  the views are noisy (about {:.1f} levels in 8 bits): matched through a Gaussian of {:.1f} "
-      "samples rather than Keys' cubic (docs/depth.md, \"Noisy views\")\n",
-      summary["noise_levels"].get<double>(), summary["read_sigma"].get<double>());
+  const double noise = summary["noise_levels"].get<double>();
+  if (noise > kNoisyViewLevels)
+    fmt::print(
+        "  the views are noisy (about {:.1f} levels in 8 bits): matched through a Gaussian of "
+        "{:.1f} samples rather than Keys' cubic (docs/depth.md, \"Noisy views\")\n",
+        noise, summary["read_sigma"].get<double>());
+  else
+    fmt::print(
+        "  the views are sharper than their sampling ({:.1f}% of their texture's power near it): "
+        "matched through a Gaussian of {:.1f} samples rather than Keys' cubic (docs/depth.md, "
+        "\"Sharp views\")\n",
+        100.0 * summary["near_nyquist_share"].get<double>(), summary["read_sigma"].get<double>());
 }
 
 // The GPU engine --backend asks for, or none (the CPU): gl must find a GL 4.3 context; auto

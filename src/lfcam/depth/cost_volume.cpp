@@ -20,6 +20,7 @@
 #include "lfcam/core/keys_cubic.h"
 #include "lfcam/depth/noise_level.h"
 #include "lfcam/depth/plane_sweep.h"
+#include "lfcam/depth/view_sharpness.h"
 
 namespace lfcam {
 
@@ -45,11 +46,17 @@ constexpr int kChannels = 5;     // R, G, B (sRGB, 0 .. 1), the grey level's x a
 constexpr int kHalves = 8;       // half-arrays, their directions 45 degrees apart
 constexpr int kBandRows = 8;     // the rows the sweep takes through every view at a time
 constexpr int kGroupPlanes = 8;  // the most planes swept together
-// Views noisier than this (NoiseLevel, 8-bit levels) are read through a Gaussian of
-// kNoisyReadSigma samples (ReadWeights). Clean renders measure about 0.4, the real photographs
-// here (a Lytro camera's views, JPEG photographs) 0.5-0.8 (docs/depth.md, "Noisy views").
-constexpr double kNoisyLevels = 1.0;
+// Views noisier than kNoisyViewLevels (NoiseLevel, 8-bit levels; cost_volume.h) are read through
+// a Gaussian of kNoisyReadSigma samples (ReadWeights). Clean renders measure about 0.4, the real
+// photographs here (a Lytro camera's views, JPEG photographs) 0.5-0.8 (docs/depth.md, "Noisy
+// views").
 constexpr double kNoisyReadSigma = 1.3;
+// Clean views with more than kSharpShare of their texture's power near the sampling limit
+// (NearNyquistShare) are read through a Gaussian of kSharpReadSigma samples: Keys' cubic would
+// pull the matches towards whole and half samples (docs/depth.md, "Sharp views"; the real
+// light fields here measure 0.0055-0.015, renders antialiased by a box over the pixel 0.04).
+constexpr double kSharpShare = 0.025;
+constexpr double kSharpReadSigma = 0.6;
 static_assert(kChannels == ShiftedSweep::kChannels && kHalves == ShiftedSweep::kHalves);
 // The packed channels' units: sRGB levels exactly (0 .. 255); gradients (at most 1 in size) in
 // steps of 1/8192, finer than an 8-bit grey level's gradient (1/2040).
@@ -414,7 +421,11 @@ SweepViews::SweepViews(const LightField& lf, int row, int col, const CostVolumeO
       reference_rgb8_ = rgb;
       if (options.adapt_to_noise) {
         noise_level_ = NoiseLevel(rgb);
-        if (noise_level_ > kNoisyLevels) read_sigma_ = kNoisyReadSigma;
+        near_nyquist_share_ = NearNyquistShare(rgb);
+        if (noise_level_ > kNoisyViewLevels)
+          read_sigma_ = kNoisyReadSigma;
+        else if (near_nyquist_share_ > kSharpShare)
+          read_sigma_ = kSharpReadSigma;
       }
     }
     cv::Mat f, grey, gx, gy;

@@ -44,12 +44,16 @@ struct CostVolumeOptions {
   // camera's outer views are darker than its centre's). Not for views far apart, whose means
   // differ by what each sees (docs/depth.md, "An eighth round").
   bool equalise_brightness = false;
-  // Views whose noise (NoiseLevel of the reference) is above a level or so read through a
-  // Gaussian rather than Keys' cubic, the reference filtered alike, so that no plane matches
-  // better because its reads fall between samples and smooth the noise away (docs/depth.md,
-  // "Noisy views").
+  // Views whose noise (NoiseLevel of the reference) is above kNoisyViewLevels, or whose texture
+  // is sharper than their sampling (NearNyquistShare), read through a Gaussian rather than Keys'
+  // cubic, the reference filtered alike, so that no plane matches better because its reads fall
+  // between samples and smooth the noise, or blur the sharp edges, away (docs/depth.md, "Noisy
+  // views" and "Sharp views").
   bool adapt_to_noise = false;
 };
+
+// The noise (8-bit levels) above which views are noisy (CostVolumeOptions::adapt_to_noise).
+inline constexpr double kNoisyViewLevels = 1.0;
 
 // A sweep's geometry, from the light field's alone (no view loaded): what SweepViews(lf, row,
 // col, options) will have.
@@ -167,9 +171,12 @@ class SweepViews {
   // (and its nearest) per unit of inverse depth (1/mm).
   double farthest_shift_per_q() const { return geometry_.farthest_shift_per_q(); }
   double nearest_shift_per_q() const { return geometry_.nearest_shift_per_q(); }
-  // The reference's noise in 8-bit levels (measured with adapt_to_noise, else 0), and the
-  // Gaussian's width in samples its views are read through (0: Keys' cubic).
+  // The reference's noise in 8-bit levels and its texture's share near the sampling limit
+  // (depth/view_sharpness.h; both measured with adapt_to_noise, else 0), and the Gaussian's width
+  // in samples its views are read through (0: Keys' cubic): noisy views (above
+  // kNoisyViewLevels) and sharp ones are.
   double noise_level() const { return noise_level_; }
+  double near_nyquist_share() const { return near_nyquist_share_; }
   double read_sigma() const { return read_sigma_; }
 
   // The cost volume over the planes of inverse depth q[i] (1/mm). Each view's cost at a sample
@@ -199,7 +206,7 @@ class SweepViews {
   View reference_;
   std::vector<View> views_;
   std::vector<unsigned> class_halves_;  // the distinct half-array memberships of the views
-  double noise_level_ = 0, read_sigma_ = 0;
+  double noise_level_ = 0, near_nyquist_share_ = 0, read_sigma_ = 0;
   cv::Mat reference_rgb8_;
 };
 

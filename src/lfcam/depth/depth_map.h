@@ -34,9 +34,10 @@ struct DepthMap {
   cv::Mat confidence;    // CV_32FC1, same shape, 0 .. 1; empty when not known
   DepthRange range;      // the range the map was estimated (or is stored) in
   // How the estimate read the views (not stored in the file): the reference view's noise in
-  // 8-bit levels, and the width in samples of the Gaussian its neighbours were read through (0:
-  // Keys' cubic; docs/depth.md, "Noisy views").
-  double noise_levels = 0, read_sigma = 0;
+  // 8-bit levels, its texture's share near the sampling limit (depth/view_sharpness.h), and the
+  // width in samples of the Gaussian its neighbours were read through (0: Keys' cubic;
+  // docs/depth.md, "Noisy views", "Sharp views").
+  double noise_levels = 0, near_nyquist_share = 0, read_sigma = 0;
 
   int n_s() const { return depth.cols; }
   int n_t() const { return depth.rows; }

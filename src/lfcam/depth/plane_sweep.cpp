@@ -275,6 +275,7 @@ DepthMap EstimateDepth(const LightField& lf, int row, int col, const PlaneSweepO
   map.col = col;
   map.range = range;
   map.noise_levels = views.noise_level();
+  map.near_nyquist_share = views.near_nyquist_share();
   map.read_sigma = views.read_sigma();
   map.confidence = choice.confidence;
   map.depth.create(choice.label.size(), CV_32FC1);
