@@ -53,7 +53,7 @@ nlohmann::json Summary(const DepthMap& map) {
 }
 
 // Says how noisy or sharp views were read, when they were read through a Gaussian.
-void PrintNoisyViews(const nlohmann::json& summary) {
+void PrintGaussianReads(const nlohmann::json& summary) {
   if (summary["read_sigma"].get<double>() <= 0) return;
   const double noise = summary["noise_levels"].get<double>();
   if (noise > kNoisyViewLevels)
@@ -231,7 +231,7 @@ void AddDepthCommand(CLI::App& app) {
       fmt::print("wrote {} depth maps to {} (range {:.0f} .. {:.0f} {}) in {:.1f} s\n", set.count(),
                  f->out, set.range().near_mm, set.range().far_mm, WorldLengthUnit(lf.metadata()),
                  seconds());
-      PrintNoisyViews(report["central"]);
+      PrintGaussianReads(report["central"]);
       return;
     }
     const DepthMap map = EstimateDepth(lf, row, col, options);
@@ -261,7 +261,7 @@ void AddDepthCommand(CLI::App& app) {
         s["max_mm"].get<double>(), WorldLengthUnit(lf.metadata()),
         100.0 * s["confident_share"].get<double>(), report["confidence"].get<std::string>(),
         report["preview"].get<std::string>(), seconds());
-    PrintNoisyViews(s);
+    PrintGaussianReads(s);
     if (!f->disparity_pfm.empty())
       fmt::print(
           "wrote {} (disparity between neighbouring views, st samples; {} unknown written "
