@@ -147,7 +147,7 @@ struct CostTerms {
 // One row's comparison: the shifted view's channels s0 .. s4 against the reference's f0 .. f4,
 // each term truncated and weighted, added to `sum`.
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-__attribute__((target_clones("arch=x86-64-v3", "default")))
+__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
 #endif
 void CompareRow(const float* __restrict s0, const float* __restrict s1, const float* __restrict s2,
                 const float* __restrict s3, const float* __restrict s4, const float* __restrict f0,
@@ -171,7 +171,7 @@ void CompareRow(const float* __restrict s0, const float* __restrict s1, const fl
 // into one row, then horizontal taps) and the comparison are fused, and the sweep runs row by row
 // through all the views, so that the reference's row and the sums' rows stay in cache.
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-__attribute__((target_clones("arch=x86-64-v3", "default")))
+__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
 #endif
 void AccumulateShiftedRow(const std::vector<std::int16_t>& src, const float* ref, int w, int h,
                           int y, const Shift& shift, const CostTerms& terms,
@@ -296,7 +296,7 @@ void CountRow(const std::vector<std::pair<std::size_t, Shift>>& shifted,
 // order as a running sum from zero would (the same floats), but written rather than added to zeroed
 // rows, and the choice made without a branch, so that the loops vectorise (docs/benchmarks.md).
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-__attribute__((target_clones("arch=x86-64-v3", "default")))
+__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
 #endif
 void WindowedBest(const PlaneScratch& ps, int y, int w, int h, int ring, int radius,
                   float min_count, float pair_min_count, Scratch& s, float* best) {
