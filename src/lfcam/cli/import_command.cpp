@@ -31,6 +31,8 @@ void PrintImport(const nlohmann::json& s) {
         s["seconds"].get<double>());
     for (const auto& assumed : s["assumed"])
       fmt::print("  assumed: {}\n", assumed.get<std::string>());
+    if (s.contains("notes"))
+      for (const auto& note : s["notes"]) fmt::print("  note: {}\n", note.get<std::string>());
   } else {
     fmt::print(
         "imported {}x{} views of {}x{} ({} naming), pitch {:.3f} mm, focal length {:.1f} px\n",

@@ -64,7 +64,8 @@ ImportedLightField ImportRectified(const std::string& dir, const ImportedGrid& g
                    {"st_distance_mm", geometry.zero_disparity_mm},
                    {"zero_disparity_distance_mm", geometry.zero_disparity_mm},
                    {"st_distance_estimated", false},
-                   {"assumed", geometry.assumed}});
+                   {"assumed", geometry.assumed},
+                   {"notes", geometry.notes}});
 }
 
 }  // namespace

@@ -49,6 +49,7 @@ HciParameters ParseHciParameters(std::string_view text, const std::string& where
   if (text.size() > (std::size_t(1) << 20))
     throw Error(fmt::format("{}: {} bytes is too large for a parameters.cfg", where, text.size()));
   HciParameters p;
+  p.source = where;
   std::map<std::string, int> line_of;
   std::string section;
   int line_number = 0;

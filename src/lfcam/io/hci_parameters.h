@@ -31,6 +31,7 @@ struct HciParameters {
   std::optional<double> focus_distance_mm;
   std::optional<double> disp_min, disp_max;
   std::map<std::string, std::string> values;  // every "section.key" as written
+  std::string source;                         // where it was read from (for messages)
 
   // The focal length in pixels, focal_length_mm * max(width, height) / sensor_size_mm, where the
   // file gives them.

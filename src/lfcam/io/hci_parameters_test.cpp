@@ -117,6 +117,33 @@ TEST(HciParameters, ABenchmarkFolderWithItImportsMetrically) {
               geo.focal_px * 90 / 4250, 1e-9);
 }
 
+// A copy whose views were resized since keeps the sensor: the focal length scales with them, and
+// the import says so; views of another aspect ratio are not a resize, and are refused.
+TEST(HciParameters, ViewsOfAnotherSizeScaleTheFocalLengthOrAreRefused) {
+  const fs::path dir = HciFolder(kParameters, 9);
+  for (int i = 0; i < 9; ++i)  // half the size parameters.cfg gives (64 x 48)
+    cv::imwrite((dir / fmt::format("input_Cam{:03d}.png", i)).string(),
+                cv::Mat(24, 32, CV_8UC3, cv::Scalar(10 * i, 20, 30)));
+  const RectifiedGeometry geo = ResolveRectifiedGeometry(ScanGridFolder(dir, false), {});
+  EXPECT_DOUBLE_EQ(geo.focal_px, 100.0 * 32 / 35);
+  EXPECT_TRUE(geo.assumed.empty());
+  ASSERT_EQ(geo.notes.size(), 1u);
+  EXPECT_NE(geo.notes[0].find("64x48, but they are 32x24"), std::string::npos) << geo.notes[0];
+  // The same disparities as at full size, in the views' own pixels: f b / Z0 halves.
+  EXPECT_NEAR(geo.PrincipalPoint(90, 0).x() - geo.PrincipalPoint(0, 0).x(),
+              0.5 * 100.0 * 64 / 35 * 90 / 4250, 1e-9);
+  for (int i = 0; i < 9; ++i)  // another aspect ratio
+    cv::imwrite((dir / fmt::format("input_Cam{:03d}.png", i)).string(),
+                cv::Mat(48, 48, CV_8UC3, cv::Scalar(10 * i, 20, 30)));
+  const std::string refused =
+      testing::ErrorOf([&] { ResolveRectifiedGeometry(ScanGridFolder(dir, false), {}); });
+  EXPECT_NE(refused.find("64x48, but they are 48x48"), std::string::npos) << refused;
+  // A focal length given on the command line stands, whatever the file says.
+  ImportOptions o;
+  o.focal_px = 50.0;
+  EXPECT_DOUBLE_EQ(ResolveRectifiedGeometry(ScanGridFolder(dir, false), o).focal_px, 50.0);
+}
+
 // Folders made elsewhere in the benchmark's format often give only the grid, the image size and
 // the disparity range: they import in disparity units, every unit assumed and said.
 constexpr const char* kPartialParameters = R"([intrinsics]

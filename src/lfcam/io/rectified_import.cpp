@@ -6,7 +6,9 @@
 #include <tbb/parallel_for.h>
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstring>
 #include <mutex>
 
@@ -48,6 +50,26 @@ Vec2 GridOrigin(const ImportedGrid& g, double pitch_mm) {
   return sum / std::max(n, 1);
 }
 
+// parameters.cfg's focal length in pixels counts its own image size; views of another size (a
+// copy resized since) are the same sensor in other pixels, so the focal length scales with them,
+// and is said. Another aspect ratio is not a resize: refused.
+double FocalPxOfTheViews(const ImportedGrid& g, double focal_px, std::vector<std::string>& notes) {
+  if (!g.hci || !g.hci->width_px || !g.hci->height_px) return focal_px;
+  const int w = *g.hci->width_px, h = *g.hci->height_px;
+  if (w == g.width && h == g.height) return focal_px;
+  if (std::abs(double(w) * g.height - double(h) * g.width) > 0.01 * double(w) * g.height)
+    throw Error(fmt::format(
+        "{}: gives the views as {}x{}, but they are {}x{}: another aspect ratio, so its focal "
+        "length does not apply to them (--focal-px sets one)",
+        g.hci->source, w, h, g.width, g.height));
+  const double scaled = focal_px * std::max(g.width, g.height) / std::max(w, h);
+  notes.push_back(fmt::format(
+      "parameters.cfg gives the views as {}x{}, but they are {}x{}: its focal length, {:.1f} px "
+      "at its size, scaled to theirs: {:.1f} px",
+      w, h, g.width, g.height, focal_px, scaled));
+  return scaled;
+}
+
 }  // namespace
 
 RectifiedGeometry ResolveRectifiedGeometry(const ImportedGrid& g, const ImportOptions& o) {
@@ -69,7 +91,7 @@ RectifiedGeometry ResolveRectifiedGeometry(const ImportedGrid& g, const ImportOp
   if (o.focal_px) {
     r.focal_px = *o.focal_px;
   } else if (g.focal_px && !o.focal_mm) {
-    r.focal_px = *g.focal_px;
+    r.focal_px = FocalPxOfTheViews(g, *g.focal_px, r.notes);
   } else if (focal_mm && sensor_mm) {
     r.focal_px = *focal_mm / *sensor_mm * g.width;
   } else {
@@ -218,6 +240,7 @@ LightField ImportRectifiedViews(const fs::path& dir, const ImportedGrid& g,
                      {"units", geo.assumed.empty() ? "mm" : "assumed (see assumed)"},
                      {"length_unit", geo.metric ? "mm" : "units"},
                      {"assumed", geo.assumed},
+                     {"notes", geo.notes},
                      {"stored", "sample for sample (each view's own pixels)"},
                      {"missing", g.missing},
                      {"filled_views", r.filled},

@@ -35,6 +35,7 @@ struct RectifiedGeometry {
   Vec2 reference_principal_point = Vec2::Zero();  // OpenCV's (cx, cy) at the grid's centre
   Vec2 reference_xy_mm = Vec2::Zero();            // the grid's centre on the camera plane
   std::vector<std::string> assumed;  // what the data set did not say, as chosen (for the user)
+  std::vector<std::string> notes;    // what the data set said that was adapted to the views
   bool metric = true;                // false: no scale known, the cameras' spacing taken as 1 unit
 
   // Camera at (x, y) mm on the camera plane: its principal point (OpenCV's convention).
