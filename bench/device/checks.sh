@@ -5,6 +5,7 @@
 #   view and of every view on the GPU (issue 22). What they print and write lands in $OUT.
 set -uo pipefail
 exec > >(tee "$OUT/log.txt") 2>&1
+exec 3>&1  # the log, for what `timed` says whatever a command's own output is redirected to
 for deb in .device/gl/*.deb; do dpkg -x "$deb" /; done
 ldconfig
 vendor=/usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json
@@ -21,7 +22,7 @@ timed() {
   start=$(date +%s%N)
   "$@"
   rc=$?
-  echo "== exit $rc after $((($(date +%s%N) - start) / 1000000)) ms: $*"
+  echo "== exit $rc after $((($(date +%s%N) - start) / 1000000)) ms: $*" >&3
 }
 echo "### the GL agreement tests"
 timed timeout 180 /tmp/lfcam/bin/lfcam_tests \
