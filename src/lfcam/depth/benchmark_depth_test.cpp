@@ -60,7 +60,7 @@ TEST(DepthOnTheBenchmark, AntinousScoresWhatDocsDepthSays) {
   std::cout << fmt::format(
       "[depth benchmark] antinous: BadPix0.07 {:.2f}%, MSEx100 {:.2f}, {:.1f} s\n", badpix, mse100,
       seconds);
-  // Floors a little above what was measured (docs/depth.md: 3.13% and 4.78; with the colour and
+  // Floors a little above what was measured (docs/depth.md: 3.05% and 4.82; with the colour and
   // gradient terms counting alike, as at wide baselines, 5.28% and 6.4, which both floors fail;
   // without the slant prior then 5.38%, without the wider plane fit 5.55%, without the local
   // planes 6.32%).
@@ -170,9 +170,9 @@ SimulatedScore ScoreSimulatedRig(const Scene& scene, double pitch_mm, double fal
 // silhouettes lose is their truth's registration.
 TEST(DepthOnABenchmarkLikeScene, MeetsTheTargetsWhereTheTruthIsRegistered) {
   const SimulatedScore s = ScoreSimulatedRig(MakePaperScene(), 5.0);
-  // Measured 3.05%, 0.57 and 0.51 against 1.66 (4.66% and 0.60 when these sharp views were read
-  // through Keys' cubic; before the range took in faint surfaces: 34.7%, the back wall all at the
-  // range's far end).
+  // Measured 2.80%, 0.555 and 0.50 against 1.66 (3.05% and 0.57 with planes 0.25 samples apart;
+  // 4.66% and 0.60 when these sharp views were read through Keys' cubic; before the range took
+  // in faint surfaces: 34.7%, the back wall all at the range's far end).
   EXPECT_LE(s.badpix, 5.0);
   EXPECT_LE(s.mse100, 1.5);
   EXPECT_LE(s.silhouettes100, 0.5 * s.moved_row100);
@@ -182,7 +182,8 @@ TEST(DepthOnABenchmarkLikeScene, MeetsTheTargetsWhereTheTruthIsRegistered) {
 // each sample the mean of 3 x 3 rays) lies -1.71 px between neighbours, and read through Keys'
 // cubic it matched best where its farthest views shift by whole samples: 0.09 px off (up to
 // 0.28), 62% of it bad, the view 25.96% bad. Views this sharp are read through a Gaussian
-// (docs/depth.md, "Sharp views"): measured 7.42% and MSE x 100 1.01 (1.95 with Keys' reads).
+// (docs/depth.md, "Sharp views"): measured 6.97% and MSE x 100 1.01 (7.42% with planes 0.25
+// samples apart; MSE x 100 1.95 with Keys' reads).
 TEST(DepthOnABenchmarkLikeScene, ReadsViewsSharperThanTheirSamplingWithoutThePull) {
   const SimulatedScore s = ScoreSimulatedRig(MakePaperScene(), 8.0);
   EXPECT_LE(s.badpix, 10.0);
@@ -202,7 +203,7 @@ TEST(DepthOnABenchmarkLikeScene, IgnoresBrightnessThatChangesFromViewToView) {
 // whole at whole-sample shifts and 0.41 of its variance halfway between samples, so the planes at
 // which the farthest views fall halfway matched better by that alone, and the estimate came in
 // terraces a quarter of a pixel apart. Noisy views are now read through a Gaussian (docs/depth.md,
-// "Noisy views"): measured 13.96% and 1.40, against 31.93% and 2.59 with Keys' reads.
+// "Noisy views"): measured 13.79% and 1.28, against 31.93% and 2.59 with Keys' reads.
 TEST(DepthOnABenchmarkLikeScene, HoldsUpOnNoisyViews) {
   const SimulatedScore s = ScoreSimulatedRig(MakePaperScene(), 5.0, 0.0, 8.0);
   EXPECT_LE(s.badpix, 18.0);

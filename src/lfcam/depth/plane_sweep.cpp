@@ -228,9 +228,10 @@ DepthMap EstimateDepth(const LightField& lf, int row, int col, const PlaneSweepO
   const auto estimate = [&](const cv::Mat& expected_step) {
     const CostVolume aggregate = AggregateSemiGlobal(
         volume, grey, {options.smoothness_p1, options.smoothness_p2}, expected_step);
-    // Unique: no other minimum more than a sample of the farthest view's shift away.
+    // Unique: no other minimum a sample of the farthest view's shift away or more (the whole
+    // planes that span at least a sample: 4 at the default spacing of 0.3; docs/depth.md).
     Choice choice = Choose(aggregate, volume, options.truncation,
-                           std::max(1, int(std::lround(1.0 / options.step_samples))));
+                           std::max(1, int(std::ceil(1.0 / options.step_samples - 1e-9))));
     if (options.refine_edges) {
       // The threshold: kOutlierPixels of the nearest view's shift, in planes.
       const int radius = options.refine_radius > 0

@@ -3,8 +3,8 @@
 // decided each step).
 //
 // For one view (the reference), planes parallel to the array's plane are swept at depths D,
-// uniformly in 1/D (the parameter a light field's disparity is linear in), finely: a quarter of
-// a sample of the farthest view's shift a step. Each plane's matching cost against every view
+// uniformly in 1/D (the parameter a light field's disparity is linear in), finely: 0.3 of a
+// sample of the farthest view's shift a step. Each plane's matching cost against every view
 // within `reach` grid steps, occlusion-aware (depth/cost_volume.h), is aggregated by semi-global
 // matching (depth/semi_global.h), the cheapest plane per sample is refined to a fraction of a
 // step (a parabola through three aggregated costs), outliers (a sample far from the
@@ -31,10 +31,12 @@ struct PlaneSweepOptions {
   // Views up to this many grid steps away in rows and in columns; 0: 4 for one view, 1 for
   // every view of a set (EstimateDepthSet: a hundred views' maps in about a minute, not ten).
   int reach = 0;
-  double step_samples = 0.25;  // plane spacing: the farthest view's shift per step, in samples
-  double truncation = 0.1;     // the colour and the gradient terms' caps (sRGB units, 0 .. 1)
-  int window_radius = 1;       // the matching window's radius in samples (a box)
-  int smoothness_p1 = 16;      // semi-global matching's penalties (depth/semi_global.h)
+  // Plane spacing: the farthest view's shift per step, in samples (0.3: docs/depth.md, "The
+  // planes' spacing and phase").
+  double step_samples = 0.3;
+  double truncation = 0.1;  // the colour and the gradient terms' caps (sRGB units, 0 .. 1)
+  int window_radius = 1;    // the matching window's radius in samples (a box)
+  int smoothness_p1 = 16;   // semi-global matching's penalties (depth/semi_global.h)
   int smoothness_p2 = 160;
   bool refine_edges = true;      // the weighted-median outlier clean-up
   int refine_radius = 0;         // its radius in samples; 0: from the view's size
