@@ -217,7 +217,8 @@ void AddDepthCommand(CLI::App& app) {
             if (advance) advance(1);
           });
       progress.finish();
-      WriteDepthSet(f->out, set, std::filesystem::path(f->input).filename().string());
+      WriteDepthSet(f->out, set, std::filesystem::path(f->input).filename().string(),
+                    WorldLengthUnit(lf.metadata()));
       report["views"] = set.count();
       report["range_mm"] = {set.range().near_mm, set.range().far_mm};
       report["central"] = Summary(set.at((d.rows - 1) / 2, (d.cols - 1) / 2));
@@ -235,9 +236,11 @@ void AddDepthCommand(CLI::App& app) {
       return;
     }
     const DepthMap map = EstimateDepth(lf, row, col, options);
-    WriteDepthFiles(
-        f->out, map,
-        JsonToText({{"lightfield", std::filesystem::path(f->input).filename().string()}}));
+    const std::string unit = WorldLengthUnit(lf.metadata());
+    WriteDepthFiles(f->out, map,
+                    JsonToText({{"lightfield", std::filesystem::path(f->input).filename().string()},
+                                {"length_unit", unit}}),
+                    unit);
     report["map"] = Summary(map);
     if (!f->disparity_pfm.empty()) {
       const int unknown = WriteDisparityPfm(f->disparity_pfm, DisparityOf(lf, map));

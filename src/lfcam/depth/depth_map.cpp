@@ -182,8 +182,15 @@ void ReadConfidencePng(const fs::path& path, DepthMap& map) {
   upright.convertTo(map.confidence, CV_32F, 1.0 / 255.0);
 }
 
-cv::Mat DepthPreview(const DepthMap& map) {
+cv::Mat DepthPreview(const DepthMap& map, const std::string& length_unit) {
   const int w = map.n_s(), h = map.n_t();
+  // A depth's label: metres where lengths are mm, else the light field's own numbers.
+  const bool metric = length_unit == "mm";
+  const auto label = [&](double depth) {
+    if (metric) return fmt::format("{:.2f} m", depth / 1000.0);
+    const int decimals = depth >= 100 ? 0 : depth >= 10 ? 1 : 2;
+    return fmt::format("{:.{}f} {}", depth, decimals, length_unit);
+  };
   // Inverse depth spreads the colours where a light field resolves depth best (near).
   const double q_near = 1.0 / map.range.near_mm, q_far = 1.0 / map.range.far_mm;
   cv::Mat index(h, w, CV_8UC1), unknown(h, w, CV_8UC1);
@@ -203,8 +210,13 @@ cv::Mat DepthPreview(const DepthMap& map) {
   // The scale bar: a strip of the colour map from near (top) to far (bottom), labelled.
   const double scale = std::clamp(h / 600.0, 0.35, 1.0);
   int baseline = 0;
-  const cv::Size text = cv::getTextSize(fmt::format("{:.2f} m", map.range.far_mm / 1000.0),
-                                        cv::FONT_HERSHEY_SIMPLEX, scale, 1, &baseline);
+  cv::Size text;
+  for (int i = 0; i <= 4; ++i) {  // the widest label
+    const double depth = map.range.near_mm + (map.range.far_mm - map.range.near_mm) * i / 4.0;
+    const cv::Size size =
+        cv::getTextSize(label(depth), cv::FONT_HERSHEY_SIMPLEX, scale, 1, &baseline);
+    text = {std::max(text.width, size.width), std::max(text.height, size.height)};
+  }
   const int bar_w = std::max(12, w / 40), label_w = text.width + 8, margin = bar_w / 2;
   cv::Mat sheet(h, w + margin + bar_w + label_w, CV_8UC3, cv::Scalar::all(255));
   colour.copyTo(sheet(cv::Rect(0, 0, w, h)));
@@ -224,18 +236,19 @@ cv::Mat DepthPreview(const DepthMap& map) {
     const double depth = map.range.near_mm + (map.range.far_mm - map.range.near_mm) * i / 4.0;
     const int y = std::clamp(int(std::lround((h - 1) * i / 4.0 + text.height / 2.0)),
                              text.height + 2, h - baseline - 1);
-    cv::putText(sheet, fmt::format("{:.2f} m", depth / 1000.0), {x_text, y},
-                cv::FONT_HERSHEY_SIMPLEX, scale, cv::Scalar::all(0), 1, cv::LINE_AA);
+    cv::putText(sheet, label(depth), {x_text, y}, cv::FONT_HERSHEY_SIMPLEX, scale,
+                cv::Scalar::all(0), 1, cv::LINE_AA);
   }
   cv::cvtColor(sheet, sheet, cv::COLOR_BGR2RGB);
   return sheet;
 }
 
-void WriteDepthFiles(const fs::path& path, const DepthMap& map, const std::string& extra_json) {
+void WriteDepthFiles(const fs::path& path, const DepthMap& map, const std::string& extra_json,
+                     const std::string& length_unit) {
   const std::string depth = EncodeDepthPng(map, extra_json);
   const std::string confidence = EncodeConfidencePng(map);
   cv::Mat bgr;
-  cv::cvtColor(DepthPreview(map), bgr, cv::COLOR_RGB2BGR);
+  cv::cvtColor(DepthPreview(map, length_unit), bgr, cv::COLOR_RGB2BGR);
   const std::vector<std::uint8_t> preview = EncodePngBytes(bgr);
   std::vector<std::unique_ptr<AtomicFileWriter>> writers;
   const auto add = [&](const fs::path& p, const void* data, std::size_t size) {

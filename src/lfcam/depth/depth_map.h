@@ -61,11 +61,13 @@ std::string EncodeConfidencePng(const DepthMap& map);
 void ReadConfidencePng(const std::filesystem::path& path, DepthMap& map);
 
 // A picture for people: depth colour-mapped (turbo, near warm, far cool), unknown black, with a
-// scale bar labelled in metres at the right. CV_8UC3, R, G, B, upright.
-cv::Mat DepthPreview(const DepthMap& map);
+// scale bar at the right labelled in the light field's length unit (WorldLengthUnit): metres for
+// "mm", else the unit's own numbers and name ("units": the cameras' spacing taken as 1).
+// CV_8UC3, R, G, B, upright.
+cv::Mat DepthPreview(const DepthMap& map, const std::string& length_unit = "mm");
 
 // Writes PATH (depth), its confidence and its preview, all or none.
 void WriteDepthFiles(const std::filesystem::path& path, const DepthMap& map,
-                     const std::string& extra_json = "{}");
+                     const std::string& extra_json = "{}", const std::string& length_unit = "mm");
 
 }  // namespace lfcam

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <iterator>
 #include <opencv2/imgcodecs.hpp>
 
 #include "lfcam/core/atomic_file.h"
@@ -69,6 +70,31 @@ TEST(DepthMapFile, RoundTripsDepthRangeViewAndConfidence) {
   EXPECT_EQ(preview.type(), CV_8UC3);
   EXPECT_EQ(preview.rows, map.n_t());
   EXPECT_GT(preview.cols, map.n_s());
+}
+
+// A light field imported without a metric scale (lengths in units of the cameras' spacing)
+// gets a scale in those units, not in metres; the files say which.
+TEST(DepthMapFile, LabelsItsScaleInTheLightFieldsLengthUnit) {
+  DepthMap map = Ramp(1, 1);
+  map.range = {48, 105};
+  const cv::Mat metric = DepthPreview(map), units = DepthPreview(map, "units");
+  const cv::Rect picture(0, 0, map.n_s(), map.n_t());
+  EXPECT_EQ(cv::norm(metric(picture), units(picture), cv::NORM_INF), 0.0);  // the same map
+  EXPECT_GT(units.cols, metric.cols);  // "105 units" is wider than "0.10 m"
+  const fs::path dir = testing::MakeScratchDir("lfcam_depth_units");
+  const LightFieldDims dims{3, 3, 40, 30};
+  DepthSet set(dims);
+  set.set(map);
+  WriteDepthSet(dir / "set", set, "test.lf", "units");
+  const auto text = [](const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  EXPECT_NE(text(dir / "set" / "depth.json").find("\"length_unit\": \"units\""), std::string::npos);
+  EXPECT_NE(text(dir / "set" / "depth_01_01.png").find("\"length_unit\":\"units\""),
+            std::string::npos);
+  const cv::Mat preview = cv::imread((dir / "set" / "preview.png").string());
+  EXPECT_EQ(preview.cols, units.cols);
 }
 
 TEST(DepthMapFile, RefusesWhatIsNotADepthMapNamingTheFile) {

@@ -82,7 +82,8 @@ std::string DepthFileName(int row, int col) {
   return fmt::format("depth_{:02d}_{:02d}.png", row, col);
 }
 
-void WriteDepthSet(const fs::path& dir, const DepthSet& set, const std::string& source_name) {
+void WriteDepthSet(const fs::path& dir, const DepthSet& set, const std::string& source_name,
+                   const std::string& length_unit) {
   const auto& d = set.dims();
   std::error_code ec;
   fs::create_directories(dir, ec);
@@ -97,7 +98,9 @@ void WriteDepthSet(const fs::path& dir, const DepthSet& set, const std::string& 
                           {"n_t", d.n_t},
                           {"near_mm", range.near_mm},
                           {"far_mm", range.far_mm},
+                          {"length_unit", length_unit},
                           {"views", nlohmann::json::array()}};
+  const std::string extra = nlohmann::json{{"length_unit", length_unit}}.dump();
   std::vector<std::unique_ptr<AtomicFileWriter>> writers;
   const auto add = [&](const fs::path& p, const std::string& bytes) {
     writers.push_back(std::make_unique<AtomicFileWriter>(p));
@@ -109,14 +112,14 @@ void WriteDepthSet(const fs::path& dir, const DepthSet& set, const std::string& 
       DepthMap map = set.at(r, c);
       map.range = range;  // one range for the set
       const fs::path file = dir / DepthFileName(r, c);
-      add(file, EncodeDepthPng(map));
+      add(file, EncodeDepthPng(map, extra));
       add(ConfidencePathFor(file), EncodeConfidencePng(map));
       index["views"].push_back({{"row", r}, {"col", c}, {"file", file.filename().string()}});
     }
   const int cr = (d.rows - 1) / 2, cc = (d.cols - 1) / 2;
   if (set.has(cr, cc)) {
     cv::Mat bgr;
-    cv::cvtColor(DepthPreview(set.at(cr, cc)), bgr, cv::COLOR_RGB2BGR);
+    cv::cvtColor(DepthPreview(set.at(cr, cc), length_unit), bgr, cv::COLOR_RGB2BGR);
     const std::vector<std::uint8_t> png = EncodePngBytes(bgr);
     add(dir / "preview.png", std::string(png.begin(), png.end()));
   }

@@ -46,8 +46,10 @@ void EstimateDepthSet(const LightField& lf, DepthSet& set,
                       const PlaneSweepOptions& options,
                       const std::function<void(int done, int total)>& progress = {});
 
+// Writes the set's folder; `length_unit` (WorldLengthUnit of its light field) goes into
+// depth.json, each map's text chunk and the preview's scale.
 void WriteDepthSet(const std::filesystem::path& dir, const DepthSet& set,
-                   const std::string& source_name);
+                   const std::string& source_name, const std::string& length_unit = "mm");
 // One view's entry in depth.json.
 struct DepthSetEntry {
   int row = 0, col = 0;

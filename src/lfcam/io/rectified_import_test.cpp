@@ -11,6 +11,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -179,6 +180,14 @@ TEST(RectifiedImport, IndexNamedViewsImportSampleForSampleWithTheTrueDisparityLa
       << run.output;
   EXPECT_NE(run.output.find("plane gap"), std::string::npos) << run.output;
   EXPECT_EQ(run.output.find(" mm\n"), std::string::npos) << run.output;
+  // Its depth map says so too: in the command's words and in the file.
+  const fs::path depth_png = outputs / "depth.png";
+  run = testing::Lfcam(fmt::format("depth {} --out {} --quiet", file, depth_png.string()));
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find(" units, "), std::string::npos) << run.output;
+  std::ifstream depth_in(depth_png, std::ios::binary);
+  const std::string depth_bytes((std::istreambuf_iterator<char>(depth_in)), {});
+  EXPECT_NE(depth_bytes.find("\"length_unit\":\"units\""), std::string::npos);
   ImportOptions metric;
   metric.pitch_mm = 2.0;
   const RectifiedGeometry metric_geo = ResolveRectifiedGeometry(grid, metric);
