@@ -135,11 +135,17 @@ ExportReport ExportLightField(const LightField& lf, ExportFormat format, const f
   Vec3 centroid = Vec3::Zero();
   for (int r = 0; r < d.rows; ++r)
     for (int c = 0; c < d.cols; ++c) centroid += lf.camera_center(r, c) / double(d.view_count());
-  double reach_m = 0;  // the farthest st-window corner from the cameras' centroid
+  // NeRF's lengths: metres where lfcam's are millimetres; where the light field has no metric
+  // scale (lengths in units of the cameras' spacing), those units as they are, so that the scene
+  // keeps the size NeRF trainers expect (a thousandth of a unit apart, it would not).
+  const bool metric = WorldLengthUnit(lf.metadata()) == "mm";
+  const double nerf_per_world = metric ? 1e-3 : 1.0;
+  double reach_nerf = 0;  // the farthest st-window corner from the cameras' centroid
   const StDomain all = lf.st_union();
   for (double s : {all.s0, all.s1})
     for (double t : {all.t0, all.t1})
-      reach_m = std::max(reach_m, (lf.slab().st.point_at(s, t) - centroid).norm() / 1000.0);
+      reach_nerf =
+          std::max(reach_nerf, (lf.slab().st.point_at(s, t) - centroid).norm() * nerf_per_world);
 
   const SparsePoints points = depth ? PointsFromDepth(lf, *depth) : SparsePoints{};
   int id = 0;
@@ -162,12 +168,12 @@ ExportReport ExportLightField(const LightField& lf, ExportFormat format, const f
                        {"cx", v.cx},
                        {"cy", v.cy},
                        {"world_from_camera", MatrixToJson(rot, centre)}});
-      // NeRF: camera-to-world with OpenGL's axes (x right, y up, z back), metres.
+      // NeRF: camera-to-world with OpenGL's axes (x right, y up, z back), metres (or units).
       Mat3 gl = rot;
       gl.col(1) = -rot.col(1);
       gl.col(2) = -rot.col(2);
       frames.push_back({{"file_path", image_folder + "/" + name},
-                        {"transform_matrix", MatrixToJson(gl, centre / 1000.0)},
+                        {"transform_matrix", MatrixToJson(gl, centre * nerf_per_world)},
                         {"fl_x", v.fx},
                         {"fl_y", v.fy},
                         {"cx", v.cx + 0.5},
@@ -202,7 +208,10 @@ ExportReport ExportLightField(const LightField& lf, ExportFormat format, const f
                           {"version", 1},
                           {"rows", d.rows},
                           {"cols", d.cols},
-                          {"units", "mm, lfcam's world frame (docs/conventions.md)"},
+                          {"units", metric ? "mm, lfcam's world frame (docs/conventions.md)"
+                                           : "units of the cameras' spacing (no metric scale "
+                                             "was known), lfcam's world frame "
+                                             "(docs/conventions.md)"},
                           {"camera_convention",
                            "OpenCV: x right, y down, z forward; pixel (0, 0) "
                            "the centre of the top-left pixel"},
@@ -213,7 +222,7 @@ ExportReport ExportLightField(const LightField& lf, ExportFormat format, const f
     report.main_file = out / "transforms.json";
     const ViewCamera centre = ViewAsCamera(lf, d.rows / 2, d.cols / 2);
     int aabb = 1;
-    while (aabb < 128 && aabb < reach_m) aabb *= 2;
+    while (aabb < 128 && aabb < reach_nerf) aabb *= 2;
     nlohmann::json transforms = {{"camera_model", "OPENCV"},
                                  {"fl_x", centre.fx},
                                  {"fl_y", centre.fy},
@@ -230,7 +239,7 @@ ExportReport ExportLightField(const LightField& lf, ExportFormat format, const f
       // nerfstudio's own key: the points its Gaussian splatting starts from, in the frames' world
       // frame (metres).
       transforms["ply_file_path"] = "sparse_pc.ply";
-      WriteText(staging / "sparse_pc.ply", PointCloudPly(points, 1e-3));
+      WriteText(staging / "sparse_pc.ply", PointCloudPly(points, nerf_per_world));
       report.points = int(points.points.size());
     }
     transforms["frames"] = frames;

@@ -153,6 +153,29 @@ TEST_P(Export, ColmapTextModelReadsBackInTheDocumentedFieldOrder) {
 
 INSTANTIATE_TEST_SUITE_P(FlatAndTurnedStPlane, Export, ::testing::Bool());
 
+// A light field imported without a metric scale (lengths in units of the cameras' spacing):
+// NeRF's frames keep those units rather than a thousandth of them (a scene far smaller than NeRF
+// trainers expect), and the views' cameras.json says what its lengths are.
+TEST(ExportWithoutAMetricScale, KeepsTheLightFieldsUnits) {
+  LightField lf = render_test::SmallPaperLightField();
+  lf.metadata()["import"]["length_unit"] = "units";
+  ASSERT_EQ(WorldLengthUnit(lf.metadata()), "units");
+  const fs::path dir = Dir("units");
+  fs::remove_all(dir);
+  ExportLightField(lf, ExportFormat::kNerf, dir);
+  std::ifstream in(dir / "transforms.json");
+  const auto j = nlohmann::json::parse(in);
+  const Vec3 centre = lf.camera_center(0, 0);
+  for (int a = 0; a < 3; ++a)
+    EXPECT_NEAR(j["frames"][0]["transform_matrix"][a][3].get<double>(), centre(a), 1e-9);
+  fs::remove_all(dir);
+  ExportLightField(lf, ExportFormat::kPngViews, dir);
+  std::ifstream views(dir / "cameras.json");
+  EXPECT_NE(nlohmann::json::parse(views)["units"].get<std::string>().find("cameras' spacing"),
+            std::string::npos);
+  fs::remove_all(dir);
+}
+
 TEST(ExportErrors, ANonEmptyFolderOrAnUnknownFormatIsRefused) {
   const fs::path dir = Dir("busy");
   fs::create_directories(dir);
