@@ -239,7 +239,39 @@ VirtualCameraParams CameraFlags::Resolve(const ArrayPlane& array) const {
   return p;
 }
 
+bool CameraFlags::StartsAtRigCentre(const LightField& lf) const {
+  if (!as_camera.empty() || !view_file.empty()) return false;
+  for (const char* flag : {"--eye", "--look-at", "--up", "--focal-length"})
+    if (given(flag)) return false;
+  return lf.has_view_cameras() && ImportedFromViews(lf.metadata());
+}
+
+std::string CameraFlags::RigCentreNote(const LightField& lf) {
+  const auto& d = lf.dims();
+  return fmt::format(
+      "lfcam: note: the view of the rig's central camera (--as-camera {},{}): this light field "
+      "was imported and no --focal-length, --eye or --camera was given",
+      0.5 * (d.rows - 1), 0.5 * (d.cols - 1));
+}
+
 VirtualCamera CameraFlags::MakeCamera(const LightField& lf) const {
+  if (StartsAtRigCentre(lf)) {
+    Validate();
+    const auto& d = lf.dims();
+    VirtualCameraParams p = RigCameraParams(lf, 0.5 * (d.rows - 1), 0.5 * (d.cols - 1));
+    if (given("--size")) {
+      const auto [width, height] = ParseSize("--size", size, kMaxImageSide);
+      p = WithFrameSize(p, width, height);
+    }
+    if (given("--focus-distance")) p.focus_distance_mm = focus_distance_mm;
+    p.aperture_mm = aperture_mm;
+    p.lens_rate = lens_rate;
+    try {
+      return VirtualCamera(p);
+    } catch (const Error& e) {
+      throw UsageError(fmt::format("the rig's central camera and the flags: {}", e.what()));
+    }
+  }
   if (as_camera.empty()) return MakeCamera(lf.slab().uv);
   Validate();
   const std::vector<double> at = ParseNumbers("--as-camera", as_camera, 2);

@@ -43,8 +43,15 @@ struct CameraFlags {
   // The camera; unset eye/look-at/up default from the array plane. Throws lfcam::UsageError.
   VirtualCamera MakeCamera(const ArrayPlane& array) const;
   // The same for a light field: with --as-camera, the rig's camera (render/rig_camera.h) with
-  // the aperture, focus and lens rate flags over it.
+  // the aperture, focus and lens rate flags over it. An imported light field that records its
+  // cameras (ImportedFromViews), given none of --camera, --eye, --look-at, --up and
+  // --focal-length, starts from its rig's central camera (StartsAtRigCentre) rather than the
+  // paper's view (f 500 mm, d_o 4000 mm: meaningless for another rig and scene), --size,
+  // --focus-distance, --aperture and --lens-rate over it.
   VirtualCamera MakeCamera(const LightField& lf) const;
+  // Whether MakeCamera(lf) starts from the rig's central camera, and the line that says so.
+  bool StartsAtRigCentre(const LightField& lf) const;
+  static std::string RigCentreNote(const LightField& lf);
 
  private:
   VirtualCameraParams Resolve(const ArrayPlane& array) const;

@@ -108,6 +108,7 @@ void ExportWebCommand(const ExportFlags& f, const CLI::App& command) {
   WebExportOptions options;
   options.name = std::filesystem::path(f.input).filename().string();
   options.camera = f.camera.MakeCamera(lf).params();
+  if (f.camera.StartsAtRigCentre(lf)) fmt::print(stderr, "{}\n", CameraFlags::RigCentreNote(lf));
   options.max_download_bytes = std::uint64_t(f.max_download_mb * 1e6);
   const WebExportReport report = ExportWeb(lf, options, f.out);
   fmt::print(

@@ -118,6 +118,8 @@ void AddRenderCommand(CLI::App& app) {
     const std::unique_ptr<FrameRenderer> renderer = BackendFlags::Open(backend);
     const LightField lf = ReadLightFieldFrame(flags->input, std::size_t(flags->frame));
     const VirtualCamera camera = flags->camera.MakeCamera(lf);
+    if (flags->camera.StartsAtRigCentre(lf))
+      fmt::print(stderr, "{}\n", CameraFlags::RigCentreNote(lf));
     DepthSet depth;
     flags->render.CheckDepthFlags(options);
     if (options.interpolation == Interpolation::kDepth) {

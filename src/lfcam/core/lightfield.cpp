@@ -177,4 +177,12 @@ std::string WorldLengthUnit(const nlohmann::json& metadata) {
   return import["length_unit"].get<std::string>() == "units" ? "units" : "mm";
 }
 
+bool ImportedFromViews(const nlohmann::json& metadata) {
+  if (!metadata.is_object()) return false;
+  if (metadata.contains("import") && metadata["import"].is_object()) return true;
+  if (!metadata.contains("calibration") || !metadata["calibration"].is_object()) return false;
+  const nlohmann::json& calibration = metadata["calibration"];
+  return calibration.contains("import") && calibration["import"].is_object();
+}
+
 }  // namespace lfcam

@@ -79,6 +79,10 @@ class SampleBuffer {
 // had no metric scale and took the cameras' spacing as 1 (views named by grid index only, no
 // --pitch-mm: lengths are then in units of that spacing, and `info`, `render` and `depth` say so).
 std::string WorldLengthUnit(const nlohmann::json& metadata);
+// Whether a light field was imported from a folder of views made elsewhere (`lfcam import`: its
+// metadata's "import", or its calibration's, as a parallel rig's import records it), not built
+// from lfcam's own array: its rig is not the paper's, so the paper's view is no default for it.
+bool ImportedFromViews(const nlohmann::json& metadata);
 
 class LightField {
  public:

@@ -171,6 +171,20 @@ TEST(RectifiedImport, IndexNamedViewsImportSampleForSampleWithTheTrueDisparityLa
   EXPECT_EQ(
       cv::norm(cv::imread(out), cv::imread((dir / grid.view(3, 1).file).string()), cv::NORM_INF),
       0);
+  // With no camera flags an imported light field renders as its central camera (not the
+  // paper's f 500 mm at 4000 mm: another rig, another scene) and says so; --focal-length asks for
+  // the paper's camera.
+  run = testing::Lfcam(fmt::format("render {} --out {} --quiet", file, out));
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("the rig's central camera (--as-camera 2,2)"), std::string::npos)
+      << run.output;
+  EXPECT_EQ(
+      cv::norm(cv::imread(out), cv::imread((dir / grid.view(2, 2).file).string()), cv::NORM_INF),
+      0);
+  run = testing::Lfcam(fmt::format("render {} --focal-length 40 --out {} --quiet", file, out));
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_EQ(run.output.find("central camera"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("f 40 mm"), std::string::npos) << run.output;
   // No scale was known, so its lengths are in units of the cameras' spacing, and every command
   // says so instead of "mm"; with --pitch-mm they are millimetres.
   EXPECT_EQ(WorldLengthUnit(lf.metadata()), "units");

@@ -103,6 +103,8 @@ nlohmann::json PageMetadata(const LightField& lf, const WebExportOptions& option
                            {"aperture_mm", cam.aperture_mm},
                            {"breathing", cam.breathing}}}};
   meta["offsets"] = lf.has_view_windows() ? offsets : nlohmann::json(nullptr);
+  // What its lengths are ("mm", or "units" of the cameras' spacing): the page's labels say so.
+  meta["length_unit"] = WorldLengthUnit(lf.metadata());
   return meta;
 }
 

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -65,8 +66,21 @@ TEST(WebExport, WritesThePageItsScriptAndTheLightFieldWithItsOwnSize) {
   EXPECT_EQ(meta["grid"]["rows"], 4);
   EXPECT_EQ(meta["centers"].size(), 16u);
   EXPECT_TRUE(meta["offsets"].is_null()) << "shared st windows";
+  EXPECT_EQ(meta["length_unit"], "mm");  // the page's labels: mm and m
   EXPECT_EQ(meta["views"][0].get<std::string>().rfind("data:image/jpeg;base64,/9j/", 0), 0u)
       << "a JPEG (FF D8 FF) in a data URL";
+}
+
+// A light field imported without a metric scale: the page labels its lengths in its units.
+TEST(WebExport, SaysWhatItsLengthsAreWithoutAMetricScale) {
+  const fs::path dir = testing::MakeScratchDir("web_export_units");
+  LightField lf = SmallLightField();
+  lf.metadata()["import"]["length_unit"] = "units";
+  ExportWeb(lf, {}, dir / "page");
+  EXPECT_EQ(PageData(dir / "page" / "lightfield.js")["length_unit"], "units");
+  std::ifstream in(dir / "page" / "index.html");
+  const std::string page((std::istreambuf_iterator<char>(in)), {});
+  EXPECT_NE(page.find("meta.length_unit"), std::string::npos);
 }
 
 TEST(WebExport, ABudgetCostsQualityFirstThenResolutionAndTooSmallAOneIsRefused) {
