@@ -255,35 +255,32 @@ std::string CameraFlags::RigCentreNote(const LightField& lf) {
 }
 
 VirtualCamera CameraFlags::MakeCamera(const LightField& lf) const {
-  if (StartsAtRigCentre(lf)) {
-    Validate();
-    const auto& d = lf.dims();
-    VirtualCameraParams p = RigCameraParams(lf, 0.5 * (d.rows - 1), 0.5 * (d.cols - 1));
+  const bool rig_centre = StartsAtRigCentre(lf);
+  if (!rig_centre && as_camera.empty()) return MakeCamera(lf.slab().uv);
+  Validate();
+  // A camera of the rig, then the lens flags over it.
+  const auto& d = lf.dims();
+  VirtualCameraParams p;
+  if (rig_centre) {
+    p = RigCameraParams(lf, 0.5 * (d.rows - 1), 0.5 * (d.cols - 1));
     if (given("--size")) {
       const auto [width, height] = ParseSize("--size", size, kMaxImageSide);
       p = WithFrameSize(p, width, height);
     }
-    if (given("--focus-distance")) p.focus_distance_mm = focus_distance_mm;
-    p.aperture_mm = aperture_mm;
-    p.lens_rate = lens_rate;
-    try {
-      return VirtualCamera(p);
-    } catch (const Error& e) {
-      throw UsageError(fmt::format("the rig's central camera and the flags: {}", e.what()));
-    }
+  } else {
+    const std::vector<double> at = ParseNumbers("--as-camera", as_camera, 2);
+    p = FlagValue("--as-camera", [&] { return RigCameraParams(lf, at[0], at[1]); });
   }
-  if (as_camera.empty()) return MakeCamera(lf.slab().uv);
-  Validate();
-  const std::vector<double> at = ParseNumbers("--as-camera", as_camera, 2);
-  VirtualCameraParams p =
-      FlagValue("--as-camera", [&] { return RigCameraParams(lf, at[0], at[1]); });
   if (given("--focus-distance")) p.focus_distance_mm = focus_distance_mm;
   p.aperture_mm = aperture_mm;
   p.lens_rate = lens_rate;
   try {
     return VirtualCamera(p);
   } catch (const Error& e) {
-    throw UsageError(fmt::format("--as-camera {}: {}", as_camera, e.what()));
+    throw UsageError(fmt::format(
+        "{}: {}",
+        rig_centre ? "the rig's central camera and the flags" : "--as-camera " + as_camera,
+        e.what()));
   }
 }
 
