@@ -34,6 +34,13 @@ constexpr double kPlaneGapPixels =
 constexpr int kWidePlaneRadius = 10;  // the second plane fit's radius, samples
 constexpr double kWidePlaneConfidence = 0.1;  // ... for samples less confident than this
 constexpr double kSlantPriorSmoothing = 1.5;  // the slant prior's Gaussian, samples
+// The map's confidence near a depth edge: within kEdgeReach samples of two neighbouring samples
+// whose labels differ by more than kEdgeJumpPixels of the nearest view's shift, it is scaled by
+// kEdgeConfidenceScale (a depth edge's place is known to a sample or two: docs/depth.md,
+// "Confidence at depth edges").
+constexpr double kEdgeJumpPixels = 0.3;
+constexpr int kEdgeReach = 2;
+constexpr float kEdgeConfidenceScale = 0.25f;
 
 // The matching cost's gradient term's share (SweepViews::Sweep) by how far apart neighbouring
 // views see the swept depths, in samples (docs/depth.md, "A sixth round"). Where that range is
@@ -193,6 +200,30 @@ DepthRange EstimateDepthRange(const LightField& lf, int row, int col,
   return {depth_at(lo), depth_at(hi)};
 }
 
+namespace {
+
+// Scales the confidence of every sample within kEdgeReach of a depth edge (two neighbouring
+// samples whose labels differ by more than `jump_labels`) by kEdgeConfidenceScale: the clear
+// cost minimum a silhouette's strong contrast gives says little about which side of the edge a
+// sample lies on.
+void LessConfidentNearDepthEdges(const cv::Mat& label, double jump_labels, cv::Mat& confidence) {
+  cv::Mat edge = cv::Mat::zeros(label.size(), CV_8UC1);
+  for (int y = 0; y < label.rows; ++y)
+    for (int x = 0; x < label.cols; ++x) {
+      const float here = label.at<float>(y, x);
+      if (x + 1 < label.cols && std::abs(label.at<float>(y, x + 1) - here) > jump_labels)
+        edge.at<std::uint8_t>(y, x) = edge.at<std::uint8_t>(y, x + 1) = 255;
+      if (y + 1 < label.rows && std::abs(label.at<float>(y + 1, x) - here) > jump_labels)
+        edge.at<std::uint8_t>(y, x) = edge.at<std::uint8_t>(y + 1, x) = 255;
+    }
+  cv::dilate(edge, edge, cv::Mat::ones(2 * kEdgeReach + 1, 2 * kEdgeReach + 1, CV_8UC1));
+  for (int y = 0; y < label.rows; ++y)
+    for (int x = 0; x < label.cols; ++x)
+      if (edge.at<std::uint8_t>(y, x)) confidence.at<float>(y, x) *= kEdgeConfidenceScale;
+}
+
+}  // namespace
+
 DepthMap EstimateDepth(const LightField& lf, int row, int col, const PlaneSweepOptions& options) {
   const auto& d = lf.dims();
   if (row < 0 || row >= d.rows || col < 0 || col >= d.cols)
@@ -278,7 +309,8 @@ DepthMap EstimateDepth(const LightField& lf, int row, int col, const PlaneSweepO
   map.noise_levels = views.noise_level();
   map.near_nyquist_share = views.near_nyquist_share();
   map.read_sigma = views.read_sigma();
-  map.confidence = choice.confidence;
+  map.confidence = choice.confidence.clone();
+  LessConfidentNearDepthEdges(choice.label, kEdgeJumpPixels / per_plane, map.confidence);
   map.depth.create(choice.label.size(), CV_32FC1);
   for (int y = 0; y < choice.label.rows; ++y)
     for (int x = 0; x < choice.label.cols; ++x) {

@@ -16,7 +16,9 @@
 // Confidence: how far the chosen plane's own matching cost lies below the sample's mean cost
 // over all planes (1 - best / mean, against a floor): near 1 for a clear minimum, 0 where the
 // views agree at every depth (no texture: there the depth is semi-global matching's fill from
-// the surroundings) or where the minimum is on the first or last plane.
+// the surroundings) or where the minimum is on the first or last plane; in the map returned, a
+// quarter of that within 2 samples of a depth edge, whose place is known to a sample or two only
+// (docs/depth.md, "Confidence at depth edges").
 #include <optional>
 
 #include "lfcam/core/lightfield.h"

@@ -61,6 +61,23 @@ TEST_P(PlaneSweep, FindsTheDepthOfBothPlanesWhateverTheStPlanesTurn) {
   // Confidence is high on the textured planes (uniqueness included: measured 0.31).
   EXPECT_GT(cv::mean(map.confidence)[0], 0.25)
       << "noise " << map.noise_levels << " read " << map.read_sigma;
+  // And low along the plate's silhouette, where which side a sample lies on is known to a sample
+  // or two only, however clear its cost minimum (docs/depth.md, "Confidence at depth edges").
+  double at_edge = 0, inside = 0;
+  int n_edge = 0, n_inside = 0;
+  for (int l = 3; l < map.n_t() - 3; ++l)
+    for (int k = 3; k < map.n_s() - 3; ++k) {
+      int objects = 0;  // how many objects the 3 x 3 neighbourhood holds besides this one
+      for (int dl = -1; dl <= 1; ++dl)
+        for (int dk = -1; dk <= 1; ++dk)
+          objects += truth.object.at<int>(l + dl, k + dk) != truth.object.at<int>(l, k);
+      (objects > 0 ? at_edge : inside) += map.confidence.at<float>(l, k);
+      ++(objects > 0 ? n_edge : n_inside);
+    }
+  ASSERT_GT(n_edge, 100);
+  std::cout << "mean confidence at the silhouette " << at_edge / n_edge << ", elsewhere "
+            << inside / n_inside << "\n";
+  EXPECT_LT(at_edge / n_edge, 0.5 * inside / n_inside);
 }
 
 INSTANTIATE_TEST_SUITE_P(StPlane, PlaneSweep, ::testing::Values(0.0, 12.0));
