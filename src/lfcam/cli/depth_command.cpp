@@ -236,11 +236,10 @@ void AddDepthCommand(CLI::App& app) {
       return;
     }
     const DepthMap map = EstimateDepth(lf, row, col, options);
-    const std::string unit = WorldLengthUnit(lf.metadata());
-    WriteDepthFiles(f->out, map,
-                    JsonToText({{"lightfield", std::filesystem::path(f->input).filename().string()},
-                                {"length_unit", unit}}),
-                    unit);
+    WriteDepthFiles(
+        f->out, map,
+        JsonToText({{"lightfield", std::filesystem::path(f->input).filename().string()}}),
+        WorldLengthUnit(lf.metadata()));
     report["map"] = Summary(map);
     if (!f->disparity_pfm.empty()) {
       const int unknown = WriteDisparityPfm(f->disparity_pfm, DisparityOf(lf, map));

@@ -186,7 +186,8 @@ cv::Mat DepthPreview(const DepthMap& map, const std::string& length_unit) {
   const int w = map.n_s(), h = map.n_t();
   // A depth's label: metres where lengths are mm, else the light field's own numbers.
   const bool metric = length_unit == "mm";
-  const auto label = [&](double depth) {
+  const auto label = [&](int i) {  // the scale's i-th of five labels, near (0) to far (4)
+    const double depth = map.range.near_mm + (map.range.far_mm - map.range.near_mm) * i / 4.0;
     if (metric) return fmt::format("{:.2f} m", depth / 1000.0);
     const int decimals = depth >= 100 ? 0 : depth >= 10 ? 1 : 2;
     return fmt::format("{:.{}f} {}", depth, decimals, length_unit);
@@ -212,9 +213,7 @@ cv::Mat DepthPreview(const DepthMap& map, const std::string& length_unit) {
   int baseline = 0;
   cv::Size text;
   for (int i = 0; i <= 4; ++i) {  // the widest label
-    const double depth = map.range.near_mm + (map.range.far_mm - map.range.near_mm) * i / 4.0;
-    const cv::Size size =
-        cv::getTextSize(label(depth), cv::FONT_HERSHEY_SIMPLEX, scale, 1, &baseline);
+    const cv::Size size = cv::getTextSize(label(i), cv::FONT_HERSHEY_SIMPLEX, scale, 1, &baseline);
     text = {std::max(text.width, size.width), std::max(text.height, size.height)};
   }
   const int bar_w = std::max(12, w / 40), label_w = text.width + 8, margin = bar_w / 2;
@@ -233,11 +232,10 @@ cv::Mat DepthPreview(const DepthMap& map, const std::string& length_unit) {
              cv::INTER_NEAREST);
   const int x_text = w + margin + bar_w + 4;
   for (int i = 0; i <= 4; ++i) {
-    const double depth = map.range.near_mm + (map.range.far_mm - map.range.near_mm) * i / 4.0;
     const int y = std::clamp(int(std::lround((h - 1) * i / 4.0 + text.height / 2.0)),
                              text.height + 2, h - baseline - 1);
-    cv::putText(sheet, label(depth), {x_text, y}, cv::FONT_HERSHEY_SIMPLEX, scale,
-                cv::Scalar::all(0), 1, cv::LINE_AA);
+    cv::putText(sheet, label(i), {x_text, y}, cv::FONT_HERSHEY_SIMPLEX, scale, cv::Scalar::all(0),
+                1, cv::LINE_AA);
   }
   cv::cvtColor(sheet, sheet, cv::COLOR_BGR2RGB);
   return sheet;
@@ -245,7 +243,9 @@ cv::Mat DepthPreview(const DepthMap& map, const std::string& length_unit) {
 
 void WriteDepthFiles(const fs::path& path, const DepthMap& map, const std::string& extra_json,
                      const std::string& length_unit) {
-  const std::string depth = EncodeDepthPng(map, extra_json);
+  nlohmann::json extra = nlohmann::json::parse(extra_json);
+  extra["length_unit"] = length_unit;  // what near_mm and far_mm are in
+  const std::string depth = EncodeDepthPng(map, extra.dump());
   const std::string confidence = EncodeConfidencePng(map);
   cv::Mat bgr;
   cv::cvtColor(DepthPreview(map, length_unit), bgr, cv::COLOR_RGB2BGR);

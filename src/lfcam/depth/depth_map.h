@@ -66,7 +66,8 @@ void ReadConfidencePng(const std::filesystem::path& path, DepthMap& map);
 // CV_8UC3, R, G, B, upright.
 cv::Mat DepthPreview(const DepthMap& map, const std::string& length_unit = "mm");
 
-// Writes PATH (depth), its confidence and its preview, all or none.
+// Writes PATH (depth), its confidence and its preview, all or none; `length_unit` (WorldLengthUnit)
+// goes into the depth PNG's chunk and the preview's scale.
 void WriteDepthFiles(const std::filesystem::path& path, const DepthMap& map,
                      const std::string& extra_json = "{}", const std::string& length_unit = "mm");
 
