@@ -129,6 +129,18 @@
             width: c.width, height: c.height};
   }
 
+  // The focus slider's range, as the viewer's (viewer/control_windows.cpp): an eighth to fifteen
+  // times the distance between the light field's planes, never nearer than the camera can focus.
+  // Over the 0.001 .. 100000 a click searches, a scene's depths (3 .. 7 m, or 48 .. 105 units)
+  // took a twenty-fifth of the slider; here a fifth.
+  function focusRange(meta, view) {
+    const nearest = minFocusDistance(view.f, view.breathing);
+    const a = meta.array;
+    const separation = Math.abs(dot(sub(meta.window.origin, a.p_ca), a.n_ca));
+    if (!(separation > 0)) return {near: nearest, far: 100000};
+    return {near: Math.max(nearest, separation / 8), far: Math.max(15 * separation, 2 * nearest)};
+  }
+
   // The largest aperture offered: the array's width.
   function maxAperture(meta) { return meta.array.width_mm; }
 
@@ -552,7 +564,7 @@ void main() {
   const api = {
     add, sub, scale, dot, cross, normalize, filmDistance, minFocusDistance, eyeAt, cameraFrame,
     directionThrough, axisLerp, hat, diskCameraWeights, cameraWeights, defaultView, clampView,
-    maxAperture, parseView, viewToSearch, focusCandidates, megabytes, frameUniforms, start,
+    focusRange, maxAperture, parseView, viewToSearch, focusCandidates, megabytes, frameUniforms, start,
     FRAGMENT, PROBE,
   };
   if (typeof module !== 'undefined' && module.exports) module.exports = api;

@@ -98,6 +98,22 @@ test('the URL sets the view, and bad values are named, not used', () => {
   assert.deepStrictEqual(again.size, [800, 600]);
 });
 
+test('the focus slider spans an eighth to fifteen times the planes\' distance, as the viewer\'s', () => {
+  const view = Object.assign(W.defaultView(meta), {breathing: false});
+  // The planes 700 mm apart: 87.5 .. 10500 mm.
+  assert.deepStrictEqual(W.focusRange(meta, view), {near: 87.5, far: 10500});
+  // Breathing at f 500 cannot focus nearer than 525 mm: the range starts there.
+  near(W.focusRange(meta, Object.assign({}, view, {breathing: true})).near, 525, 1e-9);
+  // An imported rig in its own units, its st-plane 64 units from the cameras: 8 .. 960 units.
+  const units = Object.assign({}, meta, {array: Object.assign({}, meta.array, {p_ca: [0, 0, 64]}),
+                                         window: Object.assign({}, meta.window,
+                                                               {origin: [-32, -32, 0]})});
+  assert.deepStrictEqual(W.focusRange(units, view), {near: 8, far: 960});
+  // The planes in one (no distance between them): the whole range a click searches.
+  const flat = Object.assign({}, units, {array: Object.assign({}, units.array, {p_ca: [0, 0, 0]})});
+  assert.deepStrictEqual(W.focusRange(flat, view), {near: 1e-3, far: 100000});
+});
+
 test('click-to-focus tries distances from the nearest focus outward, 1% apart', () => {
   const d = W.focusCandidates(525, 100000, 1.01);
   assert.strictEqual(d[0], 525);
