@@ -19,13 +19,25 @@ namespace {
 
 using namespace sample_rows;  // NOLINT: the shared helpers of this instruction set
 
+// The lens samples that hit, or the cameras counted, and the cameras integrator's counted
+// weights (it renormalises by them), for a band: per pixel, plus per row what counted at every
+// pixel of the row (one scalar a row and term rather than a store per pixel on the blend's
+// common path).
+struct BandCounts {
+  float* hits = nullptr;      // per pixel
+  float* held = nullptr;      // per pixel; null: not counted (lens samples)
+  float* row_hits = nullptr;  // per band row
+  float* row_held = nullptr;  // per band row, when `held` is counted
+};
+
 // acc += weight * the term's view read along the lines from its `read` origin, where the lines
-// from its `mask` origin meet the domain, for pixel rows [j0, j1); the mask's hits are added
-// to `hits` when `count_hits`, and the weight added to `held` when given (the cameras
-// integrator renormalises by it).
+// from its `mask` origin meet the domain, for pixel rows [j0, j1); the mask's hits are counted
+// when `count_hits`, and the weight when `counts.held` is given.
 void AddTerm(const SeparableFrame& f, const RaySetup& s, const SeparableTerm& t, int j0, int j1,
-             std::size_t stride, float* const acc[3], float* hits, bool count_hits, float* held,
+             std::size_t stride, float* const acc[3], const BandCounts& counts, bool count_hits,
              Planes& decoded, Planes& resampled, TileMap& k_map) {
+  float* const hits = counts.hits;
+  float* const held = counts.held;
   const DF d;
   const DI di;
   const int lanes = int(hn::Lanes(d));
@@ -114,14 +126,12 @@ void AddTerm(const SeparableFrame& f, const RaySetup& s, const SeparableTerm& t,
                             resampled.channel(next, 2)};
       const VF va = hn::Set(d, float(qa)), vb = hn::Set(d, float(qb)), vc = hn::Set(d, float(qc));
       const VF vbase = hn::Set(d, float(base));
+      // Every pixel of the row counts: once for the row.
+      if (count_hits) counts.row_hits[j - j0] += 1.0f;
+      if (held != nullptr) counts.row_held[j - j0] += t.weight;
       for (int i = 0; i < padded; i += lanes) {
         const VF pixel = hn::Iota(d, float(i));
-        const auto real = hn::Lt(pixel, width);
-        const VF w = hn::IfThenElseZero(real, weight);
-        if (count_hits)
-          hn::StoreU(hn::Add(hn::LoadU(d, hits + at + i), hn::IfThenElseZero(real, one)), d,
-                     hits + at + i);
-        if (held != nullptr) hn::StoreU(hn::Add(hn::LoadU(d, held + at + i), w), d, held + at + i);
+        const VF w = hn::IfThenElseZero(hn::Lt(pixel, width), weight);
         const VF l = hn::MulAdd(hn::MulAdd(vc, pixel, vb), pixel, va);
         const VF w1 = hn::Sub(hn::Min(hn::Max(l, zero), l_top), vbase);
         const VF a0 = hn::Mul(w, hn::Sub(one, w1)), a1 = hn::Mul(w, w1);
@@ -180,31 +190,42 @@ void RenderSeparableBandT(const SeparableFrame& f, const RaySetup& s, int j0, in
   // hits: the lens samples that hit, or the cameras counted; held: the cameras integrator's
   // counted weights (each camera counts where its own line through p_o meets the domain).
   const bool cameras = f.eye >= 0;
-  std::vector<float> hits(band, 0.0f), held(cameras ? band : 0, 0.0f);
+  const std::size_t rows = std::size_t(j1 - j0);
+  std::vector<float> hits(band, 0.0f), held(cameras ? band : 0, 0.0f), row_hits(rows, 0.0f),
+      row_held(cameras ? rows : 0, 0.0f);
+  const BandCounts counts{hits.data(), cameras ? held.data() : nullptr, row_hits.data(),
+                          cameras ? row_held.data() : nullptr};
   Planes decoded, resampled;
   TileMap k_map;
   int counted_mask = -1;
   for (const SeparableTerm& t : f.terms) {
     // Lens samples: each one's hits are counted once (its terms come together).
     const bool count_hits = cameras || t.mask != counted_mask;
-    AddTerm(f, s, t, j0, j1, stride, acc, hits.data(), count_hits, cameras ? held.data() : nullptr,
-            decoded, resampled, k_map);
+    AddTerm(f, s, t, j0, j1, stride, acc, counts, count_hits, decoded, resampled, k_map);
     if (count_hits) counted_mask = t.mask;
   }
+  const DI di;
+  const VF width = hn::Set(d, float(f.width)), zero = hn::Zero(d), one = hn::Set(d, 1.0f);
   for (int j = j0; j < j1; ++j) {
     const std::size_t at = std::size_t(j - j0) * stride;
-    float* count = hits.data() + at;
-    // Lens samples: the mean over those that hit; cameras: the counted weights renormalised.
-    const float* divisor = cameras ? held.data() + at : count;
+    const float* count = hits.data() + at;
+    const float* weights = cameras ? held.data() + at : nullptr;
+    // What counted at every pixel of the row, added at the row's real pixels.
+    const VF row_count = hn::Set(d, row_hits[std::size_t(j - j0)]);
+    const VF row_weight = hn::Set(d, cameras ? row_held[std::size_t(j - j0)] : 0.0f);
     for (int i = 0; i < padded; i += int(hn::Lanes(d))) {
-      const VF n = hn::LoadU(d, divisor + i);
-      const auto any = hn::Gt(n, hn::Zero(d));
-      const VF inv = hn::IfThenElseZero(any, hn::Div(hn::Set(d, 1.0f), n));
+      const auto real = hn::Lt(hn::Iota(d, float(i)), width);
+      VF n = hn::Add(hn::LoadU(d, count + i), hn::IfThenElseZero(real, row_count));
+      // Lens samples: the mean over those that hit; cameras: the counted weights renormalised.
+      const VF divisor =
+          cameras ? hn::Add(hn::LoadU(d, weights + i), hn::IfThenElseZero(real, row_weight)) : n;
+      const auto any = hn::Gt(divisor, zero);
+      const VF inv = hn::IfThenElseZero(any, hn::Div(one, divisor));
       for (float* channel : acc)
         hn::StoreU(hn::Mul(hn::LoadU(d, channel + at + i), inv), d, channel + at + i);
-      if (cameras) hn::StoreU(hn::IfThenElseZero(any, hn::LoadU(d, count + i)), d, count + i);
+      if (cameras) n = hn::IfThenElseZero(any, n);
+      hn::StoreU(hn::ConvertTo(di, n), di, out.count + at + std::size_t(i));
     }
-    for (int i = 0; i < padded; ++i) out.count[at + std::size_t(i)] = std::int32_t(count[i]);
   }
 }
 
