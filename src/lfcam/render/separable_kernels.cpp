@@ -19,25 +19,15 @@ namespace {
 
 using namespace sample_rows;  // NOLINT: the shared helpers of this instruction set
 
-// The lens samples that hit, or the cameras counted, and the cameras integrator's counted
-// weights (it renormalises by them), for a band: per pixel, plus per row what counted at every
-// pixel of the row (one scalar a row and term rather than a store per pixel on the blend's
-// common path).
-struct BandCounts {
-  float* hits = nullptr;      // per pixel
-  float* held = nullptr;      // per pixel; null: not counted (lens samples)
-  float* row_hits = nullptr;  // per band row
-  float* row_held = nullptr;  // per band row, when `held` is counted
-};
-
 // acc += weight * the term's view read along the lines from its `read` origin, where the lines
 // from its `mask` origin meet the domain, for pixel rows [j0, j1); the mask's hits are counted
-// when `count_hits`, and the weight when `counts.held` is given.
+// in `hits` when `count_hits`, and the weight in `held` when given (the cameras integrator
+// renormalises by it): per pixel, or once for a row in `row_hits` and `row_held` (one for each
+// row of the band) where every pixel of the row counts, so that the blend's common path stores
+// nothing but its colour.
 void AddTerm(const SeparableFrame& f, const RaySetup& s, const SeparableTerm& t, int j0, int j1,
-             std::size_t stride, float* const acc[3], const BandCounts& counts, bool count_hits,
-             Planes& decoded, Planes& resampled, TileMap& k_map) {
-  float* const hits = counts.hits;
-  float* const held = counts.held;
+             std::size_t stride, float* const acc[3], float* hits, bool count_hits, float* held,
+             float* row_hits, float* row_held, Planes& decoded, Planes& resampled, TileMap& k_map) {
   const DF d;
   const DI di;
   const int lanes = int(hn::Lanes(d));
@@ -127,8 +117,8 @@ void AddTerm(const SeparableFrame& f, const RaySetup& s, const SeparableTerm& t,
       const VF va = hn::Set(d, float(qa)), vb = hn::Set(d, float(qb)), vc = hn::Set(d, float(qc));
       const VF vbase = hn::Set(d, float(base));
       // Every pixel of the row counts: once for the row.
-      if (count_hits) counts.row_hits[j - j0] += 1.0f;
-      if (held != nullptr) counts.row_held[j - j0] += t.weight;
+      if (count_hits) row_hits[j - j0] += 1.0f;
+      if (held != nullptr) row_held[j - j0] += t.weight;
       for (int i = 0; i < padded; i += lanes) {
         const VF pixel = hn::Iota(d, float(i));
         const VF w = hn::IfThenElseZero(hn::Lt(pixel, width), weight);
@@ -191,17 +181,18 @@ void RenderSeparableBandT(const SeparableFrame& f, const RaySetup& s, int j0, in
   // counted weights (each camera counts where its own line through p_o meets the domain).
   const bool cameras = f.eye >= 0;
   const std::size_t rows = std::size_t(j1 - j0);
-  std::vector<float> hits(band, 0.0f), held(cameras ? band : 0, 0.0f), row_hits(rows, 0.0f),
-      row_held(cameras ? rows : 0, 0.0f);
-  const BandCounts counts{hits.data(), cameras ? held.data() : nullptr, row_hits.data(),
-                          cameras ? row_held.data() : nullptr};
+  // Each followed by its per-row part (AddTerm's row_hits, row_held).
+  std::vector<float> hits(band + rows, 0.0f), held(cameras ? band + rows : 0, 0.0f);
+  float* const row_hits = hits.data() + band;
+  float* const row_held = cameras ? held.data() + band : nullptr;
   Planes decoded, resampled;
   TileMap k_map;
   int counted_mask = -1;
   for (const SeparableTerm& t : f.terms) {
     // Lens samples: each one's hits are counted once (its terms come together).
     const bool count_hits = cameras || t.mask != counted_mask;
-    AddTerm(f, s, t, j0, j1, stride, acc, counts, count_hits, decoded, resampled, k_map);
+    AddTerm(f, s, t, j0, j1, stride, acc, hits.data(), count_hits, cameras ? held.data() : nullptr,
+            row_hits, row_held, decoded, resampled, k_map);
     if (count_hits) counted_mask = t.mask;
   }
   const DI di;
