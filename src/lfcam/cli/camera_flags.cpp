@@ -25,6 +25,11 @@ Vec3 Vec3Start(const std::string& flag, const std::string& text) {
   return ParseVec3(flag, RangeEnds(text).first);
 }
 
+// A range's two ends, or the one value without a range.
+std::vector<double> Ends(const std::optional<std::pair<double, double>>& range, double value) {
+  return range ? std::vector<double>{range->first, range->second} : std::vector<double>{value};
+}
+
 }  // namespace
 
 void CameraFlags::AddTo(CLI::App& c, bool rig_cameras, bool sweeps) {
@@ -153,16 +158,13 @@ void CameraFlags::Validate() const {
     if (!as_camera.empty()) throw UsageError("--as-camera: not with a range (A:B) swept");
     // Every combination of the ranges' ends must make a camera.
     const CameraSweep s = sweep();
-    const auto ends = [](const std::optional<std::pair<double, double>>& range, double value) {
-      return range ? std::vector<double>{range->first, range->second} : std::vector<double>{value};
-    };
     CameraFlags at_end = *this;
     at_end.ranges_.clear();
     at_end.eye = eye.empty() ? eye : RangeEnds(eye).first;
     at_end.look_at = look_at.empty() ? look_at : RangeEnds(look_at).first;
-    for (double f : ends(s.focal_length_mm, focal_length_mm))
-      for (double d : ends(s.focus_distance_mm, focus_distance_mm))
-        for (double a : ends(s.aperture_mm, aperture_mm)) {
+    for (double f : Ends(s.focal_length_mm, focal_length_mm))
+      for (double d : Ends(s.focus_distance_mm, focus_distance_mm))
+        for (double a : Ends(s.aperture_mm, aperture_mm)) {
           at_end.focal_length_mm = f;
           at_end.focus_distance_mm = d;
           at_end.aperture_mm = a;
@@ -191,9 +193,11 @@ void CameraFlags::Validate() const {
     if (given("--focus-distance") &&
         (!(focus_distance_mm > 0) || !std::isfinite(focus_distance_mm)))
       throw UsageError(fmt::format("--focus-distance: {} mm must be positive", focus_distance_mm));
-  } else if (!(focus_distance_mm > focal_length_mm) || !std::isfinite(focus_distance_mm))
-    throw UsageError(fmt::format("--focus-distance: {} mm must exceed the focal length ({} mm)",
-                                 focus_distance_mm, focal_length_mm));
+  } else if (!(focus_distance_mm > 0) || !std::isfinite(focus_distance_mm)) {
+    throw UsageError(fmt::format("--focus-distance: {} mm must be positive", focus_distance_mm));
+  } else if (FocalLengthIsTheFlags()) {
+    RequireFocusBeyondFocalLength(focal_length_mm, !no_breathing);
+  }
   if (!(aperture_mm >= 0) || !std::isfinite(aperture_mm))
     throw UsageError(
         fmt::format("--aperture: {} must be 0 (pinhole) or a positive number of mm", aperture_mm));
@@ -206,6 +210,29 @@ void CameraFlags::Validate() const {
       throw UsageError(fmt::format("--lens-rate/--aperture: {}", e.what()));
     }
   }
+}
+
+bool CameraFlags::FocalLengthIsTheFlags() const {
+  // Not with a saved view (its own focal length) nor where a light field may start from its
+  // rig's central camera (StartsAtRigCentre: the rig's focal length, known once it is read).
+  if (!view_file.empty()) return false;
+  if (!as_camera.empty()) return false;
+  for (const char* flag : {"--eye", "--look-at", "--up", "--focal-length"})
+    if (given(flag)) return true;
+  return false;
+}
+
+void CameraFlags::RequireFocusBeyondFocalLength(double focal_length, bool breathing) const {
+  // A breathing film sits at d_i = 1 / (1/f - 1/d_o): the focus must lie beyond f, at both ends
+  // of a range swept. A fixed film (--no-breathing) focuses anywhere in front of the lens.
+  if (!breathing) return;
+  const CameraSweep s = sweep();
+  for (const double f : Ends(s.focal_length_mm, focal_length))
+    for (const double d : Ends(s.focus_distance_mm, focus_distance_mm))
+      if (!(d > f))
+        throw UsageError(fmt::format(
+            "--focus-distance: {} must exceed the focal length ({}), or give --no-breathing", d,
+            f));
 }
 
 VirtualCameraParams CameraFlags::Resolve(const ArrayPlane& array) const {
@@ -286,8 +313,11 @@ VirtualCamera CameraFlags::MakeCamera(const LightField& lf) const {
 
 VirtualCamera CameraFlags::MakeCamera(const ArrayPlane& array) const {
   Validate();
+  const VirtualCameraParams p = Resolve(array);
+  if (given("--focus-distance") || given("--focal-length"))
+    RequireFocusBeyondFocalLength(p.focal_length_mm, p.breathing);
   try {
-    return VirtualCamera(Resolve(array));
+    return VirtualCamera(p);
   } catch (const UsageError&) {
     throw;
   } catch (const Error& e) {

@@ -55,6 +55,12 @@ struct CameraFlags {
 
  private:
   VirtualCameraParams Resolve(const ArrayPlane& array) const;
+  // Whether the camera's focal length is --focal-length's (given or defaulted) before any light
+  // field is read: not a saved view's, a rig camera's, nor where the rig's central camera may be
+  // the start (no --eye, --look-at, --up, --focal-length).
+  bool FocalLengthIsTheFlags() const;
+  // Throws UsageError unless --focus-distance lies beyond `focal_length` (a breathing film).
+  void RequireFocusBeyondFocalLength(double focal_length, bool breathing) const;
   std::map<std::string, CLI::Option*> options_;
   std::map<std::string, std::string> ranges_;  // flag -> "A:B" as given (numbers only)
   bool sweeps_ = false;

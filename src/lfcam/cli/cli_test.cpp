@@ -95,6 +95,24 @@ TEST_F(Cli, RenderAndOracleAgreeAndCompareReportsIt) {
                   "--integrator cameras-quadrilinear --interpolation depth --out " + Path("x.png"))
                 .status,
             2);
+  // A breathing film focuses beyond f (500 mm by default), and the command says so before any
+  // work; a fixed film (--no-breathing) focuses anywhere in front of the lens.
+  const CommandResult near = Lfcam("render " + Path("small.lf") +
+                                   " --size 48 --focus-distance 300 --out " + Path("n.png"));
+  EXPECT_EQ(near.status, 2) << near.output;
+  EXPECT_NE(near.output.find("--focus-distance: 300 must exceed the focal length (500), or give "
+                             "--no-breathing"),
+            std::string::npos)
+      << near.output;
+  EXPECT_FALSE(fs::exists(Path("n.png")));
+  EXPECT_EQ(Lfcam("render " + Path("small.lf") +
+                  " --size 48 --focus-distance 300 --no-breathing --out " + Path("n.png"))
+                .status,
+            0);
+  EXPECT_EQ(Lfcam("render " + Path("small.lf") +
+                  " --size 48 --focal-length 600 --focus-distance 550 --out " + Path("x.png"))
+                .status,
+            2);
 }
 
 // The scene at a time (issue 24): its movers in, recorded in the file's metadata; the still

@@ -172,7 +172,7 @@ TEST_F(RenderVideoCli, NonsenseIsRefusedNamingTheFlagOrFileAndNothingIsWritten) 
       {"--video " + out, "nothing changes"},
       {"--focus-distance 3400:5200 --out " + Path("x.png"), "goes with --video"},
       {"--frames 10 --out " + Path("x.png"), "--frames: goes with --video"},
-      {"--focus-distance 3400:300 --video " + out, "--focus-distance: 300 mm must exceed"},
+      {"--focus-distance 3400:300 --video " + out, "--focus-distance: 300 must exceed"},
       {"--focus-distance 3400:abc --video " + out, "--focus-distance"},
       {"--eye 1,2,3:4,5 --video " + out, "--eye"},
       {"--up 0,1,0:1,0,0 --video " + out, "not for --up"},
