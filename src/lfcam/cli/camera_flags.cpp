@@ -283,7 +283,11 @@ std::string CameraFlags::RigCentreNote(const LightField& lf) {
 
 VirtualCamera CameraFlags::MakeCamera(const LightField& lf) const {
   const bool rig_centre = StartsAtRigCentre(lf);
-  if (!rig_centre && as_camera.empty()) return MakeCamera(lf.slab().uv);
+  if (!rig_centre && as_camera.empty()) {
+    VirtualCameraParams p = MakeCamera(lf.slab().uv).params();
+    p.lens_length_scale = LensLengthScale(lf);
+    return VirtualCamera(p);
+  }
   Validate();
   // A camera of the rig, then the lens flags over it.
   const auto& d = lf.dims();

@@ -195,6 +195,10 @@ TEST(RectifiedImport, IndexNamedViewsImportSampleForSampleWithTheTrueDisparityLa
       fmt::format("render {} --focus-distance 30 --aperture 2 --out {} --quiet", file, out));
   ASSERT_EQ(run.status, 0) << run.output;
   EXPECT_NE(run.output.find("d_o 30 units"), std::string::npos) << run.output;
+  // An aperture of 2 units (twice the cameras' spacing) is sampled as 56 mm would be on the
+  // paper's 28-mm array, γ 4: 15 lens samples, not the 1 that 2 mm would get (a pinhole).
+  EXPECT_NE(run.output.find("15 lens samples"), std::string::npos) << run.output;
+  EXPECT_DOUBLE_EQ(LensLengthScale(lf), 28.0);
   run = testing::Lfcam("info " + file);
   EXPECT_NE(run.output.find("in units of the cameras' spacing, not mm"), std::string::npos)
       << run.output;

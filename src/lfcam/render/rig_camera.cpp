@@ -56,7 +56,14 @@ VirtualCameraParams RigCameraParams(const LightField& lf, double row, double col
   // centre (pixel centres at half integers, y up).
   p.principal_offset_px = {principal.x() + 0.5 - 0.5 * k.width,
                            0.5 * k.height - principal.y() - 0.5};
+  p.lens_length_scale = LensLengthScale(lf);
   return p;
+}
+
+double LensLengthScale(const LightField& lf) {
+  if (WorldLengthUnit(lf.metadata()) == "mm") return 1.0;
+  const double pitch = lf.slab().uv.pitch_mm;  // in the light field's units
+  return pitch > 0 && std::isfinite(pitch) ? ArrayPlane{}.pitch_mm / pitch : 1.0;
 }
 
 }  // namespace lfcam

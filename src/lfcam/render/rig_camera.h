@@ -18,4 +18,11 @@ namespace lfcam {
 // lies outside the grid [0, rows - 1] x [0, cols - 1].
 VirtualCameraParams RigCameraParams(const LightField& lf, double row, double col);
 
+// VirtualCameraParams::lens_length_scale for a light field: 1 where its lengths are mm;
+// where they are units of its cameras' spacing (WorldLengthUnit "units"), the paper's spacing
+// (28 mm) over the array's pitch in those units, so that an aperture of a few units is sampled
+// with as many lens samples a camera cell as the paper's array (without it, half the Lytro
+// array's width, 4 units, was 1 lens sample: a pinhole).
+double LensLengthScale(const LightField& lf);
+
 }  // namespace lfcam

@@ -57,8 +57,10 @@ VirtualCamera::VirtualCamera(const VirtualCameraParams& p) : params_(p) {
   }
   tan_half_x_ = 0.5 * kFilmSizeMm / film_distance_;
   tan_half_y_ = tan_half_x_ * p.height / p.width;
-  lens_samples_ = is_pinhole() ? std::vector<Vec2>{Vec2::Zero()}
-                               : UnitDiskSamples(LensSampleCount(p.lens_rate, p.aperture_mm));
+  lens_samples_ =
+      is_pinhole()
+          ? std::vector<Vec2>{Vec2::Zero()}
+          : UnitDiskSamples(LensSampleCount(p.lens_rate, p.aperture_mm * p.lens_length_scale));
 }
 
 VirtualCameraParams WithFrameSize(const VirtualCameraParams& p, int width, int height) {

@@ -28,6 +28,11 @@ struct VirtualCameraParams {
   // Where the optical axis meets the film, from the film's centre, in pixels (x right, y up): a
   // shifted sensor (an off-axis projection, as a rectified rig's cameras have). Zero: centred.
   Vec2 principal_offset_px = Vec2::Zero();
+  // The mm one unit of length counts as when the lens samples are counted, n_ls = γ (s d_l / 2)²
+  // / 210: 1 where lengths are mm; in a light field whose lengths are units of its cameras'
+  // spacing, the paper's spacing, 28 mm, a unit (LensLengthScale, render/rig_camera.h), so that
+  // each camera's cell is sampled as densely as the paper's.
+  double lens_length_scale = 1.0;
 };
 
 inline constexpr double kFilmSizeMm = 56.0;

@@ -21,6 +21,7 @@
 #include "lfcam/core/lightfield_video_file.h"
 #include "lfcam/depth/depth_set.h"
 #include "lfcam/render/focus_probe.h"
+#include "lfcam/render/rig_camera.h"
 #include "lfcam/viewer/control_windows.h"
 #include "lfcam/viewer/frame_display.h"
 #include "lfcam/viewer/frame_scheduler.h"
@@ -147,7 +148,8 @@ class Viewer {
     }
   }
 
-  void SetView(const VirtualCameraParams& p) {
+  void SetView(VirtualCameraParams p) {
+    p.lens_length_scale = LensLengthScale(lf());  // the light field's, whatever the view's
     try {
       VirtualCamera check(p);  // refuse a view the camera cannot take (for example f >= d_o)
       view_.camera = p;
