@@ -68,6 +68,7 @@ void ExportQuiltCommand(const ExportFlags& f, const CLI::App& command) {
   job.preset = preset;
   job.centre = f.camera.MakeCamera(slots[0]).params();
   job.baseline_mm = f.baseline_mm >= 0 ? f.baseline_mm : ArrayBaselineMm(slots[0]);
+  const std::string unit = WorldLengthUnit(slots[0].metadata());  // mm, or the import's units
   job.render = options;
   job.stem = std::filesystem::path(f.input).stem().string();
   job.video = video;
@@ -86,12 +87,12 @@ void ExportQuiltCommand(const ExportFlags& f, const CLI::App& command) {
   const QuiltExportReport report = ExportQuilt(job, *renderer, f.out);
   progress.finish();
   fmt::print(
-      "wrote {}: {}, {} views ({}x{} tiles of {}x{}), {}; baseline {:.1f} mm, zero parallax at "
-      "{:g} mm; the views' cameras in {}/cameras\n",
+      "wrote {}: {}, {} views ({}x{} tiles of {}x{}), {}; baseline {:.1f} {}, zero parallax at "
+      "{:g} {}; the views' cameras in {}/cameras\n",
       report.file.string(), preset.display, layout.views(), layout.cols, layout.rows,
       layout.tile_width, layout.tile_height,
       video ? fmt::format("{} frames at {:g} fps", report.frames, job.fps) : "a still",
-      job.baseline_mm, job.centre.focus_distance_mm, f.out);
+      job.baseline_mm, unit, job.centre.focus_distance_mm, unit, f.out);
 }
 
 void ExportWebCommand(const ExportFlags& f, const CLI::App& command) {

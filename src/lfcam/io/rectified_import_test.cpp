@@ -199,6 +199,12 @@ TEST(RectifiedImport, IndexNamedViewsImportSampleForSampleWithTheTrueDisparityLa
   // paper's 28-mm array, γ 4: 15 lens samples, not the 1 that 2 mm would get (a pinhole).
   EXPECT_NE(run.output.find("15 lens samples"), std::string::npos) << run.output;
   EXPECT_DOUBLE_EQ(LensLengthScale(lf), 28.0);
+  // A quilt of it says its baseline and its plane of zero parallax in those units too.
+  run = testing::Lfcam(
+      fmt::format("export {} --format quilt --out {}", file, (outputs / "quilt").string()));
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find(" units, zero parallax at "), std::string::npos) << run.output;
+  EXPECT_EQ(run.output.find(" mm"), std::string::npos) << run.output;
   run = testing::Lfcam("info " + file);
   EXPECT_NE(run.output.find("in units of the cameras' spacing, not mm"), std::string::npos)
       << run.output;
