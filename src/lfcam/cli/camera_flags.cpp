@@ -196,7 +196,7 @@ void CameraFlags::Validate() const {
   } else if (!(focus_distance_mm > 0) || !std::isfinite(focus_distance_mm)) {
     throw UsageError(fmt::format("--focus-distance: {} mm must be positive", focus_distance_mm));
   } else if (FocalLengthIsTheFlags()) {
-    RequireFocusBeyondFocalLength(focal_length_mm, !no_breathing);
+    RequireFocusBeyondFocalLength(focus_distance_mm, focal_length_mm, !no_breathing);
   }
   if (!(aperture_mm >= 0) || !std::isfinite(aperture_mm))
     throw UsageError(
@@ -222,13 +222,14 @@ bool CameraFlags::FocalLengthIsTheFlags() const {
   return false;
 }
 
-void CameraFlags::RequireFocusBeyondFocalLength(double focal_length, bool breathing) const {
+void CameraFlags::RequireFocusBeyondFocalLength(double focus, double focal_length,
+                                                bool breathing) const {
   // A breathing film sits at d_i = 1 / (1/f - 1/d_o): the focus must lie beyond f, at both ends
   // of a range swept. A fixed film (--no-breathing) focuses anywhere in front of the lens.
   if (!breathing) return;
   const CameraSweep s = sweep();
   for (const double f : Ends(s.focal_length_mm, focal_length))
-    for (const double d : Ends(s.focus_distance_mm, focus_distance_mm))
+    for (const double d : Ends(s.focus_distance_mm, focus))
       if (!(d > f))
         throw UsageError(fmt::format(
             "--focus-distance: {} must exceed the focal length ({}), or give --no-breathing", d,
@@ -319,7 +320,7 @@ VirtualCamera CameraFlags::MakeCamera(const ArrayPlane& array) const {
   Validate();
   const VirtualCameraParams p = Resolve(array);
   if (given("--focus-distance") || given("--focal-length"))
-    RequireFocusBeyondFocalLength(p.focal_length_mm, p.breathing);
+    RequireFocusBeyondFocalLength(p.focus_distance_mm, p.focal_length_mm, p.breathing);
   try {
     return VirtualCamera(p);
   } catch (const UsageError&) {

@@ -59,8 +59,9 @@ struct CameraFlags {
   // field is read: not a saved view's, a rig camera's, nor where the rig's central camera may be
   // the start (no --eye, --look-at, --up, --focal-length).
   bool FocalLengthIsTheFlags() const;
-  // Throws UsageError unless --focus-distance lies beyond `focal_length` (a breathing film).
-  void RequireFocusBeyondFocalLength(double focal_length, bool breathing) const;
+  // Throws UsageError unless the focus (`focus`, or both ends of a swept --focus-distance) lies
+  // beyond the focal length (`focal_length`, or both ends of a swept one) of a breathing film.
+  void RequireFocusBeyondFocalLength(double focus, double focal_length, bool breathing) const;
   std::map<std::string, CLI::Option*> options_;
   std::map<std::string, std::string> ranges_;  // flag -> "A:B" as given (numbers only)
   bool sweeps_ = false;
