@@ -48,7 +48,11 @@ void AddTerm(const SeparableFrame& f, const RaySetup& s, const SeparableTerm& t,
   Coordinates(read, f.st, i_mid, j0, &unused, &l_first);
   Coordinates(read, f.st, i_mid, j1 - 1, &unused, &l_last);
   const int top = s.n_t - 1;
-  const int l_lo = std::clamp(int(std::floor(std::clamp(l_min, 0.0, double(top)))), 0, top);
+  // At most the last row but one, as the rows' base below is, so that the pair of rows a row
+  // blends (base, base + 1) is always among those resampled, even where the band's reads all lie
+  // beyond the view's last row (a lens sample through another view's window).
+  const int l_lo =
+      std::clamp(int(std::floor(std::clamp(l_min, 0.0, double(top)))), 0, std::max(0, top - 1));
   const int l_hi = std::clamp(int(std::floor(std::clamp(l_max, 0.0, double(top)))) + 1, 0, top);
   // Each sample row is resampled along k as the band row that reads it needs it (the nearest
   // to where l crosses it): the rows that read it lie within 1 / |dl/dj| of there, and k drifts
