@@ -42,8 +42,13 @@ void FreeVolumeMemory(void* block) noexcept { std::free(block); }
 
 namespace {
 
-constexpr int kChannels = 5;     // R, G, B (sRGB, 0 .. 1), the grey level's x and y gradients
-constexpr int kHalves = 8;       // half-arrays, their directions 45 degrees apart
+constexpr int kChannels = 5;    // R, G, B (sRGB, 0 .. 1), the grey level's x and y gradients
+constexpr int kHalves = 8;      // half-arrays, their directions 45 degrees apart
+constexpr int kSubArrays = 16;  // and quarter-arrays in the same directions (cost_volume.h)
+// A quarter-array's windowed mean counts this many times: a mean over fewer views is lower by
+// chance alone, and a flat texture or a repeating one matches some quarter-array at a false
+// depth (docs/depth.md, "Quarter-arrays": 1.25 to 2 measured, 1.75 the best balance).
+constexpr float kQuarterWeight = 1.75f;
 constexpr int kBandRows = 8;     // the rows the sweep takes through every view at a time
 constexpr int kGroupPlanes = 8;  // the most planes swept together
 // Views noisier than kNoisyViewLevels (NoiseLevel, 8-bit levels; cost_volume.h) are read through
@@ -57,7 +62,8 @@ constexpr double kNoisyReadSigma = 1.3;
 // light fields here measure 0.0055-0.015, renders antialiased by a box over the pixel 0.04).
 constexpr double kSharpShare = 0.025;
 constexpr double kSharpReadSigma = 0.6;
-static_assert(kChannels == ShiftedSweep::kChannels && kHalves == ShiftedSweep::kHalves);
+static_assert(kChannels == ShiftedSweep::kChannels && kHalves == ShiftedSweep::kHalves &&
+              kSubArrays == ShiftedSweep::kSubArrays);
 // The packed channels' units: sRGB levels exactly (0 .. 255); gradients (at most 1 in size) in
 // steps of 1/8192, finer than an 8-bit grey level's gradient (1/2040).
 constexpr std::array<float, kChannels> kPacked = {255.0f, 255.0f, 255.0f, 8192.0f, 8192.0f};
@@ -270,13 +276,13 @@ struct Scratch {
   std::vector<float> window_sum, best;
 };
 
-// Row y of half-array g's count: how many of its views read shifted see each sample there.
+// Row y of sub-array g's count: how many of its views read shifted see each sample there.
 void CountRow(const std::vector<std::pair<std::size_t, Shift>>& shifted,
-              const std::vector<unsigned>& halves, int g, int y, int w, std::vector<int>& steps,
+              const std::vector<unsigned>& sub_arrays, int g, int y, int w, std::vector<int>& steps,
               float* count) {
   steps.assign(std::size_t(w) + 1, 0);
   for (const auto& [v, shift] : shifted) {
-    if (!(halves[v] >> g & 1) || y < shift.y_lo || y > shift.y_hi || shift.x_lo > shift.x_hi)
+    if (!(sub_arrays[v] >> g & 1) || y < shift.y_lo || y > shift.y_hi || shift.x_lo > shift.x_hi)
       continue;
     ++steps[std::size_t(shift.x_lo)];
     --steps[std::size_t(shift.x_hi) + 1];
@@ -299,14 +305,14 @@ void CountRow(const std::vector<std::pair<std::size_t, Shift>>& shifted,
 __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
 #endif
 void WindowedBest(const PlaneScratch& ps, int y, int w, int h, int ring, int radius,
-                  float min_count, float pair_min_count, Scratch& s, float* best) {
+                  int sub_arrays, float min_count, float pair_min_count, Scratch& s, float* best) {
   const std::size_t sw = std::size_t(w);
-  s.window_sum.resize((2 + 2 * kHalves) * sw);
+  s.window_sum.resize((2 + 2 * std::size_t(sub_arrays)) * sw);
   float* vs = s.window_sum.data();  // sums and counts down the window's rows, per column
   float* vc = vs + sw;
-  // Those summed across the window, the whole window's, per half-array.
+  // Those summed across the window, the whole window's, per sub-array.
   float* const window_sums = vs + 2 * sw;
-  float* const window_counts = window_sums + kHalves * sw;
+  float* const window_counts = window_sums + std::size_t(sub_arrays) * sw;
   // Sums along the row over the window, the row's ends repeated.
   const auto across = [&](const float* v, float* out) {
     if (radius == 1 && w >= 2) {
@@ -323,10 +329,10 @@ void WindowedBest(const PlaneScratch& ps, int y, int w, int h, int ring, int rad
       for (int x = hi; x < w; ++x) out[x] += v[w - 1];
     }
   };
-  // Larger than any mean: a half-array without enough views is never the cheapest.
+  // Larger than any mean: a sub-array without enough views is never the cheapest.
   constexpr float kNotEnough = 1e30f;
   std::fill(best, best + sw, INFINITY);
-  for (int g = 0; g < kHalves; ++g) {
+  for (int g = 0; g < sub_arrays; ++g) {
     for (int dy = -radius; dy <= radius; ++dy) {
       const int row = std::clamp(y + dy, 0, h - 1);
       const std::size_t slot = (std::size_t(g) * ring + std::size_t(row % ring)) * sw;
@@ -347,9 +353,10 @@ void WindowedBest(const PlaneScratch& ps, int y, int w, int h, int ring, int rad
     across(vs, bs);
     across(vc, bc);
     // min_count > 0, so the division is safe wherever it is taken.
+    const float weight = g < kHalves ? 1.0f : kQuarterWeight;
     for (std::size_t x = 0; x < sw; ++x)
-      best[x] = std::min(
-          best[x], bs[x] / std::max(bc[x], min_count) + (bc[x] > min_count ? 0.0f : kNotEnough));
+      best[x] = std::min(best[x], weight * bs[x] / std::max(bc[x], min_count) +
+                                      (bc[x] > min_count ? 0.0f : kNotEnough));
   }
   // The pairs of opposite half-arrays, where no half-array counts. Within a sweep that keeps the
   // same views at every plane their counts are every plane's, so the choice between half-arrays
@@ -459,10 +466,14 @@ SweepViews::SweepViews(const LightField& lf, int row, int col, const CostVolumeO
     v.center = lf.camera_center(r, c);
     v.sampling = lf.st_sampling(r, c);
     // The half-arrays it belongs to: those whose direction its grid offset lies within 90
-    // degrees of.
+    // degrees of; the quarter-arrays: those it lies within 45 degrees of.
+    const double along_max = std::hypot(double(c - col), double(r - row));
     for (int g = 0; g < kHalves; ++g) {
       const double a = g * std::numbers::pi / 4;
-      if ((c - col) * std::cos(a) + (r - row) * std::sin(a) > 1e-6) v.halves |= 1u << g;
+      const double along = (c - col) * std::cos(a) + (r - row) * std::sin(a);
+      if (along > 1e-6) v.sub_arrays |= 1u << g;
+      if (along >= along_max * std::cos(std::numbers::pi / 4) - 1e-6)
+        v.sub_arrays |= 1u << (g + kHalves);
     }
     return v;
   };
@@ -472,10 +483,14 @@ SweepViews::SweepViews(const LightField& lf, int row, int col, const CostVolumeO
   tbb::parallel_for(std::size_t(0), around.size(),
                     [&](std::size_t i) { views_[i] = load(around[i].first, around[i].second); });
   for (View& v : views_) {
-    const auto found = std::find(class_halves_.begin(), class_halves_.end(), v.halves);
-    v.view_class = int(found - class_halves_.begin());
-    if (found == class_halves_.end()) class_halves_.push_back(v.halves);
+    const auto found = std::find(class_sub_arrays_.begin(), class_sub_arrays_.end(), v.sub_arrays);
+    v.view_class = int(found - class_sub_arrays_.begin());
+    if (found == class_sub_arrays_.end()) class_sub_arrays_.push_back(v.sub_arrays);
   }
+  // The quarter-arrays count where they hold other views than the half-arrays: not at reach 1,
+  // where both are the three views on a side or around a corner.
+  for (const View& v : views_)
+    if ((v.sub_arrays & 0xffu) != (v.sub_arrays >> kHalves)) sub_array_count_ = kSubArrays;
   if (views_.empty())
     throw Error(
         fmt::format("depth needs at least two views; this light field has {}x{}", d.rows, d.cols));
@@ -553,7 +568,7 @@ CostVolume SweepViews::Sweep(const std::vector<double>& q, double gradient_share
   int largest_half = 0;
   for (int g = 0; g < kHalves; ++g) {
     int views = 0;
-    for (const View& view : views_) views += view.halves >> g & 1;
+    for (const View& view : views_) views += view.sub_arrays >> g & 1;
     largest_half = std::max(largest_half, views);
   }
   const float min_count =
@@ -592,7 +607,7 @@ CostVolume SweepViews::Sweep(const std::vector<double>& q, double gradient_share
     sweep.packed_unit = kPacked;
     for (const View& view : views_) {
       sweep.views.push_back(view.packed.data());
-      sweep.halves.push_back(view.halves);
+      sweep.sub_arrays.push_back(view.sub_arrays);
     }
     sweep.color_cap = terms.color_cap;
     sweep.gradient_cap = terms.gradient_cap;
@@ -602,6 +617,8 @@ CostVolume SweepViews::Sweep(const std::vector<double>& q, double gradient_share
     sweep.min_count = min_count;
     sweep.pair_min_count = pair_min_count;
     sweep.most = most;
+    sweep.sub_array_count = sub_array_count_;
+    sweep.quarter_weight = kQuarterWeight;
     bool shifts = true;
     for (int i = 0; i < n && shifts; ++i)
       for (std::size_t v = 0; v < views_.size() && shifts; ++v) {
@@ -629,7 +646,7 @@ CostVolume SweepViews::Sweep(const std::vector<double>& q, double gradient_share
     ps.shifted.clear();
     ps.class_sum.clear();
     ps.class_count.clear();
-    const std::size_t classes = class_halves_.size();
+    const std::size_t classes = class_sub_arrays_.size();
     for (std::size_t v = 0; v < views_.size(); ++v) {
       const View& view = views_[v];
       const cv::Matx33d m = Homography(view, depth);
@@ -695,20 +712,21 @@ CostVolume SweepViews::Sweep(const std::vector<double>& q, double gradient_share
   const int groups = (n + group - 1) / group;
   const std::size_t sw = std::size_t(w);
   const int ring = kBandRows + 2 * radius;  // rows kept per plane: a band and its window
-  const std::size_t classes = class_halves_.size();
-  std::vector<unsigned> view_halves;
-  for (const View& view : views_) view_halves.push_back(view.halves);
-  // Each group isolated: OpenCV's filters run on TBB too, and a thread waiting in one must not
-  // take up another group meanwhile, which would reuse this thread's scratch under it.
-  tbb::parallel_for(0, groups, [&](int group_index) {
+  const std::size_t classes = class_sub_arrays_.size();
+  std::vector<unsigned> view_sub_arrays;
+  for (const View& view : views_) view_sub_arrays.push_back(view.sub_arrays);
+  // A group of planes, its count of sub-arrays a constant (the half-arrays' loops as they were
+  // before the quarter-arrays: compiled for 8, `--all` ran 5% slower with the count a variable).
+  const auto sweep_group = [&](int group_index, auto count) {
+    constexpr int sub_arrays = decltype(count)::value;
     tbb::this_task_arena::isolate([&] {
       Scratch& s = scratches.local();
       const int i0 = group_index * group, planes = std::min(n, i0 + group) - i0;
       s.planes.resize(std::size_t(planes));
       for (int j = 0; j < planes; ++j) prepare(q[std::size_t(i0 + j)], s.planes[std::size_t(j)], s);
       for (PlaneScratch& ps : s.planes) {
-        ps.ring_sum.resize(kHalves * std::size_t(ring) * sw);
-        ps.ring_count.resize(kHalves * std::size_t(ring) * sw);
+        ps.ring_sum.resize(std::size_t(sub_arrays) * std::size_t(ring) * sw);
+        ps.ring_count.resize(std::size_t(sub_arrays) * std::size_t(ring) * sw);
         ps.inner_lo = 0;
         ps.inner_hi = h - 1;
         for (const auto& [v, shift] : ps.shifted)
@@ -717,9 +735,9 @@ CostVolume SweepViews::Sweep(const std::vector<double>& q, double gradient_share
             ps.inner_hi = std::min(ps.inner_hi, shift.y_hi);
           }
         if (ps.inner_lo > ps.inner_hi) continue;
-        ps.inner_count.resize(kHalves * sw);
-        for (int g = 0; g < kHalves; ++g)
-          CountRow(ps.shifted, view_halves, g, ps.inner_lo, w, s.steps,
+        ps.inner_count.resize(std::size_t(sub_arrays) * sw);
+        for (int g = 0; g < sub_arrays; ++g)
+          CountRow(ps.shifted, view_sub_arrays, g, ps.inner_lo, w, s.steps,
                    ps.inner_count.data() + std::size_t(g) * sw);
       }
       const std::size_t band_size = std::size_t(kBandRows) * sw;
@@ -740,7 +758,7 @@ CostVolume SweepViews::Sweep(const std::vector<double>& q, double gradient_share
           // Each half-array's sums: its classes' sums added; its counts: the shifted views that
           // see each sample (their rectangles), and the warped views' counts.
           for (int y = y0; y < y1; ++y)
-            for (int g = 0; g < kHalves; ++g) {
+            for (int g = 0; g < sub_arrays; ++g) {
               const std::size_t slot = (std::size_t(g) * ring + std::size_t(y % ring)) * sw;
               float* hs = ps.ring_sum.data() + slot;
               float* hc = ps.ring_count.data() + slot;
@@ -749,10 +767,10 @@ CostVolume SweepViews::Sweep(const std::vector<double>& q, double gradient_share
                 const float* inner = ps.inner_count.data() + std::size_t(g) * sw;
                 std::copy(inner, inner + sw, hc);
               } else {
-                CountRow(ps.shifted, view_halves, g, y, w, s.steps, hc);
+                CountRow(ps.shifted, view_sub_arrays, g, y, w, s.steps, hc);
               }
               for (std::size_t k = 0; k < classes; ++k) {
-                if (!(class_halves_[k] >> g & 1)) continue;
+                if (!(class_sub_arrays_[k] >> g & 1)) continue;
                 const float* cs = s.band_sum.data() + k * band_size + std::size_t(y - y0) * sw;
                 for (std::size_t x = 0; x < sw; ++x) hs[x] += cs[x];
                 if (ps.class_sum.empty()) continue;
@@ -769,8 +787,8 @@ CostVolume SweepViews::Sweep(const std::vector<double>& q, double gradient_share
         const int last = y1 == h ? h - 1 : y1 - 1 - radius;
         for (int y = next_out; y <= last; ++y) {
           for (int j = 0; j < planes; ++j)
-            WindowedBest(s.planes[std::size_t(j)], y, w, h, ring, radius, min_count, pair_min_count,
-                         s, s.best.data() + std::size_t(j) * sw);
+            WindowedBest(s.planes[std::size_t(j)], y, w, h, ring, radius, sub_arrays, min_count,
+                         pair_min_count, s, s.best.data() + std::size_t(j) * sw);
           std::uint16_t* out = volume.cost.data() + std::size_t(y) * sw * std::size_t(n) + i0;
           for (int x = 0; x < w; ++x, out += n)
             for (int j = 0; j < planes; ++j) {
@@ -782,6 +800,14 @@ CostVolume SweepViews::Sweep(const std::vector<double>& q, double gradient_share
         next_out = std::max(next_out, last + 1);
       }
     });
+  };
+  // Each group isolated: OpenCV's filters run on TBB too, and a thread waiting in one must not
+  // take up another group meanwhile, which would reuse this thread's scratch under it.
+  tbb::parallel_for(0, groups, [&](int group_index) {
+    if (sub_array_count_ == kSubArrays)
+      sweep_group(group_index, std::integral_constant<int, kSubArrays>());
+    else
+      sweep_group(group_index, std::integral_constant<int, kHalves>());
   });
   return volume;
 }

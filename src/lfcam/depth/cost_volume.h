@@ -12,8 +12,12 @@
 // and the absolute difference of the grey gradients, each truncated. Occlusion: an occluder's edge
 // splits the views around the reference into those that see past it and those that do not, along a
 // line through the reference. So the views' costs are averaged over each of 8 half-arrays (the
-// views whose grid offset lies within 90 degrees of one of 8 directions a 45 degrees apart), each
-// half-array's cost is averaged over a small window, and the cheapest half-array counts.
+// views whose grid offset lies within 90 degrees of one of 8 directions a 45 degrees apart) and,
+// where the views reach 2 grid steps or more, over each of 8 quarter-arrays too (those within 45
+// degrees of each direction: where the occluder wraps around the sample, a pocket of background
+// between its parts, no half-array sees past it); each one's cost is averaged over a small
+// window, a quarter-array's counts kQuarterWeight times (fewer views: its mean is lower by chance
+// alone), and the cheapest counts (docs/depth.md, "Quarter-arrays").
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -32,7 +36,7 @@ struct CostVolumeOptions {
   int reach = 4;              // views up to this many grid steps away in rows and in columns
   double color_cap = 0.1;     // the colour term's truncation (sRGB, 0 .. 1)
   double gradient_cap = 0.1;  // the gradient term's truncation
-  int window_radius = 1;      // the half-arrays' averaging window (box) radius in samples
+  int window_radius = 1;      // the sub-arrays' averaging window (box) radius in samples
   double scale = 1.0;         // > 1: match at 1/scale of the views' resolution (coarse sweeps)
   // A view counts at a sample only if it sees the sample at every plane swept, so that every
   // plane's cost there is over the same views (docs/depth.md, "The frame's edges"); where no
@@ -118,13 +122,18 @@ struct CostVolume {
 // plane, as a rectified, parallel or built light field has it), laid out for a GPU to compute
 // the same volume as SweepViews::Sweep (depth/gl_cost_volume.h).
 struct ShiftedSweep {
-  static constexpr int kChannels = 5;  // R, G, B (sRGB, 0 .. 1), the grey gradients along x, y
-  static constexpr int kHalves = 8;    // half-arrays
+  static constexpr int kChannels = 5;    // R, G, B (sRGB, 0 .. 1), the grey gradients along x, y
+  static constexpr int kHalves = 8;      // half-arrays: bits 0 .. 7 of a view's `sub_arrays`
+  static constexpr int kSubArrays = 16;  // and quarter-arrays: bits 8 .. 15 (g + 8: direction g)
   int width = 0, height = 0, labels = 0;
   const float* reference = nullptr;            // kChannels planes of width x height
   std::vector<const std::int16_t*> views;      // each view's kChannels planes, 16-bit fixed point
   std::array<float, kChannels> packed_unit{};  // a channel's value is its integer / this
-  std::vector<unsigned> halves;                // each view's half-arrays (bit g)
+  std::vector<unsigned> sub_arrays;            // each view's half- and quarter-arrays (bit g)
+  // The sub-arrays that count: the half-arrays (kHalves), or all kSubArrays where the
+  // quarter-arrays hold other views than the half-arrays (reach 2 or more).
+  int sub_array_count = kHalves;
+  float quarter_weight = 1.0f;  // a quarter-array's mean counts this many times
   // How a view is read at a plane: at (x + x0 - 1 + i, y + y0 - 1 + j), i, j = 0 .. 3, with
   // Keys' weights wx[i] wy[j], the view's edge repeated; only at the samples x_lo .. x_hi,
   // y_lo .. y_hi.
@@ -195,8 +204,9 @@ class SweepViews {
     std::vector<std::int16_t> packed;
     Vec3 center;
     StSampling sampling;
-    unsigned halves = 0;  // bit g: in the half-array of direction g * 45 degrees
-    int view_class = 0;   // index in class_halves_
+    // Bit g < 8: in the half-array of direction g * 45 degrees; bit g + 8: in its quarter-array.
+    unsigned sub_arrays = 0;
+    int view_class = 0;  // index in class_sub_arrays_
   };
   cv::Matx33d Homography(const View& view, double depth) const;
 
@@ -205,7 +215,8 @@ class SweepViews {
   SweepGeometry geometry_;
   View reference_;
   std::vector<View> views_;
-  std::vector<unsigned> class_halves_;  // the distinct half-array memberships of the views
+  std::vector<unsigned> class_sub_arrays_;       // the distinct sub-array memberships of the views
+  int sub_array_count_ = ShiftedSweep::kHalves;  // as ShiftedSweep::sub_array_count
   double noise_level_ = 0, near_nyquist_share_ = 0, read_sigma_ = 0;
   cv::Mat reference_rgb8_;
 };

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "lfcam/depth/depth_test_scene.h"
@@ -23,6 +24,7 @@ class DefinitionEngine : public CostVolumeEngine {
  public:
   CostVolume Sweep(const ShiftedSweep& sweep) override {
     constexpr int kChannels = ShiftedSweep::kChannels, kHalves = ShiftedSweep::kHalves;
+    const int sub_arrays = sweep.sub_array_count;
     const int w = sweep.width, h = sweep.height, n = sweep.labels;
     const int views = int(sweep.views.size()), r = sweep.window_radius;
     const std::size_t plane = std::size_t(w) * h;
@@ -31,7 +33,8 @@ class DefinitionEngine : public CostVolumeEngine {
     volume.height = h;
     volume.labels = n;
     volume.cost.resize(plane * std::size_t(n));
-    std::vector<double> sum(plane * kHalves), count(plane * kHalves);
+    std::vector<double> sum(plane * std::size_t(sub_arrays)),
+        count(plane * std::size_t(sub_arrays));
     for (int i = 0; i < n; ++i) {
       std::fill(sum.begin(), sum.end(), 0.0);
       std::fill(count.begin(), count.end(), 0.0);
@@ -60,8 +63,8 @@ class DefinitionEngine : public CostVolumeEngine {
             const double cost =
                 sweep.color_weight * std::min<double>(color, sweep.color_cap) +
                 sweep.gradient_weight * std::min<double>(gradient, sweep.gradient_cap);
-            for (int g = 0; g < kHalves; ++g)
-              if (sweep.halves[std::size_t(v)] >> g & 1) {
+            for (int g = 0; g < sub_arrays; ++g)
+              if (sweep.sub_arrays[std::size_t(v)] >> g & 1) {
                 sum[std::size_t(g) * plane + std::size_t(y) * w + x] += cost;
                 count[std::size_t(g) * plane + std::size_t(y) * w + x] += 1.0;
               }
@@ -70,8 +73,9 @@ class DefinitionEngine : public CostVolumeEngine {
       for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
           double best = INFINITY;
-          double s[kHalves] = {}, c[kHalves] = {};
-          for (int g = 0; g < kHalves; ++g) {
+          double s[ShiftedSweep::kSubArrays] = {}, c[ShiftedSweep::kSubArrays] = {};
+          bool quarter = false;
+          for (int g = 0; g < sub_arrays; ++g) {
             for (int dy = -r; dy <= r; ++dy)
               for (int dx = -r; dx <= r; ++dx) {
                 const std::size_t at = std::size_t(g) * plane +
@@ -80,7 +84,11 @@ class DefinitionEngine : public CostVolumeEngine {
                 s[g] += sum[at];
                 c[g] += count[at];
               }
-            if (c[g] > sweep.min_count) best = std::min(best, s[g] / c[g]);
+            const double weight = g < kHalves ? 1.0 : sweep.quarter_weight;
+            if (c[g] > sweep.min_count && weight * s[g] / c[g] < best) {
+              best = weight * s[g] / c[g];
+              quarter = g >= kHalves;
+            }
           }
           // Where no half-array counts: the pairs of opposite half-arrays.
           if (!std::isfinite(best)) {
@@ -92,6 +100,8 @@ class DefinitionEngine : public CostVolumeEngine {
             paired_ += std::isfinite(best);
           }
           uncounted_ += !std::isfinite(best);
+          quarters_ += std::isfinite(best) && quarter;
+          sub_array_count_ = sub_arrays;
           volume.at(x, y)[i] = std::isfinite(best)
                                    ? std::uint16_t(std::lround(best * CostVolume::kCostUnit))
                                    : sweep.most;
@@ -102,21 +112,27 @@ class DefinitionEngine : public CostVolumeEngine {
   void RanOnCpu(const std::string& why) override { FAIL() << "not a shifted sweep: " << why; }
   int uncounted() const { return uncounted_; }
   int paired() const { return paired_; }
+  int quarters() const { return quarters_; }  // costs a quarter-array gave
+  int sub_array_count() const { return sub_array_count_; }
 
  private:
-  int uncounted_ = 0, paired_ = 0;
+  int uncounted_ = 0, paired_ = 0, quarters_ = 0, sub_array_count_ = 0;
 };
 
-class CostVolumeDefinition : public ::testing::TestWithParam<int> {};
+// The window's radius and the views' reach.
+class CostVolumeDefinition : public ::testing::TestWithParam<std::pair<int, int>> {};
 
 // 220 rows (not a whole number of the sweep's bands), 9 planes (groups of unequal size), the
-// reference off centre (views cut by the frame's edge), at window radii 0, 1 and 2.
+// reference off centre (views cut by the frame's edge), at window radii 0, 1 and 2 with the
+// views 1 step around (the half-arrays alone: the quarter-arrays hold the same views), and at
+// radius 1 with the views 2 steps around (the quarter-arrays too).
 TEST_P(CostVolumeDefinition, TheSweepIsTheCostItsDefinitionGives) {
   const LightField lf = testing::TwoPlaneLightField(testing::TwoPlaneScene());
   CostVolumeOptions options;
-  options.reach = 1;
+  const auto [radius, reach] = GetParam();
+  options.reach = reach;
   options.same_views_at_every_plane = true;
-  options.window_radius = GetParam();
+  options.window_radius = radius;
   const SweepViews views(lf, 1, 4, options);
   ASSERT_NE(views.height() % 8, 0);
   const std::vector<double> q = testing::SweepPlanes(9);
@@ -131,12 +147,20 @@ TEST_P(CostVolumeDefinition, TheSweepIsTheCostItsDefinitionGives) {
     off += d != 0;
   }
   EXPECT_LT(double(off) / double(swept.cost.size()), 0.01);
-  // Samples that no half-array counts, along the frame's edge, were met, and a pair of opposite
-  // half-arrays counted at some of them.
-  EXPECT_GT(definition.paired(), 0);
+  if (reach == 1) {
+    EXPECT_EQ(definition.sub_array_count(), ShiftedSweep::kHalves);
+    // Samples that no half-array counts, along the frame's edge, were met, and a pair of
+    // opposite half-arrays counted at some of them.
+    EXPECT_GT(definition.paired(), 0);
+  } else {
+    EXPECT_EQ(definition.sub_array_count(), ShiftedSweep::kSubArrays);
+    EXPECT_GT(definition.quarters(), 0);
+  }
 }
 
-INSTANTIATE_TEST_SUITE_P(WindowRadius, CostVolumeDefinition, ::testing::Values(0, 1, 2));
+INSTANTIATE_TEST_SUITE_P(RadiusAndReach, CostVolumeDefinition,
+                         ::testing::Values(std::pair{0, 1}, std::pair{1, 1}, std::pair{2, 1},
+                                           std::pair{1, 2}));
 
 // An engine that takes no sweep (as a GPU refuses one beyond its texture limits).
 class RefusingEngine : public CostVolumeEngine {

@@ -21,7 +21,7 @@ constexpr int kGroupX = 16, kGroupY = 8;  // the shaders' local size
 
 // ShiftedSweep::Read as the shader reads it (std430).
 struct ShaderRead {
-  std::int32_t x0, y0, halves, unused;
+  std::int32_t x0, y0, sub_arrays, unused;
   float wx[4], wy[4];
   std::int32_t x_lo, x_hi, y_lo, y_hi;
 };
@@ -174,7 +174,7 @@ CostVolume GlCostVolume::SweepOnGlThread(const ShiftedSweep& sweep) {
     for (std::size_t i = 0; i < reads.size(); ++i) {
       const ShiftedSweep::Read& r = sweep.reads[i];
       ShaderRead& s = reads[i];
-      s = {r.x0,   r.y0,   std::int32_t(sweep.halves[i % std::size_t(views)]),
+      s = {r.x0,   r.y0,   std::int32_t(sweep.sub_arrays[i % std::size_t(views)]),
            0,      {},     {},
            r.x_lo, r.x_hi, r.y_lo,
            r.y_hi};
@@ -201,6 +201,7 @@ CostVolume GlCostVolume::SweepOnGlThread(const ShiftedSweep& sweep) {
   glUniform1f(glGetUniformLocation(costs_program_, "unit_y"), 1.0f / sweep.packed_unit[4]);
   glUniform4f(glGetUniformLocation(costs_program_, "terms"), sweep.color_cap, sweep.gradient_cap,
               sweep.color_weight, sweep.gradient_weight);
+  glUniform1i(glGetUniformLocation(costs_program_, "sub_arrays"), sweep.sub_array_count);
   glUseProgram(window_program_);
   glUniform2i(glGetUniformLocation(window_program_, "size"), w, h);
   glUniform1i(glGetUniformLocation(window_program_, "radius"), std::max(0, sweep.window_radius));
@@ -210,6 +211,8 @@ CostVolume GlCostVolume::SweepOnGlThread(const ShiftedSweep& sweep) {
               std::min(sweep.pair_min_count, std::numeric_limits<float>::max()));
   glUniform1f(glGetUniformLocation(window_program_, "unit"), float(CostVolume::kCostUnit));
   glUniform1ui(glGetUniformLocation(window_program_, "most"), sweep.most);
+  glUniform1i(glGetUniformLocation(window_program_, "sub_arrays"), sweep.sub_array_count);
+  glUniform1f(glGetUniformLocation(window_program_, "quarter_weight"), sweep.quarter_weight);
   static_assert(ShiftedSweep::kChannels == 5, "four channels interleaved and one alone");
   for (int i = 0; i < n; ++i) {
     glUseProgram(costs_program_);
@@ -276,7 +279,7 @@ void GlCostVolume::MakeRoom(int w, int h, int views, int n) {
   t[3] = NewTexture(GL_TEXTURE_2D);
   glTexStorage2D(GL_TEXTURE_2D, 1, GL_R32F, w, h);
   t[4] = NewTexture(GL_TEXTURE_2D_ARRAY);
-  glTexStorage3D(GL_TEXTURE_2D_ARRAY, 1, GL_RGBA32F, w, h, 4);
+  glTexStorage3D(GL_TEXTURE_2D_ARRAY, 1, GL_RGBA32F, w, h, 8);  // sweep_costs.comp's layers
   t[5] = NewTexture(GL_TEXTURE_2D_ARRAY);
   glTexStorage3D(GL_TEXTURE_2D_ARRAY, 1, GL_R16UI, n, w, h);  // label-fastest: (plane, x), y
   glGenBuffers(1, &reads_);
@@ -326,7 +329,9 @@ CostVolume GlCostVolume::Sweep(const ShiftedSweep& sweep) {
   const int views = int(sweep.views.size());
   if (w <= 0 || h <= 0 || n <= 0 || views <= 0 ||
       sweep.reads.size() != std::size_t(n) * std::size_t(views) ||
-      sweep.halves.size() != std::size_t(views))
+      sweep.sub_arrays.size() != std::size_t(views) ||
+      (sweep.sub_array_count != ShiftedSweep::kHalves &&
+       sweep.sub_array_count != ShiftedSweep::kSubArrays))
     throw Error("the GPU sweep was given an inconsistent sweep");
   CostVolume volume;
   const std::function<void()> work = [&] { volume = SweepOnGlThread(sweep); };

@@ -3,7 +3,7 @@
 // shifted with Keys' cubic (the vertical taps first, the view's edge repeated), compared with
 // the reference (the mean absolute difference of the sRGB channels and the absolute difference
 // of the grey gradients, each truncated, then weighted), and the cost added to the sums of the
-// half-arrays the view belongs to.
+// half-arrays (and, where they count, the quarter-arrays) the view belongs to.
 layout(local_size_x = 16, local_size_y = 8) in;
 
 layout(binding = 0) uniform isampler2DArray views_rgbx;  // channels 0 .. 3, a layer a view
@@ -11,16 +11,17 @@ layout(binding = 1) uniform isampler2DArray views_y;     // channel 4
 layout(binding = 2) uniform sampler2D reference_rgbx;
 layout(binding = 3) uniform sampler2D reference_y;
 
-// ShiftedSweep::Read, with the view's half-arrays.
+// ShiftedSweep::Read, with the view's sub-arrays.
 struct Read {
-  ivec4 origin;  // x0, y0, halves, unused
+  ivec4 origin;  // x0, y0, sub-arrays (bit g), unused
   vec4 wx;
   vec4 wy;
   ivec4 samples;  // x_lo, x_hi, y_lo, y_hi
 };
 layout(std430, binding = 0) readonly buffer Reads { Read reads[]; };
 
-// Layers 0 and 1: the sums of half-arrays 0 .. 3 and 4 .. 7; layers 2 and 3: their counts.
+// Layers 0 and 1: the sums of half-arrays 0 .. 3 and 4 .. 7; layers 2 and 3: their counts;
+// layers 4 to 7 the same for the quarter-arrays (sub-arrays 8 .. 15), where they count.
 layout(rgba32f, binding = 0) writeonly uniform image2DArray sums;
 
 uniform int plane;
@@ -29,14 +30,15 @@ uniform ivec2 size;
 uniform vec4 unit_rgbx;  // 1 / the packed channels' units
 uniform float unit_y;
 uniform vec4 terms;  // colour cap, gradient cap, colour weight, gradient weight
+uniform int sub_arrays;  // 8: the half-arrays; 16: the quarter-arrays too
 
 void main() {
   const ivec2 p = ivec2(gl_GlobalInvocationID.xy);
   if (p.x >= size.x || p.y >= size.y) return;
   const vec4 f = texelFetch(reference_rgbx, p, 0);
   const float f4 = texelFetch(reference_y, p, 0).r;
-  float s[8], c[8];
-  for (int g = 0; g < 8; ++g) {
+  float s[16], c[16];
+  for (int g = 0; g < 16; ++g) {
     s[g] = 0.0;
     c[g] = 0.0;
   }
@@ -64,9 +66,9 @@ void main() {
     const float color = (abs(a.r - f.r) + abs(a.g - f.g) + abs(a.b - f.b)) * (1.0 / 3.0);
     const float gradient = abs(a.a - f.a) + abs(a4 - f4);
     const float cost = terms.z * min(color, terms.x) + terms.w * min(gradient, terms.y);
-    const uint halves = uint(r.origin.z);
-    for (int g = 0; g < 8; ++g)
-      if (((halves >> uint(g)) & 1u) != 0u) {
+    const uint member = uint(r.origin.z);
+    for (int g = 0; g < sub_arrays; ++g)
+      if (((member >> uint(g)) & 1u) != 0u) {
         s[g] += cost;
         c[g] += 1.0;
       }
@@ -75,4 +77,10 @@ void main() {
   imageStore(sums, ivec3(p, 1), vec4(s[4], s[5], s[6], s[7]));
   imageStore(sums, ivec3(p, 2), vec4(c[0], c[1], c[2], c[3]));
   imageStore(sums, ivec3(p, 3), vec4(c[4], c[5], c[6], c[7]));
+  if (sub_arrays > 8) {
+    imageStore(sums, ivec3(p, 4), vec4(s[8], s[9], s[10], s[11]));
+    imageStore(sums, ivec3(p, 5), vec4(s[12], s[13], s[14], s[15]));
+    imageStore(sums, ivec3(p, 6), vec4(c[8], c[9], c[10], c[11]));
+    imageStore(sums, ivec3(p, 7), vec4(c[12], c[13], c[14], c[15]));
+  }
 }
