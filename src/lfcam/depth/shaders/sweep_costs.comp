@@ -29,7 +29,7 @@ uniform int view_count;
 uniform ivec2 size;
 uniform vec4 unit_rgbx;  // 1 / the packed channels' units
 uniform float unit_y;
-uniform vec4 terms;  // colour cap, gradient cap, colour weight, gradient weight
+uniform vec4 terms;      // colour cap, gradient cap, colour weight, gradient weight
 uniform int sub_arrays;  // 8: the half-arrays; 16: the quarter-arrays too
 
 void main() {
