@@ -755,7 +755,7 @@ CostVolume SweepViews::Sweep(const std::vector<double>& q, double gradient_share
               AccumulateShiftedRow(view.packed, ref, w, h, y, shift, terms, s.across,
                                    s.band_sum.data() + at + std::size_t(y - y0) * sw);
           }
-          // Each half-array's sums: its classes' sums added; its counts: the shifted views that
+          // Each sub-array's sums: its classes' sums added; its counts: the shifted views that
           // see each sample (their rectangles), and the warped views' counts.
           for (int y = y0; y < y1; ++y)
             for (int g = 0; g < sub_arrays; ++g) {

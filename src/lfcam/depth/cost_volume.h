@@ -145,7 +145,7 @@ struct ShiftedSweep {
   std::vector<Read> reads;  // [label * views.size() + view]
   float color_cap = 0, gradient_cap = 0, color_weight = 0, gradient_weight = 0;
   int window_radius = 0;
-  float min_count = 0;  // a half-array counts where its windowed count exceeds this
+  float min_count = 0;  // a sub-array counts where its windowed count exceeds this
   // Where no half-array counts, a pair of opposite half-arrays (g and g + 4) counts where theirs
   // exceeds this (infinity: never).
   float pair_min_count = INFINITY;
