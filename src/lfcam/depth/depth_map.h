@@ -25,7 +25,12 @@ namespace lfcam {
 
 struct DepthRange {
   double near_mm = 0, far_mm = 0;  // 0 < near < far
+  // Where EstimateDepthRange found the scene, before the margin it adds (0: near_mm and far_mm,
+  // as for a range given): what says how far apart the views see the scene (not stored).
+  double found_near_mm = 0, found_far_mm = 0;
   bool valid() const { return near_mm > 0 && far_mm > near_mm; }
+  double scene_near_mm() const { return found_near_mm > 0 ? found_near_mm : near_mm; }
+  double scene_far_mm() const { return found_far_mm > 0 ? found_far_mm : far_mm; }
 };
 
 struct DepthMap {

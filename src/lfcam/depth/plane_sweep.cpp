@@ -27,7 +27,12 @@ constexpr float kConfident = 0.25f;      // confidence above which a sample coun
 constexpr double kPopulousShare = 0.02;  // the share of the view's samples that makes a label
                                          // count for the range, unconfident but unique
 constexpr int kBroadApart = 4;           // planes apart for that uniqueness
-constexpr double kOutlierPixels = 0.4;   // the clean-up's threshold: nearest view's shift, samples
+// The depth range's coarse sweep: its planes a coarse sample of the farthest view apart (its
+// natural planes), at least kFewestCoarseLabels of them; the range's margin beyond the depths
+// found, in natural planes.
+constexpr int kFewestCoarseLabels = 16;
+constexpr double kRangeMarginPlanes = 2.0;
+constexpr double kOutlierPixels = 0.4;  // the clean-up's threshold: nearest view's shift, samples
 constexpr double kOutlierColourSigma = 25.5;  // the clean-up's colour weight, 8-bit levels
 constexpr double kPlaneGapPixels =
     0.3;                              // the plane fit's neighbours: nearest view's shift, samples
@@ -73,9 +78,10 @@ CostVolumeOptions VolumeOptions(const PlaneSweepOptions& options, double scale) 
 
 // Planes from q_near to q_far (inverse depths), `step` apart or closer, within the label and
 // memory budgets.
-std::vector<double> Planes(double q_near, double q_far, double step, int samples) {
-  const int most = std::clamp(int(kVolumeBytes / (4.0 * samples)), kMinLabels, kMaxLabels);
-  const int n = std::clamp(int(std::ceil((q_near - q_far) / step)) + 1, kMinLabels, most);
+std::vector<double> Planes(double q_near, double q_far, double step, int samples,
+                           int fewest = kMinLabels) {
+  const int most = std::clamp(int(kVolumeBytes / (4.0 * samples)), fewest, kMaxLabels);
+  const int n = std::clamp(int(std::ceil((q_near - q_far) / step)) + 1, fewest, most);
   std::vector<double> q(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i) q[std::size_t(i)] = q_near + (q_far - q_near) * i / (n - 1);
   return q;
@@ -157,47 +163,69 @@ DepthRange EstimateDepthRange(const LightField& lf, int row, int col,
   const double factor = std::min({kCoarseFactor, shift_samples / 16.0, d.n_s / 16.0, d.n_t / 16.0});
   const SweepViews coarse(lf, row, col, coarse_options(std::max(1.0, factor)));
   const double q_near = 2.0 / coarse.st_depth(), q_far = 0.05 / coarse.st_depth();
-  const std::vector<double> q =
-      Planes(q_near, q_far, 1.0 / coarse.farthest_shift_per_q(), coarse.width() * coarse.height());
+  const std::vector<double> q = Planes(q_near, q_far, 1.0 / coarse.farthest_shift_per_q(),
+                                       coarse.width() * coarse.height(), kFewestCoarseLabels);
   const CostVolume volume = coarse.Sweep(q, 0.5, options.engine);
+  const int labels = int(q.size());
+  // A bracket of few natural planes (a coarse sample of the farthest view apart) is swept with
+  // kFewestCoarseLabels, closer together. What the range is found from is counted in natural planes
+  // all the same (the uniqueness's distances, the margin), so that the range is the same in the
+  // views' own samples whatever units the light field is in (an imported rig's zero-disparity
+  // plane in metres or in assumed units).
+  const double per_natural =
+      (labels - 1) / ((q_near - q_far) * coarse.farthest_shift_per_q());  // planes
+  const auto planes = [&](double natural) {
+    return std::max(1, int(std::lround(natural * per_natural)));
+  };
   // The matching cost alone decides here (no semi-global step: it would spread a repeating
   // texture's false match over a whole region), and only unique minima count.
-  const Choice choice = Choose(volume, volume, options.truncation, 1);
-  // Uniqueness beyond kBroadApart planes: a faint texture's minimum is shallow and wide, but
-  // single; a repeating texture's is not.
-  const Choice broad = Choose(volume, volume, options.truncation, kBroadApart);
+  const Choice choice = Choose(volume, volume, options.truncation, planes(1));
+  // Uniqueness beyond kBroadApart natural planes: a faint texture's minimum is shallow and wide,
+  // but single; a repeating texture's is not.
+  const Choice broad = Choose(volume, volume, options.truncation, planes(kBroadApart));
   std::vector<float> confident;
   for (int y = 0; y < choice.label.rows; ++y)
     for (int x = 0; x < choice.label.cols; ++x)
       if (choice.confidence.at<float>(y, x) >= kConfident)
         confident.push_back(choice.label.at<float>(y, x));
-  const int labels = int(q.size());
-  double lo = 0, hi = labels - 1;  // label indices: near .. far
+  // Label indices, near .. far: where the scene was found, then with the margin.
+  double found_lo = 0, found_hi = labels - 1;
   if (confident.size() >= 16) {
     std::sort(confident.begin(), confident.end());
-    lo = std::max(0.0, confident[confident.size() / 100] - 2.0);
-    hi = std::min(double(labels - 1), confident[confident.size() * 99 / 100] + 2.0);
+    found_lo = confident[confident.size() / 100];
+    found_hi = confident[confident.size() * 99 / 100];
     // A surface of faint texture (the `paper` scene's back wall seen from cameras 3.5 mm apart:
     // confidence about 0.13 all over) is seldom confident, but its samples agree on one label,
-    // and that label is a single minimum when looked at broadly: a label that kPopulousShare of
-    // the view's samples choose, each with a unique minimum beyond kBroadApart planes, is in
-    // the range. (A repeating texture's false match is populous too, but not unique.)
-    std::vector<int> votes(labels, 0);
+    // and that label is a single minimum when looked at broadly: a depth that kPopulousShare of
+    // the view's samples choose (counted in bins a natural plane wide), each with a unique
+    // minimum beyond kBroadApart natural planes, is in the range. (A repeating texture's false
+    // match is populous too, but not unique.)
+    const int bins = int(std::floor((labels - 1) / per_natural)) + 1;
+    std::vector<int> votes(std::size_t(bins), 0);
+    std::vector<double> sum(std::size_t(bins), 0.0);  // of the labels voted for: a bin's mean
     for (int y = 0; y < choice.label.rows; ++y)
       for (int x = 0; x < choice.label.cols; ++x)
-        if (broad.unique.at<float>(y, x) >= kConfident)
-          ++votes[std::clamp(int(std::lround(choice.label.at<float>(y, x))), 0, labels - 1)];
+        if (broad.unique.at<float>(y, x) >= kConfident) {
+          const float label = choice.label.at<float>(y, x);
+          const auto i =
+              std::size_t(std::clamp(int(std::lround(label / per_natural)), 0, bins - 1));
+          ++votes[i];
+          sum[i] += label;
+        }
     const double enough = kPopulousShare * double(choice.label.total());
-    for (int i = 0; i < labels; ++i)
-      if (votes[i] >= enough) {
-        lo = std::max(0.0, std::min(lo, i - 2.0));
-        hi = std::min(double(labels - 1), std::max(hi, i + 2.0));
+    for (std::size_t i = 0; i < votes.size(); ++i)
+      if (votes[i] > 0 && votes[i] >= enough) {
+        found_lo = std::min(found_lo, sum[i] / votes[i]);
+        found_hi = std::max(found_hi, sum[i] / votes[i]);
       }
   }
+  const double margin = kRangeMarginPlanes * per_natural;
+  const double lo = std::max(0.0, found_lo - margin);
+  const double hi = std::min(double(labels - 1), found_hi + margin);
   const auto depth_at = [&](double label) {
-    return 1.0 / (q_near + (q_far - q_near) * label / (labels - 1));
+    return 1.0 / (q_near + (q_far - q_near) * std::clamp(label, 0.0, labels - 1.0) / (labels - 1));
   };
-  return {depth_at(lo), depth_at(hi)};
+  return {depth_at(lo), depth_at(hi), depth_at(found_lo), depth_at(found_hi)};
 }
 
 namespace {
@@ -240,17 +268,19 @@ DepthMap EstimateDepth(const LightField& lf, int row, int col, const PlaneSweepO
   volume_options.same_views_at_every_plane = true;
   volume_options.adapt_to_noise = true;
   const double q_near = 1.0 / range.near_mm, q_far = 1.0 / range.far_mm;
+  // How far apart neighbouring views see the scene (not the margin the range adds to it), per
+  // the nearest view's shift a unit of inverse depth.
+  const double scene_q = 1.0 / range.scene_near_mm() - 1.0 / range.scene_far_mm();
   // Views narrowly apart see the same things: their brightness is made the reference's.
   volume_options.equalise_brightness =
-      (q_near - q_far) * GeometryOf(lf, row, col, volume_options).nearest_shift_per_q() <=
-      kEqualiseRange;
+      scene_q * GeometryOf(lf, row, col, volume_options).nearest_shift_per_q() <= kEqualiseRange;
   const SweepViews views(lf, row, col, volume_options);
   const std::vector<double> q =
       Planes(q_near, q_far, options.step_samples / views.farthest_shift_per_q(),
              views.width() * views.height());
   const int labels = int(q.size());
   const CostVolume volume =
-      views.Sweep(q, GradientShare((q_near - q_far) * views.nearest_shift_per_q()), options.engine);
+      views.Sweep(q, GradientShare(scene_q * views.nearest_shift_per_q()), options.engine);
   cv::Mat grey;
   cv::cvtColor(views.reference_rgb8(), grey, cv::COLOR_RGB2GRAY);
   // The nearest view's shift a plane, in samples.

@@ -60,7 +60,9 @@ DepthMap EstimateDepth(const LightField& lf, int row, int col, const PlaneSweepO
 // The depth range worth sweeping, from a coarse sweep of view (row, col) at a quarter of its
 // resolution over 0.5 to 20 times the st-plane's distance: the 1st to 99th percentile of its
 // confident depths, and any depth that 2% of its samples choose with a unique (if shallow)
-// minimum, widened by a margin.
+// minimum (`found_near_mm` .. `found_far_mm`), widened by a margin of two of the coarse sweep's
+// natural planes (a coarse sample of the farthest view apart): the same range in the views' own
+// samples whatever units the light field is in.
 DepthRange EstimateDepthRange(const LightField& lf, int row, int col,
                               const PlaneSweepOptions& options = {});
 
