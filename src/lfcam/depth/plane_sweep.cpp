@@ -172,8 +172,8 @@ DepthRange EstimateDepthRange(const LightField& lf, int row, int col,
   // all the same (the uniqueness's distances, the margin), so that the range is the same in the
   // views' own samples whatever units the light field is in (an imported rig's zero-disparity
   // plane in metres or in assumed units).
-  const double per_natural =
-      (labels - 1) / ((q_near - q_far) * coarse.farthest_shift_per_q());  // planes
+  const double natural_planes = (q_near - q_far) * coarse.farthest_shift_per_q();
+  const double per_natural = natural_planes > 0 ? (labels - 1) / natural_planes : 1.0;  // planes
   const auto planes = [&](double natural) {
     return std::max(1, int(std::lround(natural * per_natural)));
   };
