@@ -26,7 +26,7 @@ constexpr double kCoarseFactor = 4.0;
 constexpr float kConfident = 0.25f;      // confidence above which a sample counts for the range
 constexpr double kPopulousShare = 0.02;  // the share of the view's samples that makes a label
                                          // count for the range, unconfident but unique
-constexpr int kBroadApart = 4;           // planes apart for that uniqueness
+constexpr int kBroadApart = 4;           // natural planes apart for that uniqueness
 // The depth range's coarse sweep: its planes a coarse sample of the farthest view apart (its
 // natural planes), at least kFewestCoarseLabels of them; the range's margin beyond the depths
 // found, in natural planes.
@@ -268,8 +268,8 @@ DepthMap EstimateDepth(const LightField& lf, int row, int col, const PlaneSweepO
   volume_options.same_views_at_every_plane = true;
   volume_options.adapt_to_noise = true;
   const double q_near = 1.0 / range.near_mm, q_far = 1.0 / range.far_mm;
-  // How far apart neighbouring views see the scene (not the margin the range adds to it), per
-  // the nearest view's shift a unit of inverse depth.
+  // The scene's span in inverse depth, without the margin the range adds to it: how far apart
+  // neighbouring views see the scene decides how the views are matched (below).
   const double scene_q = 1.0 / range.scene_near_mm() - 1.0 / range.scene_far_mm();
   // Views narrowly apart see the same things: their brightness is made the reference's.
   volume_options.equalise_brightness =

@@ -301,7 +301,8 @@ TEST(RectifiedImport, TheDepthRangeFoundIsTheSameInPixelsWhateverUnitsWereAssume
     EXPECT_LE(found.back().second, true_far + 0.1);
   }
   // The same to within half a coarse plane (1.4 px here): the coarse sweep's planes lie where
-  // the bracket puts them. (Two of them, 2.4 and 2.8 px, then made the ranges differ by 2 px.)
+  // the bracket puts them. (The margin of two planes of whatever spacing the bracket gave made
+  // the two ranges differ by 0.55 px at the near end and 1.8 px at the far end.)
   EXPECT_NEAR(found[0].first, found[1].first, 0.5);
   EXPECT_NEAR(found[0].second, found[1].second, 0.5);
   fs::remove_all(dir);
