@@ -8,6 +8,7 @@ packages=(
   libeigen3-dev libtbb-dev libcli11-dev nlohmann-json3-dev libfmt-dev
   libzstd-dev libxxhash-dev zlib1g-dev
   libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev libopencv-calib3d-dev
+  libopencv-video-dev
   # ChArUco boards (the aruco module); Debian's package also brings VTK and Open MPI along.
   libopencv-contrib-dev
   libceres-dev libjpeg62-turbo-dev libpng-dev

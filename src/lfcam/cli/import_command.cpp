@@ -53,6 +53,8 @@ void PrintImport(const nlohmann::json& s) {
                s["st_distance_mm"].get<double>(), estimated, s["n_s"].get<int>(),
                s["n_t"].get<int>(), s["seconds"].get<double>());
   }
+  if (s.contains("axes") && s["axes"]["verdict"] != "agree")
+    fmt::print("  note: {}\n", s["axes"]["said"].get<std::string>());
   for (const auto& filled : s["filled"])
     fmt::print(stderr, "lfcam: warning: filled {}\n", filled.get<std::string>());
 }

@@ -11,6 +11,7 @@
 #include "lfcam/core/limits.h"
 #include "lfcam/core/progress.h"
 #include "lfcam/io/grid_import.h"
+#include "lfcam/io/parallax_axes.h"
 #include "lfcam/io/rectified_import.h"
 
 namespace lfcam::cli {
@@ -118,6 +119,57 @@ void ImportFlags::AddTo(CLI::App& command) {
       ->capture_default_str();
   command.add_flag("--allow-missing", allow_missing,
                    "Fill views missing from the grid from their nearest neighbours (recorded)");
+  command.add_flag("--flip-rows", flip_rows,
+                   "Take the grid's rows in reverse: for names whose row index or y counts the "
+                   "other way than lfcam reads it (docs/format.md)");
+  command.add_flag("--flip-cols", flip_cols,
+                   "Take the grid's columns in reverse: for names whose column index or x counts "
+                   "the other way than lfcam reads it");
+  command.add_flag("--keep-axes", keep_axes,
+                   "Keep the names' axes even where the views' own parallax says a row runs "
+                   "against a column (without this or a --flip flag the rows are then reversed, "
+                   "and said)");
+}
+
+nlohmann::json ImportFlags::CheckAxes(ImportedGrid& grid) const {
+  if (flip_rows || flip_cols) grid = WithAxesReversed(grid, flip_rows, flip_cols);
+  const ParallaxAxes axes = MeasureParallaxAxes(dir, grid);
+  nlohmann::json j = {{"verdict", ToString(axes.verdict)},
+                      {"points", axes.points},
+                      {"correlation", axes.correlation},
+                      {"flip_rows", flip_rows},
+                      {"flip_cols", flip_cols},
+                      {"said", Describe(axes)}};
+  // The flags say the user has chosen: what the views say is then reported, not acted on.
+  const bool chosen = flip_rows || flip_cols || keep_axes;
+  if (axes.verdict == AxesVerdict::kSwapped && !chosen)
+    throw Error(fmt::format(
+        "{}: {}; describe the grid in {} (docs/format.md), or give --keep-axes to import it as "
+        "named",
+        dir, Describe(axes), kViewsDescriptionName));
+  const bool rows =
+      axes.verdict == AxesVerdict::kRowsReversed || axes.verdict == AxesVerdict::kBothReversed;
+  const bool cols =
+      axes.verdict == AxesVerdict::kColsReversed || axes.verdict == AxesVerdict::kBothReversed;
+  if ((rows || cols) && !chosen) {
+    grid = WithAxesReversed(grid, rows, cols);
+    j["flip_rows"] = rows;
+    j["flip_cols"] = cols;
+    const char* which = rows && cols ? "rows and the columns are"
+                        : rows       ? "rows are"
+                                     : "columns are";
+    j["said"] =
+        grid.rig == RigModel::kParallel
+            ? fmt::format("{}: the {} taken in reverse (--keep-axes: as named)", Describe(axes),
+                          which)
+            : fmt::format(
+                  "{}: the rows are taken in reverse (as --flip-rows would), so that they agree "
+                  "with the columns. Which of the two was named the other way the views of a "
+                  "rectified rig cannot tell: if near and far come out exchanged, import with "
+                  "--flip-cols instead (--keep-axes: as named)",
+                  Describe(axes));
+  }
+  return j;
 }
 
 ImportedLightField ImportFlags::Run(bool quiet) const {
@@ -149,6 +201,7 @@ ImportedLightField ImportFlags::Run(bool quiet) const {
 
   ImportedGrid grid = ScanGridFolder(dir, allow_missing, grid_naming);
   if (o.rig) grid.rig = *o.rig;
+  const nlohmann::json axes = CheckAxes(grid);
   if (grid.rig == RigModel::kRectified) {
     for (const CLI::Option* flag : {st_res_, st_domain_, resampling_, st_windows_})
       if (flag && flag->count() > 0)
@@ -156,7 +209,9 @@ ImportedLightField ImportFlags::Run(bool quiet) const {
             "{}: a rectified rig's views are stored sample for sample, not resampled (--rig "
             "parallel resamples them)",
             flag->get_name()));
-    return ImportRectified(dir, grid, o, quiet);
+    ImportedLightField imported = ImportRectified(dir, grid, o, quiet);
+    imported.summary["axes"] = axes;
+    return imported;
   }
   if (o.pitch_mm && grid.positions_known)
     throw UsageError("--pitch-mm: the names give the cameras' positions");
@@ -174,7 +229,8 @@ ImportedLightField ImportFlags::Run(bool quiet) const {
   LightField lf = BuildLightField(dir, session.manifest, session.calibration, b, &report);
   progress.finish();
   return Imported(std::move(lf), grid, grid.rig, report.filled, report.seconds,
-                  {{"pitch_mm", grid.pitch_mm},
+                  {{"axes", axes},
+                   {"pitch_mm", grid.pitch_mm},
                    {"focal_px", session.focal_px},
                    {"st_distance_mm", session.st_distance_mm},
                    {"st_distance_estimated", session.st_distance_estimated},

@@ -12,6 +12,7 @@
 
 #include "lfcam/cli/keyword_arguments.h"
 #include "lfcam/core/lightfield.h"
+#include "lfcam/io/grid_import.h"
 
 namespace lfcam::cli {
 
@@ -29,6 +30,9 @@ struct ImportFlags {
                                  rig = "auto", st_windows = "views";
   double st_distance = 0, focal_px = 0, focal_mm = 0, sensor_width_mm = 0, pitch_mm = 0;
   bool allow_missing = false;
+  bool flip_rows = false;  // the rows taken in reverse (row index or y counting the other way)
+  bool flip_cols = false;  // the columns taken in reverse
+  bool keep_axes = false;  // the names' axes kept when the views' parallax disagrees with them
 
   // Every flag but the folder, --out, --compress and the printing ones (the command's).
   void AddTo(CLI::App& command);
@@ -37,6 +41,12 @@ struct ImportFlags {
   ImportedLightField Run(bool quiet) const;
 
  private:
+  // Checks the names' axes against the views' parallax (io/parallax_axes.h): reverses the rows
+  // or columns of `grid` where --flip-rows or --flip-cols says so; without them or --keep-axes,
+  // reverses the rows where the views disagree with the names, and throws lfcam::Error where
+  // rows and columns are exchanged. What it found and did, for the summary.
+  nlohmann::json CheckAxes(ImportedGrid& grid) const;
+
   CLI::Option *st_res_ = nullptr, *st_domain_ = nullptr, *resampling_ = nullptr,
               *st_windows_ = nullptr;
 };

@@ -121,7 +121,10 @@ const KeywordTable& ImportKeywordTable() {
                                    {"sensor_width_mm", K::kNumber},
                                    {"resampling", K::kText},
                                    {"chroma", K::kText},
-                                   {"allow_missing", K::kSwitch}}};
+                                   {"allow_missing", K::kSwitch},
+                                   {"flip_rows", K::kSwitch},
+                                   {"flip_cols", K::kSwitch},
+                                   {"keep_axes", K::kSwitch}}};
   return table;
 }
 

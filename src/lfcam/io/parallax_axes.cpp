@@ -1,0 +1,254 @@
+#include "lfcam/io/parallax_axes.h"
+
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+#include <opencv2/video/tracking.hpp>
+#include <optional>
+#include <vector>
+
+#include "lfcam/core/error.h"
+#include "lfcam/core/image_io.h"
+
+namespace lfcam {
+namespace fs = std::filesystem;
+
+namespace {
+
+// Views are tracked at most this many pixels a side (a larger view is shrunk first).
+constexpr int kTrackSide = 1024;
+constexpr int kFewestPoints = 40;
+// Tracking back must land this close to where a point started (px at the tracking scale).
+constexpr float kRoundTripPx = 0.5f;
+// |correlation| above which the axes are judged (agree, or one reversed).
+constexpr double kDecisive = 0.5;
+// A parallel rig's points' parallax counted for its sign from this many px, and taken as one
+// sign where this share of them agree.
+constexpr double kSignPx = 0.25;
+constexpr double kOneSign = 0.8;
+
+// The spread of `v`: its 10th to 90th percentile.
+double Spread(std::vector<double> v) {
+  if (v.size() < 10) return 0;
+  std::sort(v.begin(), v.end());
+  return v[v.size() * 9 / 10] - v[v.size() / 10];
+}
+
+// Pearson's correlation of x and y, each first clipped to its 2nd .. 98th percentile: a
+// mistracked point is a gross outlier, one of which moves Pearson's r. (Not a rank correlation,
+// nor a median's deviation: a scene of a few depths tracks as a few clusters of points, whose
+// ranks and medians within the largest say nothing.)
+double ClippedCorrelation(std::vector<double> x, std::vector<double> y) {
+  const auto clip = [](std::vector<double>& v) {
+    std::vector<double> sorted = v;
+    std::sort(sorted.begin(), sorted.end());
+    const double lo = sorted[sorted.size() * 2 / 100], hi = sorted[sorted.size() * 98 / 100];
+    for (double& a : v) a = std::clamp(a, lo, hi);
+  };
+  if (x.size() < 3) return 0;
+  clip(x), clip(y);
+  const double n = double(x.size());
+  double sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    sx += x[i], sy += y[i];
+    sxx += x[i] * x[i], syy += y[i] * y[i], sxy += x[i] * y[i];
+  }
+  const double vx = sxx - sx * sx / n, vy = syy - sy * sy / n, cxy = sxy - sx * sy / n;
+  return vx > 0 && vy > 0 ? cxy / std::sqrt(vx * vy) : 0;
+}
+
+// Parallel cameras (centred sensors): every point moves against its camera by f / Z > 0, so
+// each axis is judged on its own by the sign its points' parallax takes (those that move by
+// kSignPx or more: the rest may lie at infinity). Nullopt where either axis's points do not take
+// one sign (fewer than 80% of them), so that the two axes' correlation decides.
+std::optional<AxesVerdict> ParallaxSigns(const std::vector<double>& row_x,
+                                         const std::vector<double>& col_y, double dx, double dy) {
+  const auto share_against = [](const std::vector<double>& motion, double baseline) {
+    int against = 0, counted = 0;
+    for (double m : motion)
+      if (std::abs(m) >= kSignPx) ++counted, against += (m * baseline < 0);
+    return counted >= kFewestPoints ? std::optional(double(against) / counted) : std::nullopt;
+  };
+  // Along the row, a point moves against the camera (x); along the column, with it (y down).
+  const auto row = share_against(row_x, dx);
+  const auto col = share_against(col_y, -dy);
+  const auto reversed = [](double share) -> std::optional<bool> {
+    if (share >= kOneSign) return false;
+    if (share <= 1 - kOneSign) return true;
+    return std::nullopt;
+  };
+  if (!row || !col) return std::nullopt;
+  const auto cols_reversed = reversed(*row), rows_reversed = reversed(*col);
+  if (!cols_reversed || !rows_reversed) return std::nullopt;
+  if (*cols_reversed && *rows_reversed) return AxesVerdict::kBothReversed;
+  if (*cols_reversed) return AxesVerdict::kColsReversed;
+  return *rows_reversed ? AxesVerdict::kRowsReversed : AxesVerdict::kAgree;
+}
+
+}  // namespace
+
+ParallaxAxes MeasureParallaxAxes(const fs::path& dir, const ImportedGrid& g) {
+  ParallaxAxes out;
+  const bool grid_is_parallel = g.rig == RigModel::kParallel;
+  if (g.rows < 2 || g.cols < 2) {
+    out.why = "a single row or column of views";
+    return out;
+  }
+  const int rc = g.rows / 2, cc = g.cols / 2;
+  const GridView& centre = g.view(rc, cc);
+  const GridView& left = g.view(rc, std::max(0, cc - 2));
+  const GridView& right = g.view(rc, std::min(g.cols - 1, cc + 2));
+  const GridView& down = g.view(std::max(0, rc - 2), cc);
+  const GridView& up = g.view(std::min(g.rows - 1, rc + 2), cc);
+  out.views = fmt::format("{} against {} and {} (along its row), {} and {} (along its column)",
+                          centre.file, left.file, right.file, down.file, up.file);
+  for (const GridView* v : {&centre, &left, &right, &down, &up})
+    if (v->file.empty()) {
+      out.why = "a view it compares is missing";
+      return out;
+    }
+  const double dx = right.x_mm - left.x_mm, dy = up.y_mm - down.y_mm;
+  if (!(std::abs(dx) > 0) || !(std::abs(dy) > 0)) {
+    out.why = "the views it compares stand at one place";
+    return out;
+  }
+
+  const cv::Mat first = ReadImageGray8(dir / centre.file);
+  const double scale = std::min(1.0, double(kTrackSide) / std::max(first.cols, first.rows));
+  const auto read = [&](const GridView& v) {
+    cv::Mat grey = &v == &centre ? first : ReadImageGray8(dir / v.file);
+    if (scale < 1.0) cv::resize(grey, grey, {}, scale, scale, cv::INTER_AREA);
+    return grey;
+  };
+  const cv::Mat reference = read(centre);
+  std::vector<cv::Point2f> corners;
+  cv::goodFeaturesToTrack(reference, corners, 3000, 0.005, 4.0, cv::noArray(), 5);
+  const std::string too_few =
+      fmt::format("fewer than {} points of the centre view track", kFewestPoints);
+  if (int(corners.size()) < kFewestPoints) {
+    out.why = too_few;
+    return out;
+  }
+
+  // Where each corner lands in `view`, NaN where tracking there and back disagrees.
+  const auto track = [&](const GridView& v) {
+    const cv::Mat other = read(v);
+    std::vector<cv::Point2f> there, back;
+    std::vector<unsigned char> ok_there, ok_back;
+    std::vector<float> error;
+    const cv::Size window(21, 21);
+    cv::calcOpticalFlowPyrLK(reference, other, corners, there, ok_there, error, window, 3);
+    cv::calcOpticalFlowPyrLK(other, reference, there, back, ok_back, error, window, 3);
+    for (std::size_t i = 0; i < corners.size(); ++i)
+      if (!ok_there[i] || !ok_back[i] || cv::norm(back[i] - corners[i]) > kRoundTripPx)
+        there[i] = {NAN, NAN};
+    return there;
+  };
+  const auto l = track(left), r = track(right), d = track(down), u = track(up);
+  // Per unit of baseline, in px of the views as read: a camera moved right sees a point move
+  // left by f / Z (plus its sensor's shift), one moved up sees it move down.
+  std::vector<double> along_row, along_col, row_x, row_y, col_x, col_y;
+  for (std::size_t i = 0; i < corners.size(); ++i) {
+    if (std::isnan(l[i].x) || std::isnan(r[i].x) || std::isnan(d[i].x) || std::isnan(u[i].x))
+      continue;
+    const cv::Point2f row = r[i] - l[i], col = u[i] - d[i];
+    along_row.push_back(-row.x / dx);
+    along_col.push_back(col.y / dy);
+    row_x.push_back(row.x / scale), row_y.push_back(row.y / scale);
+    col_x.push_back(col.x / scale), col_y.push_back(col.y / scale);
+  }
+  out.points = int(along_row.size());
+  if (out.points < kFewestPoints) {
+    out.why = too_few;
+    return out;
+  }
+  out.correlation = ClippedCorrelation(along_row, along_col);
+  const double expected = std::min(Spread(row_x), Spread(col_y));
+  const double crossed = std::max(Spread(row_y), Spread(col_x));
+  out.spread_px = expected;
+  if (crossed >= kMinSpreadPx && crossed > 2 * std::max(Spread(row_x), Spread(col_y)))
+    out.verdict = AxesVerdict::kSwapped;
+  else if (expected < kMinSpreadPx)
+    out.why = fmt::format(
+        "the scene's depth moves its points by {:.2f} px at most between the views compared "
+        "({:.1f} needed)",
+        expected, kMinSpreadPx);
+  else if (const auto signs = grid_is_parallel ? ParallaxSigns(row_x, col_y, dx, dy) : std::nullopt)
+    out.verdict = *signs;
+  else if (out.correlation > kDecisive)
+    out.verdict = AxesVerdict::kAgree;
+  else if (out.correlation < -kDecisive)
+    out.verdict = AxesVerdict::kRowsReversed;
+  else
+    out.why = fmt::format("the parallax along the row and along the column correlate by {:+.2f}",
+                          out.correlation);
+  return out;
+}
+
+ImportedGrid WithAxesReversed(const ImportedGrid& grid, bool rows, bool cols) {
+  ImportedGrid g = grid;
+  for (int r = 0; r < g.rows; ++r)
+    for (int c = 0; c < g.cols; ++c) {
+      GridView v = grid.view(rows ? g.rows - 1 - r : r, cols ? g.cols - 1 - c : c);
+      v.row = r, v.col = c;
+      if (rows) v.y_mm = -v.y_mm;
+      if (cols) v.x_mm = -v.x_mm;
+      g.views[std::size_t(r * g.cols + c)] = v;
+    }
+  g.missing.clear();
+  for (const GridView& v : g.views)
+    if (v.file.empty()) g.missing.push_back(CameraLabel(v.row, v.col));
+  return g;
+}
+
+std::string ToString(AxesVerdict verdict) {
+  switch (verdict) {
+    case AxesVerdict::kAgree:
+      return "agree";
+    case AxesVerdict::kRowsReversed:
+      return "rows-reversed";
+    case AxesVerdict::kColsReversed:
+      return "cols-reversed";
+    case AxesVerdict::kBothReversed:
+      return "both-reversed";
+    case AxesVerdict::kSwapped:
+      return "swapped";
+    case AxesVerdict::kUndecided:
+      break;
+  }
+  return "undecided";
+}
+
+std::string Describe(const ParallaxAxes& a) {
+  const std::string measured = fmt::format(
+      "{} points tracked from {}: correlation {:+.2f} between the parallax along the row and "
+      "along the column",
+      a.points, a.views, a.correlation);
+  switch (a.verdict) {
+    case AxesVerdict::kAgree:
+      return "the views' parallax agrees with the names' axes (" + measured + ")";
+    case AxesVerdict::kRowsReversed:
+      return "the views' parallax along the columns runs against the names' rows (" + measured +
+             ")";
+    case AxesVerdict::kColsReversed:
+      return "the views' parallax along the rows runs against the names' columns: every point "
+             "moves with the camera, where parallel cameras see it move against it (" +
+             measured + ")";
+    case AxesVerdict::kBothReversed:
+      return "the views' parallax runs against both of the names' axes: every point moves with "
+             "the camera, where parallel cameras see it move against it (" +
+             measured + ")";
+    case AxesVerdict::kSwapped:
+      return fmt::format(
+          "the views along a named row move vertically and those along a named column "
+          "horizontally ({} points tracked from {}): the names' rows and columns are exchanged",
+          a.points, a.views);
+    case AxesVerdict::kUndecided:
+      break;
+  }
+  return "the names' axes not checked against the views' parallax: " + a.why;
+}
+
+}  // namespace lfcam

@@ -1,0 +1,218 @@
+// The names' axes against the views' own parallax: a synthetic rectified rig of two depths (a
+// textured wall behind the zero-disparity plane, a textured card in front of it), named by
+// indices the right way, with its rows counted the other way, with rows and columns exchanged,
+// and of a single depth; then `lfcam import` acting on what it finds, and the real data sets in
+// ../shared/data when present (each agrees with its names).
+#include "lfcam/io/parallax_axes.h"
+
+#include <fmt/core.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "lfcam/cli/cli_test_support.h"
+#include "lfcam/io/grid_import.h"
+
+namespace lfcam::parallax_axes_test {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr int kN = 5;  // cameras a side
+constexpr int kWidth = 200, kHeight = 160;
+// Disparities, px between neighbours: a rectified rig's wall behind its zero-disparity plane and
+// card in front of it; a parallel rig's both in front of infinity.
+struct Depths {
+  double wall = -1.0, card = 1.5;
+};
+constexpr Depths kParallelDepths{1.0, 2.5};
+
+enum class Naming {
+  kRight,
+  kRowsCountingUp,
+  kColumnsCountingLeft,
+  kBothCountingBack,
+  kRowsAndColumnsExchanged
+};
+
+// Texture: smoothed noise, the same for a seed.
+cv::Mat Texture(int seed) {
+  cv::Mat t(kHeight + 80, kWidth + 80, CV_8UC3);
+  cv::RNG rng{std::uint64_t(seed)};
+  rng.fill(t, cv::RNG::UNIFORM, 0, 256);
+  cv::GaussianBlur(t, t, {5, 5}, 1.5);
+  return t;
+}
+
+// The view of the camera at grid offset (dx right, dy up) from the centre: a point of
+// disparity d appears at (x - d dx, y + d dy) of where the centre camera sees it.
+cv::Mat View(const cv::Mat& wall, const cv::Mat& card, int dx, int dy, bool with_card,
+             Depths depths) {
+  const auto shifted = [&](const cv::Mat& t, double d) {
+    const cv::Matx23d m(1, 0, -40 - d * dx, 0, 1, -40 + d * dy);
+    cv::Mat out;
+    cv::warpAffine(t, out, m, {kWidth, kHeight}, cv::INTER_CUBIC, cv::BORDER_REFLECT);
+    return out;
+  };
+  cv::Mat view = shifted(wall, with_card ? depths.wall : 0.0);
+  if (with_card) {
+    const cv::Mat front = shifted(card, depths.card);
+    const cv::Rect rect(int(std::lround(60 - depths.card * dx)),
+                        int(std::lround(40 + depths.card * dy)), 80, 70);
+    front(rect).copyTo(view(rect));
+  }
+  return view;
+}
+
+// Writes the rig into a fresh folder as NAME_RR_CC.png (row 01 at the top when named right).
+fs::path WriteRig(const std::string& name, Naming naming, bool with_card = true,
+                  Depths depths = {}) {
+  const fs::path dir = fs::temp_directory_path() / (name + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const cv::Mat wall = Texture(1), card = Texture(2);
+  for (int top = 0; top < kN; ++top)  // rows from the top
+    for (int c = 0; c < kN; ++c) {
+      const int dx = c - kN / 2, dy = kN / 2 - top;
+      int rr = top + 1, cc = c + 1;
+      if (naming == Naming::kRowsCountingUp || naming == Naming::kBothCountingBack) rr = kN - top;
+      if (naming == Naming::kColumnsCountingLeft || naming == Naming::kBothCountingBack)
+        cc = kN - c;
+      if (naming == Naming::kRowsAndColumnsExchanged) std::swap(rr, cc);
+      cv::imwrite((dir / fmt::format("card_{:02d}_{:02d}.png", rr, cc)).string(),
+                  View(wall, card, dx, dy, with_card, depths));
+    }
+  return dir;
+}
+
+TEST(ParallaxAxes, TheViewsSayWhetherTheNamesRowsRunTheWayItsColumnsDo) {
+  const fs::path right = WriteRig("lfcam_axes_right_", Naming::kRight);
+  const ParallaxAxes agree = MeasureParallaxAxes(right, ScanGridFolder(right, false));
+  EXPECT_EQ(agree.verdict, AxesVerdict::kAgree) << Describe(agree);
+  EXPECT_GT(agree.correlation, 0.9);
+  EXPECT_GE(agree.points, 100);
+
+  const fs::path up = WriteRig("lfcam_axes_up_", Naming::kRowsCountingUp);
+  const ImportedGrid named = ScanGridFolder(up, false);
+  const ParallaxAxes reversed = MeasureParallaxAxes(up, named);
+  EXPECT_EQ(reversed.verdict, AxesVerdict::kRowsReversed) << Describe(reversed);
+  EXPECT_LT(reversed.correlation, -0.9);
+  // Reversed, the rows agree; so do both axes reversed (near and far exchanged: what the views
+  // cannot tell), and not the columns alone.
+  const ImportedGrid flipped = WithAxesReversed(named, true, false);
+  EXPECT_EQ(MeasureParallaxAxes(up, flipped).verdict, AxesVerdict::kAgree);
+  EXPECT_EQ(flipped.view(kN - 1, 0).file, "card_05_01.png");  // the top row, named counting up
+  EXPECT_EQ(flipped.view(0, 0).y_mm, -named.view(kN - 1, 0).y_mm);
+  EXPECT_EQ(MeasureParallaxAxes(up, WithAxesReversed(named, false, true)).verdict,
+            AxesVerdict::kAgree);
+  EXPECT_EQ(MeasureParallaxAxes(right, WithAxesReversed(named, true, true)).verdict,
+            AxesVerdict::kAgree);
+  EXPECT_EQ(MeasureParallaxAxes(right, WithAxesReversed(ScanGridFolder(right, false), false, true))
+                .verdict,
+            AxesVerdict::kRowsReversed);
+
+  const fs::path exchanged = WriteRig("lfcam_axes_exchanged_", Naming::kRowsAndColumnsExchanged);
+  const ParallaxAxes swapped = MeasureParallaxAxes(exchanged, ScanGridFolder(exchanged, false));
+  EXPECT_EQ(swapped.verdict, AxesVerdict::kSwapped) << Describe(swapped);
+  EXPECT_NE(Describe(swapped).find("exchanged"), std::string::npos);
+
+  // One depth: nothing to tell the axes by, and said so.
+  const fs::path flat = WriteRig("lfcam_axes_flat_", Naming::kRight, false);
+  const ParallaxAxes undecided = MeasureParallaxAxes(flat, ScanGridFolder(flat, false));
+  EXPECT_EQ(undecided.verdict, AxesVerdict::kUndecided);
+  EXPECT_NE(Describe(undecided).find("depth moves its points by"), std::string::npos)
+      << Describe(undecided);
+  // A single row, a missing view: not checked, and why.
+  ImportedGrid row = ScanGridFolder(right, false);
+  row.rows = 1;
+  row.views.resize(std::size_t(kN));
+  EXPECT_NE(Describe(MeasureParallaxAxes(right, row)).find("a single row"), std::string::npos);
+  ImportedGrid holed = ScanGridFolder(right, false);
+  holed.views[std::size_t(2 * kN + 4)].file.clear();  // the centre row's right end
+  EXPECT_NE(Describe(MeasureParallaxAxes(right, holed)).find("missing"), std::string::npos);
+  for (const fs::path& dir : {right, up, exchanged, flat}) fs::remove_all(dir);
+}
+
+TEST(ParallaxAxes, ParallelCamerasTellEachAxisOnItsOwn) {
+  // Every point moves against its camera: an axis along which they move with it is reversed.
+  const std::pair<Naming, AxesVerdict> cases[] = {
+      {Naming::kRight, AxesVerdict::kAgree},
+      {Naming::kRowsCountingUp, AxesVerdict::kRowsReversed},
+      {Naming::kColumnsCountingLeft, AxesVerdict::kColsReversed},
+      {Naming::kBothCountingBack, AxesVerdict::kBothReversed}};
+  for (const auto& [naming, verdict] : cases) {
+    const fs::path dir = WriteRig("lfcam_axes_parallel_", naming, true, kParallelDepths);
+    ImportedGrid grid = ScanGridFolder(dir, false);
+    grid.rig = RigModel::kParallel;
+    const ParallaxAxes axes = MeasureParallaxAxes(dir, grid);
+    EXPECT_EQ(axes.verdict, verdict) << int(naming) << ": " << Describe(axes);
+    // A rectified rig's views of the same tell only whether the two axes agree.
+    grid.rig = RigModel::kRectified;
+    EXPECT_EQ(MeasureParallaxAxes(dir, grid).verdict,
+              naming == Naming::kRight || naming == Naming::kBothCountingBack
+                  ? AxesVerdict::kAgree
+                  : AxesVerdict::kRowsReversed)
+        << int(naming);
+    fs::remove_all(dir);
+  }
+}
+
+TEST(ParallaxAxes, ImportTakesTheRowsInReverseWhereTheViewsSaySoAndSaysIt) {
+  const fs::path up = WriteRig("lfcam_axes_import_up_", Naming::kRowsCountingUp);
+  const std::string lf = (up / "out.lf").string();
+  auto run = testing::Lfcam(fmt::format("import {} --out {} --quiet", up.string(), lf));
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("the rows are taken in reverse"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("--flip-cols"), std::string::npos) << run.output;
+  run = testing::Lfcam(fmt::format("import {} --out {} --json", up.string(), lf));
+  ASSERT_EQ(run.status, 0) << run.output;
+  const auto summary = nlohmann::json::parse(run.output);
+  EXPECT_EQ(summary["axes"]["verdict"], "rows-reversed");
+  EXPECT_EQ(summary["axes"]["flip_rows"], true);
+  // The file named row 01 (counting up: the bottom row) is lfcam's row 0 once reversed.
+  for (const auto& v : summary["views"]) {
+    if (v["row"] == 0 && v["col"] == 0) {
+      EXPECT_EQ(v["file"], "card_01_01.png");
+    }
+  }
+  // Told, it keeps the names' axes (and says what the views say); told to flip, it does.
+  run = testing::Lfcam(fmt::format("import {} --out {} --json --keep-axes", up.string(), lf));
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_EQ(nlohmann::json::parse(run.output)["axes"]["flip_rows"], false);
+  run = testing::Lfcam(fmt::format("import {} --out {} --json --flip-rows", up.string(), lf));
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_EQ(nlohmann::json::parse(run.output)["axes"]["verdict"], "agree");
+
+  // Rows and columns exchanged: refused with the reason, nothing written; --keep-axes imports.
+  const fs::path exchanged =
+      WriteRig("lfcam_axes_import_exchanged_", Naming::kRowsAndColumnsExchanged);
+  const std::string refused = (exchanged / "out.lf").string();
+  run = testing::Lfcam(fmt::format("import {} --out {}", exchanged.string(), refused));
+  EXPECT_NE(run.status, 0);
+  EXPECT_NE(run.output.find("rows and columns are exchanged"), std::string::npos) << run.output;
+  EXPECT_FALSE(fs::exists(refused));
+  run = testing::Lfcam(
+      fmt::format("import {} --out {} --quiet --keep-axes", exchanged.string(), refused));
+  EXPECT_EQ(run.status, 0) << run.output;
+  fs::remove_all(up);
+  fs::remove_all(exchanged);
+}
+
+TEST(ParallaxAxes, TheRealDataSetsAgreeWithTheirNames) {
+  const fs::path data = fs::path(LFCAM_SOURCE_DIR) / "../shared/data";
+  int checked = 0;
+  for (const char* set : {"hci-antinous", "lytro-2067", "shop-center-9x9"}) {
+    if (!fs::is_directory(data / set)) continue;
+    const ParallaxAxes axes = MeasureParallaxAxes(data / set, ScanGridFolder(data / set, false));
+    EXPECT_EQ(axes.verdict, AxesVerdict::kAgree) << set << ": " << Describe(axes);
+    EXPECT_GT(axes.correlation, 0.8) << set;
+    ++checked;
+  }
+  if (checked == 0) GTEST_SKIP() << data << " is not here";
+}
+
+}  // namespace
+}  // namespace lfcam::parallax_axes_test
