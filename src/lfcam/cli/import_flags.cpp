@@ -1,6 +1,7 @@
 #include "lfcam/cli/import_flags.h"
 
 #include <fmt/core.h>
+#include <fmt/ranges.h>
 
 #include <cmath>
 #include <optional>
@@ -125,50 +126,66 @@ void ImportFlags::AddTo(CLI::App& command) {
   command.add_flag("--flip-cols", flip_cols,
                    "Take the grid's columns in reverse: for names whose column index or x counts "
                    "the other way than lfcam reads it");
+  command.add_flag("--swap-axes", swap_axes,
+                   "Take the names' rows as columns and their columns as rows: for names whose "
+                   "two indices (or two numbers) come the other way round (before any --flip)");
   command.add_flag("--keep-axes", keep_axes,
                    "Keep the names' axes even where the views' own parallax says a row runs "
-                   "against a column (without this or a --flip flag the rows are then reversed, "
-                   "and said)");
+                   "against a column (without this or a --flip or --swap flag lfcam does what "
+                   "the views say, and says so)");
 }
 
 nlohmann::json ImportFlags::CheckAxes(ImportedGrid& grid) const {
+  if (swap_axes) grid = WithAxesSwapped(grid);
   if (flip_rows || flip_cols) grid = WithAxesReversed(grid, flip_rows, flip_cols);
-  const ParallaxAxes axes = MeasureParallaxAxes(dir, grid);
+  ParallaxAxes axes = MeasureParallaxAxes(dir, grid);
   nlohmann::json j = {{"verdict", ToString(axes.verdict)},
                       {"points", axes.points},
                       {"correlation", axes.correlation},
+                      {"swap_axes", swap_axes},
                       {"flip_rows", flip_rows},
-                      {"flip_cols", flip_cols},
-                      {"said", Describe(axes)}};
+                      {"flip_cols", flip_cols}};
+  std::vector<std::string> said{Describe(axes)};
   // The flags say the user has chosen: what the views say is then reported, not acted on.
-  const bool chosen = flip_rows || flip_cols || keep_axes;
-  if (axes.verdict == AxesVerdict::kSwapped && !chosen)
-    throw Error(fmt::format(
-        "{}: {}; describe the grid in {} (docs/format.md), or give --keep-axes to import it as "
-        "named",
-        dir, Describe(axes), kViewsDescriptionName));
+  if (swap_axes || flip_rows || flip_cols || keep_axes) {
+    j["said"] = said.front();
+    return j;
+  }
+  if (axes.verdict == AxesVerdict::kSwapped) {
+    grid = WithAxesSwapped(grid);
+    j["swap_axes"] = true;
+    said.push_back(
+        "the names' rows are taken as columns and their columns as rows (as --swap-axes would)");
+    axes = MeasureParallaxAxes(dir, grid);
+    if (axes.verdict == AxesVerdict::kSwapped || axes.verdict == AxesVerdict::kUndecided)
+      throw Error(
+          fmt::format("{}: {}; exchanged, they do not agree either ({}): describe the grid "
+                      "in {} (docs/format.md), or give --keep-axes to import it as named",
+                      dir, said.front(), Describe(axes), kViewsDescriptionName));
+  }
   const bool rows =
       axes.verdict == AxesVerdict::kRowsReversed || axes.verdict == AxesVerdict::kBothReversed;
   const bool cols =
       axes.verdict == AxesVerdict::kColsReversed || axes.verdict == AxesVerdict::kBothReversed;
-  if ((rows || cols) && !chosen) {
+  if (rows || cols) {
     grid = WithAxesReversed(grid, rows, cols);
     j["flip_rows"] = rows;
     j["flip_cols"] = cols;
-    const char* which = rows && cols ? "rows and the columns are"
-                        : rows       ? "rows are"
-                                     : "columns are";
-    j["said"] =
+    if (said.size() > 1) said.push_back(Describe(axes));
+    said.push_back(
         grid.rig == RigModel::kParallel
-            ? fmt::format("{}: the {} taken in reverse (--keep-axes: as named)", Describe(axes),
-                          which)
+            ? fmt::format("the {} taken in reverse", rows && cols ? "rows and the columns are"
+                                                     : rows       ? "rows are"
+                                                                  : "columns are")
             : fmt::format(
-                  "{}: the rows are taken in reverse (as --flip-rows would), so that they agree "
-                  "with the columns. Which of the two was named the other way the views of a "
+                  "the rows are taken in reverse (as --flip-rows would), so that they agree with "
+                  "the columns. Which of the two was named the other way the views of a "
                   "rectified rig cannot tell: if near and far come out exchanged, import with "
-                  "--flip-cols instead (--keep-axes: as named)",
-                  Describe(axes));
+                  "{}--flip-cols instead",
+                  said.size() > 2 ? "--swap-axes " : ""));
   }
+  if (said.size() > 1) said.back() += " (--keep-axes: as named)";
+  j["said"] = fmt::format("{}", fmt::join(said, "; "));
   return j;
 }
 

@@ -32,6 +32,7 @@ struct ImportFlags {
   bool allow_missing = false;
   bool flip_rows = false;  // the rows taken in reverse (row index or y counting the other way)
   bool flip_cols = false;  // the columns taken in reverse
+  bool swap_axes = false;  // the names' rows taken as columns and columns as rows (first)
   bool keep_axes = false;  // the names' axes kept when the views' parallax disagrees with them
 
   // Every flag but the folder, --out, --compress and the printing ones (the command's).
@@ -41,10 +42,11 @@ struct ImportFlags {
   ImportedLightField Run(bool quiet) const;
 
  private:
-  // Checks the names' axes against the views' parallax (io/parallax_axes.h): reverses the rows
-  // or columns of `grid` where --flip-rows or --flip-cols says so; without them or --keep-axes,
-  // reverses the rows where the views disagree with the names, and throws lfcam::Error where
-  // rows and columns are exchanged. What it found and did, for the summary.
+  // Checks the names' axes against the views' parallax (io/parallax_axes.h): exchanges the rows
+  // and columns of `grid`, then reverses its rows or columns, where --swap-axes, --flip-rows or
+  // --flip-cols say so; without them or --keep-axes, does what the views say (exchanged axes
+  // swapped back, then a reversed axis reversed), and throws lfcam::Error where the views agree
+  // with no reading. What it found and did, for the summary.
   nlohmann::json CheckAxes(ImportedGrid& grid) const;
 
   CLI::Option *st_res_ = nullptr, *st_domain_ = nullptr, *resampling_ = nullptr,

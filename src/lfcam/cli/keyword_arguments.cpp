@@ -124,6 +124,7 @@ const KeywordTable& ImportKeywordTable() {
                                    {"allow_missing", K::kSwitch},
                                    {"flip_rows", K::kSwitch},
                                    {"flip_cols", K::kSwitch},
+                                   {"swap_axes", K::kSwitch},
                                    {"keep_axes", K::kSwitch}}};
   return table;
 }

@@ -7,6 +7,8 @@
 #include <opencv2/imgproc.hpp>
 #include <opencv2/video/tracking.hpp>
 #include <optional>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "lfcam/core/error.h"
@@ -195,6 +197,22 @@ ImportedGrid WithAxesReversed(const ImportedGrid& grid, bool rows, bool cols) {
       v.row = r, v.col = c;
       if (rows) v.y_mm = -v.y_mm;
       if (cols) v.x_mm = -v.x_mm;
+      g.views[std::size_t(r * g.cols + c)] = v;
+    }
+  g.missing.clear();
+  for (const GridView& v : g.views)
+    if (v.file.empty()) g.missing.push_back(CameraLabel(v.row, v.col));
+  return g;
+}
+
+ImportedGrid WithAxesSwapped(const ImportedGrid& grid) {
+  ImportedGrid g = grid;
+  std::swap(g.rows, g.cols);
+  for (int r = 0; r < g.rows; ++r)
+    for (int c = 0; c < g.cols; ++c) {
+      GridView v = grid.view(grid.rows - 1 - c, grid.cols - 1 - r);
+      v.row = r, v.col = c;
+      std::tie(v.x_mm, v.y_mm) = std::pair{-v.y_mm, -v.x_mm};
       g.views[std::size_t(r * g.cols + c)] = v;
     }
   g.missing.clear();

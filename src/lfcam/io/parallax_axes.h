@@ -62,6 +62,11 @@ inline constexpr double kMinSpreadPx = 0.5;
 // rows - 1 - r (its column c, cols - 1 - c).
 ImportedGrid WithAxesReversed(const ImportedGrid& grid, bool rows, bool cols);
 
+// `grid` with its rows and columns exchanged, as if the names' two indices (or two numbers) were
+// swapped: the view named at row i from the top and column j from the left taken as row j and
+// column i; in positions, (x, y) becomes (-y, -x).
+ImportedGrid WithAxesSwapped(const ImportedGrid& grid);
+
 // The verdict in a word ("agree", "rows-reversed", "cols-reversed", "both-reversed", "swapped",
 // "undecided"), and in words, for
 // the import's notes.

@@ -1,7 +1,8 @@
 // The names' axes against the views' own parallax: a synthetic rectified rig of two depths (a
 // textured wall behind the zero-disparity plane, a textured card in front of it), named by
-// indices the right way, with its rows counted the other way, with rows and columns exchanged,
-// and of a single depth; then `lfcam import` acting on what it finds, and the real data sets in
+// indices the right way, with its rows (columns, both) counted the other way, with rows and
+// columns exchanged, and of a single depth, as rectified and as parallel cameras; then `lfcam
+// import` acting on what it finds, and the real data sets in
 // ../shared/data when present (each agrees with its names).
 #include "lfcam/io/parallax_axes.h"
 
@@ -118,6 +119,10 @@ TEST(ParallaxAxes, TheViewsSayWhetherTheNamesRowsRunTheWayItsColumnsDo) {
   const ParallaxAxes swapped = MeasureParallaxAxes(exchanged, ScanGridFolder(exchanged, false));
   EXPECT_EQ(swapped.verdict, AxesVerdict::kSwapped) << Describe(swapped);
   EXPECT_NE(Describe(swapped).find("exchanged"), std::string::npos);
+  // Swapped back (the names' two indices exchanged), they agree.
+  EXPECT_EQ(
+      MeasureParallaxAxes(exchanged, WithAxesSwapped(ScanGridFolder(exchanged, false))).verdict,
+      AxesVerdict::kAgree);
 
   // One depth: nothing to tell the axes by, and said so.
   const fs::path flat = WriteRig("lfcam_axes_flat_", Naming::kRight, false);
@@ -160,7 +165,7 @@ TEST(ParallaxAxes, ParallelCamerasTellEachAxisOnItsOwn) {
   }
 }
 
-TEST(ParallaxAxes, ImportTakesTheRowsInReverseWhereTheViewsSaySoAndSaysIt) {
+TEST(ParallaxAxes, ImportTakesTheAxesTheWayTheViewsSayAndSaysIt) {
   const fs::path up = WriteRig("lfcam_axes_import_up_", Naming::kRowsCountingUp);
   const std::string lf = (up / "out.lf").string();
   auto run = testing::Lfcam(fmt::format("import {} --out {} --quiet", up.string(), lf));
@@ -186,17 +191,29 @@ TEST(ParallaxAxes, ImportTakesTheRowsInReverseWhereTheViewsSaySoAndSaysIt) {
   ASSERT_EQ(run.status, 0) << run.output;
   EXPECT_EQ(nlohmann::json::parse(run.output)["axes"]["verdict"], "agree");
 
-  // Rows and columns exchanged: refused with the reason, nothing written; --keep-axes imports.
+  // Rows and columns exchanged in the names: taken the other way round, and said.
   const fs::path exchanged =
       WriteRig("lfcam_axes_import_exchanged_", Naming::kRowsAndColumnsExchanged);
-  const std::string refused = (exchanged / "out.lf").string();
-  run = testing::Lfcam(fmt::format("import {} --out {}", exchanged.string(), refused));
-  EXPECT_NE(run.status, 0);
-  EXPECT_NE(run.output.find("rows and columns are exchanged"), std::string::npos) << run.output;
-  EXPECT_FALSE(fs::exists(refused));
+  const std::string swapped = (exchanged / "out.lf").string();
+  run = testing::Lfcam(fmt::format("import {} --out {} --quiet", exchanged.string(), swapped));
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("taken as columns"), std::string::npos) << run.output;
+  run = testing::Lfcam(fmt::format("import {} --out {} --json", exchanged.string(), swapped));
+  ASSERT_EQ(run.status, 0) << run.output;
+  const auto exchanged_summary = nlohmann::json::parse(run.output);
+  EXPECT_EQ(exchanged_summary["axes"]["verdict"], "swapped");
+  EXPECT_EQ(exchanged_summary["axes"]["swap_axes"], true);
+  EXPECT_EQ(exchanged_summary["axes"]["flip_rows"], false);
+  // The bottom-left camera (top row kN - 1 from the top, column 0) was named card_01_05.
+  for (const auto& v : exchanged_summary["views"]) {
+    if (v["row"] == 0 && v["col"] == 0) {
+      EXPECT_EQ(v["file"], "card_01_05.png");
+    }
+  }
   run = testing::Lfcam(
-      fmt::format("import {} --out {} --quiet --keep-axes", exchanged.string(), refused));
-  EXPECT_EQ(run.status, 0) << run.output;
+      fmt::format("import {} --out {} --json --keep-axes", exchanged.string(), swapped));
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_EQ(nlohmann::json::parse(run.output)["axes"]["swap_axes"], false);
   fs::remove_all(up);
   fs::remove_all(exchanged);
 }
