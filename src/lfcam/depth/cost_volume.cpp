@@ -545,6 +545,37 @@ cv::Matx33d SweepViews::Homography(const View& view, double depth) const {
   return m;
 }
 
+std::optional<std::vector<SweepViews::ReadShift>> SweepViews::ReadShifts() const {
+  // Two planes' shifts give the line every plane's lies on (a shift is linear in 1/D).
+  const double d1 = 0.5 * geometry_.st_depth, d2 = 2.0 * geometry_.st_depth;
+  std::vector<ReadShift> shifts;
+  for (const View& v : views_) {
+    const cv::Matx33d m1 = Homography(v, d1), m2 = Homography(v, d2);
+    if (!IsShift(m1) || !IsShift(m2)) return std::nullopt;
+    const cv::Point2d t1(m1(0, 2), m1(1, 2)), t2(m2(0, 2), m2(1, 2));
+    const cv::Point2d per_q = (t1 - t2) * (1.0 / (1.0 / d1 - 1.0 / d2));
+    shifts.push_back({t1 - per_q * (1.0 / d1), per_q});
+  }
+  return shifts;
+}
+
+std::array<cv::Mat, 3> SweepViews::Colour(int i) const {
+  const int w = geometry_.width, h = geometry_.height;
+  const std::size_t plane = std::size_t(w) * h;
+  std::array<cv::Mat, 3> rgb;
+  for (int c = 0; c < 3; ++c) {
+    if (i < 0) {
+      cv::Mat(h, w, CV_32FC1, const_cast<float*>(reference_.channels.data()) + c * plane)
+          .copyTo(rgb[std::size_t(c)]);
+    } else {
+      const View& v = views_[std::size_t(i)];
+      cv::Mat(h, w, CV_16SC1, const_cast<std::int16_t*>(v.packed.data()) + c * plane)
+          .convertTo(rgb[std::size_t(c)], CV_32F, 1.0 / kPacked[std::size_t(c)]);
+    }
+  }
+  return rgb;
+}
+
 CostVolume SweepViews::Sweep(const std::vector<double>& q, double gradient_share,
                              CostVolumeEngine* engine) const {
   const int w = geometry_.width, h = geometry_.height, n = int(q.size());

@@ -23,6 +23,7 @@
 #include <cstdint>
 #include <memory>
 #include <opencv2/core.hpp>
+#include <optional>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -194,6 +195,19 @@ class SweepViews {
   // With an `engine`, a sweep whose views are all read shifted is computed by it.
   CostVolume Sweep(const std::vector<double>& q, double gradient_share = 0.5,
                    CostVolumeEngine* engine = nullptr) const;
+
+  // Every view but the reference, in the order of their index below.
+  int view_count() const { return int(views_.size()); }
+  // Where view i reads the reference's sample (x, y) at the plane of inverse depth q (1/mm), for
+  // views read shifted (the st-plane parallel to the array's plane): (x, y) + offset + q per_q,
+  // in matching samples. Nullopt where a view is warped by a homography.
+  struct ReadShift {
+    cv::Point2d offset, per_q;
+  };
+  std::optional<std::vector<ReadShift>> ReadShifts() const;
+  // View i's colour planes (R, G, B: sRGB 0 .. 1, its brightness made the reference's where the
+  // sweep does) at the matching resolution; i = -1: the reference's.
+  std::array<cv::Mat, 3> Colour(int i) const;
 
  private:
   struct View {

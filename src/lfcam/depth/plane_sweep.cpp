@@ -15,6 +15,7 @@
 #include "lfcam/depth/cost_volume.h"
 #include "lfcam/depth/local_planes.h"
 #include "lfcam/depth/semi_global.h"
+#include "lfcam/depth/silhouette_visibility.h"
 #include "lfcam/depth/weighted_median.h"
 
 namespace lfcam {
@@ -332,6 +333,8 @@ DepthMap EstimateDepth(const LightField& lf, int row, int col, const PlaneSweepO
         if (choice.confidence.at<float>(y, x) >= kWidePlaneConfidence)
           choice.label.at<float>(y, x) = second.label.at<float>(y, x);
   }
+  if (options.silhouette_visibility)
+    RefineSilhouettesByVisibility(views, q, per_plane, choice.label);
   DepthMap map;
   map.row = row;
   map.col = col;

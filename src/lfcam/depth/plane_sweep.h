@@ -11,7 +11,9 @@
 // weighted median of its neighbours of the same colour) take that median, and each sample then
 // takes the plane through its neighbours' labels (depth/local_planes.h); a sample of little
 // confidence, the plane through a neighbourhood twice as wide. Then semi-global matching is run
-// again with the fitted planes' slant as what its paths expect, and the steps after it.
+// again with the fitted planes' slant as what its paths expect, and the steps after it. Last,
+// the samples beside the silhouettes are re-decided by what each view can see there
+// (depth/silhouette_visibility.h).
 //
 // Confidence: how far the chosen plane's own matching cost lies below the sample's mean cost
 // over all planes (1 - best / mean, against a floor): near 1 for a clear minimum, 0 where the
@@ -48,6 +50,9 @@ struct PlaneSweepOptions {
   // where the first pass was confident (docs/depth.md; not at reach 1, `--all`'s default,
   // where it costs a third more time for a tenth of a point).
   bool slant_prior = true;
+  // Last, the samples beside the silhouettes re-decided by what each view can see
+  // (depth/silhouette_visibility.h).
+  bool silhouette_visibility = true;
   // Where given, the cost volumes are computed by it (depth/gl_cost_volume.h: on the GPU); the
   // rest of the estimate stays on the CPU.
   CostVolumeEngine* engine = nullptr;

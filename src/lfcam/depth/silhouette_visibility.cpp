@@ -1,0 +1,168 @@
+#include "lfcam/depth/silhouette_visibility.h"
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <opencv2/imgproc.hpp>
+
+namespace lfcam {
+namespace {
+
+// A plane's bilinear read at (x, y); false outside the plane.
+inline bool BilinearAt(const cv::Mat& m, double x, double y, float* out) {
+  if (!(x >= 0 && y >= 0 && x <= m.cols - 1 && y <= m.rows - 1)) return false;
+  const int x0 = std::min(int(x), m.cols - 2), y0 = std::min(int(y), m.rows - 2);
+  const float fx = float(x - x0), fy = float(y - y0);
+  const float* a = m.ptr<float>(y0) + x0;
+  const float* b = m.ptr<float>(y0 + 1) + x0;
+  *out = (a[0] * (1 - fx) + a[1] * fx) * (1 - fy) + (b[0] * (1 - fx) + b[1] * fx) * fy;
+  return true;
+}
+
+// A sample on the near side of a depth edge, and the two depths it is judged between.
+struct EdgeSample {
+  int x = 0, y = 0;
+  float near = 0, far = 0;          // labels (near: the smaller)
+  std::array<double, 2> sum{0, 0};  // the views' costs: [0] near, [1] far
+  std::array<int, 2> seen{0, 0};    // the views that see the point there
+};
+
+}  // namespace
+
+int RefineSilhouettesByVisibility(const SweepViews& views, const std::vector<double>& q,
+                                  double samples_per_label, cv::Mat& label,
+                                  const SilhouetteVisibilityOptions& o) {
+  const auto shifts = views.ReadShifts();
+  const int n = int(q.size());
+  if (!shifts || n < 2 || !(samples_per_label > 0) || views.view_count() == 0) return 0;
+  const int w = label.cols, h = label.rows;
+  const double q0 = q.front(), dq = (q.back() - q.front()) / (n - 1);
+  const float edge = float(o.edge_samples / samples_per_label);
+  const float tolerance = float(o.tolerance_samples / samples_per_label);
+  const int fewest_views = std::max(2, views.view_count() / 10);
+  // The colour planes, read through the sweep's Gaussian where its views are.
+  const auto colour = [&](int i) {
+    std::array<cv::Mat, 3> rgb = views.Colour(i);
+    if (views.read_sigma() > 0)
+      for (cv::Mat& m : rgb) cv::GaussianBlur(m, m, {0, 0}, views.read_sigma());
+    return rgb;
+  };
+  const std::array<cv::Mat, 3> reference = colour(-1);
+  std::vector<std::array<cv::Mat, 3>> view_colour;
+  for (int i = 0; i < views.view_count(); ++i) view_colour.push_back(colour(i));
+  const cv::Mat kernel = cv::Mat::ones(o.window, o.window, CV_8U);
+  int changed = 0;
+  cv::Mat moved_here(h, w, CV_8U), near_moved;
+  for (int pass = 0; pass < o.passes; ++pass) {
+    cv::Mat nearest, farthest, jump(h, w, CV_32F, cv::Scalar(0));
+    cv::erode(label, nearest, kernel);
+    cv::dilate(label, farthest, kernel);
+    // A depth edge is a jump between neighbouring samples, not a slope: a surface seen at a
+    // grazing angle spans many planes within the window without one.
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        const float l = label.at<float>(y, x);
+        float& j = jump.at<float>(y, x);
+        if (x + 1 < w) j = std::max(j, std::abs(label.at<float>(y, x + 1) - l));
+        if (y + 1 < h) j = std::max(j, std::abs(label.at<float>(y + 1, x) - l));
+      }
+    cv::dilate(jump, jump, kernel);
+    std::vector<EdgeSample> candidates;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        const float l = label.at<float>(y, x), a = nearest.at<float>(y, x),
+                    b = farthest.at<float>(y, x);
+        // After the first pass, only where the last one moved a sample next to it.
+        if (jump.at<float>(y, x) > edge && l - a < b - l &&
+            (pass == 0 || near_moved.at<unsigned char>(y, x)))
+          candidates.push_back({x, y, l, b});
+      }
+    if (candidates.empty()) break;
+    // Each view on its own (in parallel): its z-buffer, then the candidates' costs read in it.
+    struct Sums {
+      std::vector<std::array<double, 2>> sum;
+      std::vector<std::array<int, 2>> seen;
+      cv::Mat hidden_by;  // the nearest label splatted there
+    };
+    tbb::enumerable_thread_specific<Sums> per_thread([&] {
+      return Sums{std::vector<std::array<double, 2>>(candidates.size(), {0, 0}),
+                  std::vector<std::array<int, 2>>(candidates.size(), {0, 0}),
+                  cv::Mat(h, w, CV_32F)};
+    });
+    tbb::parallel_for(0, views.view_count(), [&](int i) {
+      Sums& sums = per_thread.local();
+      cv::Mat& hidden_by = sums.hidden_by;
+      const SweepViews::ReadShift& s = (*shifts)[std::size_t(i)];
+      hidden_by.setTo(std::numeric_limits<float>::infinity());
+      for (int y = 0; y < h; ++y) {
+        const float* row = label.ptr<float>(y);
+        for (int x = 0; x < w; ++x) {
+          const double qq = q0 + dq * row[x];
+          const int tx = int(std::lround(x + s.offset.x + qq * s.per_q.x));
+          const int ty = int(std::lround(y + s.offset.y + qq * s.per_q.y));
+          if (tx < 0 || ty < 0 || tx >= w || ty >= h) continue;
+          float& z = hidden_by.at<float>(ty, tx);
+          z = std::min(z, row[x]);
+        }
+      }
+      // A point splatted between samples leaves holes: each takes its neighbours' nearest.
+      cv::erode(hidden_by, hidden_by, cv::Mat::ones(2, 2, CV_8U));
+      const std::array<cv::Mat, 3>& v = view_colour[std::size_t(i)];
+      for (std::size_t k = 0; k < candidates.size(); ++k) {
+        const EdgeSample& c = candidates[k];
+        for (int side = 0; side < 2; ++side) {
+          const float hypothesis = side == 0 ? c.near : c.far;
+          const double qq = q0 + dq * hypothesis;
+          const double px = c.x + s.offset.x + qq * s.per_q.x;
+          const double py = c.y + s.offset.y + qq * s.per_q.y;
+          const int tx = int(std::lround(px)), ty = int(std::lround(py));
+          if (tx < 0 || ty < 0 || tx >= w || ty >= h) continue;
+          if (hidden_by.at<float>(ty, tx) < hypothesis - tolerance) continue;
+          double cost = 0;
+          int counted = 0;
+          for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx) {
+              const int rx = c.x + dx, ry = c.y + dy;
+              if (rx < 0 || ry < 0 || rx >= w || ry >= h) continue;
+              float d = 0, read = 0;
+              bool inside = true;
+              for (int ch = 0; ch < 3 && inside; ++ch) {
+                inside = BilinearAt(v[std::size_t(ch)], px + dx, py + dy, &read);
+                d += std::abs(read - reference[std::size_t(ch)].at<float>(ry, rx));
+              }
+              if (!inside) continue;
+              cost += std::min(d / 3.0, o.color_cap);
+              ++counted;
+            }
+          if (counted == 0) continue;
+          sums.sum[k][std::size_t(side)] += cost / counted;
+          ++sums.seen[k][std::size_t(side)];
+        }
+      }
+    });
+    for (const Sums& sums : per_thread)
+      for (std::size_t k = 0; k < candidates.size(); ++k)
+        for (int side = 0; side < 2; ++side) {
+          candidates[k].sum[std::size_t(side)] += sums.sum[k][std::size_t(side)];
+          candidates[k].seen[std::size_t(side)] += sums.seen[k][std::size_t(side)];
+        }
+    int moved = 0;
+    moved_here.setTo(0);
+    for (const EdgeSample& c : candidates)
+      if (c.seen[0] >= fewest_views && c.seen[1] >= fewest_views &&
+          c.sum[1] / c.seen[1] < c.sum[0] / c.seen[0]) {
+        label.at<float>(c.y, c.x) = c.far;
+        moved_here.at<unsigned char>(c.y, c.x) = 1;
+        ++moved;
+      }
+    cv::dilate(moved_here, near_moved, kernel);
+    if (moved == 0) break;
+  }
+  return changed;
+}
+
+}  // namespace lfcam

@@ -1,0 +1,40 @@
+#pragma once
+// The silhouettes re-decided by what each view can see (docs/depth.md, "Visibility at the
+// silhouettes").
+//
+// The sweep's costs are over sub-arrays of views, never over exactly the views that see a point:
+// beside a near object's silhouette a sample of the far surface behind is matched well at the
+// near object's depth too, and the near object comes out larger than it is (a sample or two of
+// "fattening" along its silhouettes). Given the map, each view's visibility is known: a point at
+// depth D is hidden from a view where the map puts something nearer on that view's line through
+// it. So each sample on the near side of a depth edge (a jump between neighbouring samples, not a
+// slope) is judged between its own depth and the farthest one around it, by their mean matching
+// cost over the views that see the point at each (the map's own samples splatted into every
+// view, nearest first: a z-buffer); it takes the far depth where that matches better. Only
+// towards the far side: the near side is seen by every view that sees its neighbours, so the
+// sweep's own choice stands there. A few passes, each over the samples next to those the last
+// one moved.
+#include <opencv2/core.hpp>
+#include <vector>
+
+#include "lfcam/depth/cost_volume.h"
+
+namespace lfcam {
+
+struct SilhouetteVisibilityOptions {
+  int window = 3;  // a depth edge's two sides: the farthest label within, and the sample's own
+  int passes = 3;  // at most: each with the map the last one left, until no sample moves
+  double edge_samples = 0.5;       // a depth edge: its sides this far apart (nearest view's shift)
+  double tolerance_samples = 0.3;  // nearer than this (nearest view's shift) hides a point
+  double color_cap = 0.1;          // the colour cost's truncation (sRGB 0 .. 1)
+};
+
+// Re-decides `label` (CV_32F, the planes of inverse depth q[i] as SweepViews::Sweep swept them;
+// fractional) at its depth edges as above; `samples_per_label` is the nearest view's shift
+// between neighbouring planes. Returns how many samples took the far side's label; 0, and
+// nothing done, where a view is not read shifted.
+int RefineSilhouettesByVisibility(const SweepViews& views, const std::vector<double>& q,
+                                  double samples_per_label, cv::Mat& label,
+                                  const SilhouetteVisibilityOptions& options = {});
+
+}  // namespace lfcam
