@@ -189,15 +189,22 @@ ParallaxAxes MeasureParallaxAxes(const fs::path& dir, const ImportedGrid& g) {
   return out;
 }
 
-ImportedGrid WithAxesReversed(const ImportedGrid& grid, bool rows, bool cols) {
+namespace {
+
+// `grid` laid out again as `rows` x `cols`: view (r, c) is grid's view at source(r, c), its
+// position moved by `position`; the missing views' labels follow.
+template <class Source, class Position>
+ImportedGrid Rearranged(const ImportedGrid& grid, int rows, int cols, Source source,
+                        Position position) {
   ImportedGrid g = grid;
-  for (int r = 0; r < g.rows; ++r)
-    for (int c = 0; c < g.cols; ++c) {
-      GridView v = grid.view(rows ? g.rows - 1 - r : r, cols ? g.cols - 1 - c : c);
+  g.rows = rows, g.cols = cols;
+  for (int r = 0; r < rows; ++r)
+    for (int c = 0; c < cols; ++c) {
+      const auto [from_row, from_col] = source(r, c);
+      GridView v = grid.view(from_row, from_col);
       v.row = r, v.col = c;
-      if (rows) v.y_mm = -v.y_mm;
-      if (cols) v.x_mm = -v.x_mm;
-      g.views[std::size_t(r * g.cols + c)] = v;
+      std::tie(v.x_mm, v.y_mm) = position(v.x_mm, v.y_mm);
+      g.views[std::size_t(r * cols + c)] = v;
     }
   g.missing.clear();
   for (const GridView& v : g.views)
@@ -205,20 +212,28 @@ ImportedGrid WithAxesReversed(const ImportedGrid& grid, bool rows, bool cols) {
   return g;
 }
 
+}  // namespace
+
+ImportedGrid WithAxesReversed(const ImportedGrid& grid, bool rows, bool cols) {
+  return Rearranged(
+      grid, grid.rows, grid.cols,
+      [&](int r, int c) {
+        return std::pair{rows ? grid.rows - 1 - r : r, cols ? grid.cols - 1 - c : c};
+      },
+      [&](double x, double y) {
+        return std::pair{cols ? -x : x, rows ? -y : y};
+      });
+}
+
 ImportedGrid WithAxesSwapped(const ImportedGrid& grid) {
-  ImportedGrid g = grid;
-  std::swap(g.rows, g.cols);
-  for (int r = 0; r < g.rows; ++r)
-    for (int c = 0; c < g.cols; ++c) {
-      GridView v = grid.view(grid.rows - 1 - c, grid.cols - 1 - r);
-      v.row = r, v.col = c;
-      std::tie(v.x_mm, v.y_mm) = std::pair{-v.y_mm, -v.x_mm};
-      g.views[std::size_t(r * g.cols + c)] = v;
-    }
-  g.missing.clear();
-  for (const GridView& v : g.views)
-    if (v.file.empty()) g.missing.push_back(CameraLabel(v.row, v.col));
-  return g;
+  return Rearranged(
+      grid, grid.cols, grid.rows,
+      [&](int r, int c) {
+        return std::pair{grid.rows - 1 - c, grid.cols - 1 - r};
+      },
+      [](double x, double y) {
+        return std::pair{-y, -x};
+      });
 }
 
 std::string ToString(AxesVerdict verdict) {
