@@ -76,9 +76,10 @@ void ImportFlags::AddTo(CLI::App& command) {
   command
       .add_option("--naming", naming,
                   "How the views are named: auto, stanford (NAME_RR_CC_Y_X_), blender-grid "
-                  "(NAME_RR_CC_Y_X_F_W), hci (input_CamNNN.png + parameters.cfg) or unit-grid "
-                  "(NAME_RR_CC: indices only, row 1 at the top); auto refuses names that parse "
-                  "several ways")
+                  "(NAME_RR_CC_Y_X_F_W), hci (input_CamNNN.png + parameters.cfg), unit-grid "
+                  "([NAME_]RR_CC: indices only, row 1 at the top) or sequence (NAMENNN: one "
+                  "square grid's views numbered row by row from the top left, tried only where "
+                  "no other naming fits); auto refuses names that parse several ways")
       ->capture_default_str();
   command
       .add_option("--rig", rig,

@@ -86,16 +86,37 @@ std::optional<NamedView> ParseViewName(const std::string& file, GridNaming namin
       }
       return std::nullopt;
     }
-    case GridNaming::kUnitGrid:
-      if (parts.size() >= 3 && !parts.front().empty()) {
-        const auto t = tail(2, 0);
-        const auto rr = Index(t[0]), cc = Index(t[1]);
+    case GridNaming::kUnitGrid: {
+      // [NAME_]RR_CC, or [NAME-]RR-CC where the name holds no '_' (beside a '_', a '-' is a
+      // Stanford position's sign, and no index carries one).
+      std::vector<std::string> fields = parts;
+      if (parts.size() == 1) {
+        fields.clear();
+        for (std::size_t start = 0;;) {
+          const auto dash = stem.find('-', start);
+          fields.push_back(stem.substr(start, dash - start));
+          if (dash == std::string::npos) break;
+          start = dash + 1;
+        }
+      }
+      if (fields.size() >= 2 && (fields.size() == 2 || !fields.front().empty())) {
+        const auto rr = Index(fields[fields.size() - 2]), cc = Index(fields.back());
         if (rr && cc) {
           v.rr = *rr, v.cc = *cc;
           return v;
         }
       }
       return std::nullopt;
+    }
+    case GridNaming::kSequence: {
+      std::size_t digits = 0;
+      while (digits < stem.size() &&
+             std::isdigit(static_cast<unsigned char>(stem[stem.size() - 1 - digits])))
+        ++digits;
+      if (digits == 0 || digits > 6) return std::nullopt;
+      v.rr = std::stoi(stem.substr(stem.size() - digits));
+      return v;
+    }
     case GridNaming::kHci:
       if (stem.size() > 9 && stem.starts_with("input_Cam")) {
         if (const auto index = Index(stem.substr(9))) {
@@ -308,17 +329,22 @@ std::optional<ImportedGrid> GridFromIndices(GridNaming naming, const std::vector
   g.naming = naming;
   g.positions_known = false;
   std::vector<std::pair<int, int>> top_left;  // (row from the top, col from the left)
-  if (naming == GridNaming::kHci) {
+  if (naming == GridNaming::kHci || naming == GridNaming::kSequence) {
     int cols = 0, rows = 0;
     if (hci && hci->cams_x) {
       cols = *hci->cams_x, rows = *hci->cams_y;
     } else {
       cols = rows = int(std::lround(std::sqrt(double(named.size()))));
       if (std::size_t(cols * rows) != named.size()) {
-        *why =
-            fmt::format("{} views are not a square grid, and {} to say its shape", named.size(),
-                        hci ? fmt::format("{} gives no num_cams_x, num_cams_y", kHciParametersName)
-                            : fmt::format("there is no {}", kHciParametersName));
+        *why = naming == GridNaming::kSequence
+                   ? fmt::format(
+                         "{} views are not a square grid, and numbered names say nothing "
+                         "of its shape",
+                         named.size())
+                   : fmt::format(
+                         "{} views are not a square grid, and {} to say its shape", named.size(),
+                         hci ? fmt::format("{} gives no num_cams_x, num_cams_y", kHciParametersName)
+                             : fmt::format("there is no {}", kHciParametersName));
         return std::nullopt;
       }
     }
@@ -368,6 +394,33 @@ std::optional<ImportedGrid> GridFromIndices(GridNaming naming, const std::vector
   return g;
 }
 
+// A numbered sequence's files: one name and extension before the numbers, the numbers one run
+// without gaps (from any first number). Numbers them from 0 in `named` (rr), and returns why
+// they are no sequence, empty when they are.
+std::string NumberedInOrder(std::vector<NamedView>& named) {
+  const auto prefix = [](const std::string& file) {
+    const std::string stem = fs::path(file).stem().string();
+    std::size_t end = stem.size();
+    while (end > 0 && std::isdigit(static_cast<unsigned char>(stem[end - 1]))) --end;
+    return stem.substr(0, end) + "*" + fs::path(file).extension().string();
+  };
+  const std::string first = prefix(named.front().file);
+  std::set<int> numbers;
+  for (const NamedView& n : named) {
+    if (prefix(n.file) != first)
+      return fmt::format("{} and {} are not named alike (one name, then the number)",
+                         named.front().file, n.file);
+    if (!numbers.insert(n.rr).second)
+      return fmt::format("{}: its number is another file's too", n.file);
+  }
+  if (*numbers.rbegin() - *numbers.begin() + 1 != int(numbers.size()))
+    return fmt::format("the numbers run from {} to {} with gaps ({} files)", *numbers.begin(),
+                       *numbers.rbegin(), numbers.size());
+  const int lowest = *numbers.begin();
+  for (NamedView& n : named) n.rr -= lowest;
+  return {};
+}
+
 std::optional<HciParameters> ReadHciParameters(const fs::path& dir) {
   std::error_code ec;
   const fs::path path = dir / kHciParametersName;
@@ -393,11 +446,14 @@ ImportedGrid GridFromNames(const fs::path& dir, std::optional<GridNaming> forced
   // Every naming under which the names form a grid; the reason for each that does not.
   std::vector<ImportedGrid> fits;
   std::vector<std::string> reasons;
+  // A numbered sequence is the least specific naming: tried only where no other fits.
   const std::vector<GridNaming> namings =
-      forced ? std::vector<GridNaming>{*forced}
-             : std::vector<GridNaming>{GridNaming::kBlender, GridNaming::kStanford,
-                                       GridNaming::kHci, GridNaming::kUnitGrid};
+      forced
+          ? std::vector<GridNaming>{*forced}
+          : std::vector<GridNaming>{GridNaming::kBlender, GridNaming::kStanford, GridNaming::kHci,
+                                    GridNaming::kUnitGrid, GridNaming::kSequence};
   for (const GridNaming naming : namings) {
+    if (naming == GridNaming::kSequence && !forced && !fits.empty()) break;
     std::vector<NamedView> named;
     std::vector<std::string> ignored;
     std::string why;
@@ -411,9 +467,11 @@ ImportedGrid GridFromNames(const fs::path& dir, std::optional<GridNaming> forced
       }
     }
     if (named.empty() && why.empty()) why = "no view is named that way";
+    if (naming == GridNaming::kSequence && why.empty()) why = NumberedInOrder(named);
     std::optional<ImportedGrid> grid;
     if (why.empty())
-      grid = naming == GridNaming::kHci || naming == GridNaming::kUnitGrid
+      grid = naming == GridNaming::kHci || naming == GridNaming::kUnitGrid ||
+                     naming == GridNaming::kSequence
                  ? GridFromIndices(naming, named, naming == GridNaming::kHci ? hci : std::nullopt,
                                    &why)
                  : GridFromPositions(dir, naming, named, &why);
@@ -438,8 +496,9 @@ ImportedGrid GridFromNames(const fs::path& dir, std::optional<GridNaming> forced
   if (fits.empty())
     throw Error(fmt::format(
         "{}: the names do not form a grid named the Stanford way (NAME_RR_CC_Y_X_), the Blender "
-        "camera-grid way (NAME_RR_CC_Y_X_F_W), the HCI benchmark's (input_CamNNN) or by indices "
-        "(NAME_RR_CC): {}; describe the folder in {} instead (docs/format.md)",
+        "camera-grid way (NAME_RR_CC_Y_X_F_W), the HCI benchmark's (input_CamNNN), by indices "
+        "(NAME_RR_CC) or as one numbered sequence of a square grid's views (NAMENNN): {}; "
+        "describe the folder in {} instead (docs/format.md)",
         dir.string(), fmt::join(reasons, "; "), kViewsDescriptionName));
   return std::move(fits.front());
 }
@@ -458,15 +517,18 @@ std::string ToString(GridNaming naming) {
       return "hci";
     case GridNaming::kUnitGrid:
       return "unit-grid";
+    case GridNaming::kSequence:
+      return "sequence";
   }
   return "?";
 }
 
 GridNaming GridNamingFromString(const std::string& name) {
-  for (const GridNaming n :
-       {GridNaming::kStanford, GridNaming::kBlender, GridNaming::kHci, GridNaming::kUnitGrid})
+  for (const GridNaming n : {GridNaming::kStanford, GridNaming::kBlender, GridNaming::kHci,
+                             GridNaming::kUnitGrid, GridNaming::kSequence})
     if (ToString(n) == name) return n;
-  throw Error(fmt::format("unknown naming '{}' (stanford, blender-grid, hci or unit-grid)", name));
+  throw Error(fmt::format(
+      "unknown naming '{}' (stanford, blender-grid, hci, unit-grid or sequence)", name));
 }
 
 std::string ToString(RigModel rig) { return rig == RigModel::kParallel ? "parallel" : "rectified"; }

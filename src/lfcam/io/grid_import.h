@@ -3,8 +3,9 @@
 // folder of views on a regular grid of cameras, named the Stanford light field archive's way
 // (NAME_RR_CC_Y_X_.png), the Blender camera-grid way (NAME_RR_CC_Y_X_F_W.jpg), the HCI
 // benchmark's way (input_CamNNN.png, with parameters.cfg), as a plain grid of indices
-// (NAME_RR_CC.png: plenoptic sub-aperture views), or any folder of views with a description
-// (lfcam-views.json).
+// (NAME_RR_CC.png or RR_CC.png: plenoptic sub-aperture views), as one numbered sequence
+// (NAMENNN.png, taken row by row from the top left as the HCI benchmark numbers its cameras),
+// or any folder of views with a description (lfcam-views.json).
 //
 // Two rigs (DESIGN.md, "Rigs of the research community"): parallel cameras with centred sensors
 // (Blender grids) become what `lfcam build` reads, a capture manifest and a calibration of ideal
@@ -27,7 +28,7 @@ inline constexpr const char* kViewsDescriptionName = "lfcam-views.json";
 
 inline constexpr const char* kHciParametersName = "parameters.cfg";
 
-enum class GridNaming { kStanford, kBlender, kDescription, kHci, kUnitGrid };
+enum class GridNaming { kStanford, kBlender, kDescription, kHci, kUnitGrid, kSequence };
 std::string ToString(GridNaming naming);
 GridNaming GridNamingFromString(const std::string& name);  // throws lfcam::Error
 
@@ -68,7 +69,8 @@ struct ImportedGrid {
 };
 
 // One file's name, parsed the way `naming` names views: NAME_RR_CC_Y_X_F_W (Blender),
-// NAME_RR_CC_Y_X[_] (Stanford), input_CamNNN (HCI: rr = NNN), NAME_RR_CC (unit grid), NAME
+// NAME_RR_CC_Y_X[_] (Stanford), input_CamNNN (HCI: rr = NNN), [NAME_]RR_CC (unit grid; with '-'
+// in place of '_' where the name has no '_'), NAMENNN (sequence: rr = NNN, up to 6 digits), NAME
 // anything; the grid indices and the position numbers as named. Nullopt when it does not parse
 // that way (kDescription never parses).
 struct NamedView {

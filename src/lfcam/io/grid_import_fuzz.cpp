@@ -1,6 +1,6 @@
 // libFuzzer target: what `lfcam import` reads before any image: the views' file names (every
-// naming: Stanford, Blender camera grid, HCI, unit grid) and lfcam-views.json (versions 1 and 2:
-// a rectified rig's zero-disparity plane or principal points, then its geometry resolved).
+// naming: Stanford, Blender camera grid, HCI, unit grid, sequence) and lfcam-views.json (versions 1
+// and 2: a rectified rig's zero-disparity plane or principal points, then its geometry resolved).
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -12,8 +12,9 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view text(reinterpret_cast<const char*>(data), size);
-  for (const auto naming : {lfcam::GridNaming::kStanford, lfcam::GridNaming::kBlender,
-                            lfcam::GridNaming::kHci, lfcam::GridNaming::kUnitGrid})
+  for (const auto naming :
+       {lfcam::GridNaming::kStanford, lfcam::GridNaming::kBlender, lfcam::GridNaming::kHci,
+        lfcam::GridNaming::kUnitGrid, lfcam::GridNaming::kSequence})
     (void)lfcam::ParseViewName(std::string(text.substr(0, 256)), naming);
   try {
     lfcam::ImportedGrid grid =

@@ -11,11 +11,14 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <iostream>
+#include <map>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "lfcam/cli/cli_test_support.h"
 #include "lfcam/io/grid_import.h"
+#include "lfcam/io/rectified_import.h"
 
 namespace lfcam::parallax_axes_test {
 namespace {
@@ -216,6 +219,126 @@ TEST(ParallaxAxes, ImportTakesTheAxesTheWayTheViewsSayAndSaysIt) {
   EXPECT_EQ(nlohmann::json::parse(run.output)["axes"]["swap_axes"], false);
   fs::remove_all(up);
   fs::remove_all(exchanged);
+}
+
+// Views named otherwise than NAME_RR_CC: indices alone (RR_CC), indices with dashes, and one
+// numbered sequence (row by row from the top left, as the HCI benchmark numbers its cameras,
+// from any first number) become the same grid; a sequence numbered column by column is taken
+// row by row, and the views' parallax says the axes are exchanged. Names that are no sequence
+// are refused with the reason.
+TEST(ParallaxAxes, ViewsNamedByIndicesAloneOrInOneSequenceFormTheirGrid) {
+  const fs::path named = WriteRig("lfcam_axes_named_", Naming::kRight);
+  const ImportedGrid truth = ScanGridFolder(named, false);
+  // Copies of the rig's files under other names: `rename(top, col)` (top: rows from the top).
+  const auto renamed = [&](const std::string& name, const auto& rename) {
+    const fs::path dir = fs::temp_directory_path() / (name + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    std::map<std::string, std::string> original;  // new name -> the rig's
+    for (int top = 0; top < kN; ++top)
+      for (int c = 0; c < kN; ++c) {
+        const std::string from = fmt::format("card_{:02d}_{:02d}.png", top + 1, c + 1);
+        const std::string to = rename(top, c);
+        fs::copy_file(named / from, dir / to);
+        original[to] = from;
+      }
+    return std::pair{dir, original};
+  };
+  // Every view of the grid read from the file that holds the rig's view at the same place.
+  const auto same_grid = [&](const ImportedGrid& g, const std::map<std::string, std::string>& o) {
+    ASSERT_EQ(g.rows, kN);
+    ASSERT_EQ(g.cols, kN);
+    for (int r = 0; r < kN; ++r)
+      for (int c = 0; c < kN; ++c)
+        EXPECT_EQ(o.at(g.view(r, c).file), truth.view(r, c).file) << r << "," << c;
+  };
+  std::vector<fs::path> dirs{named};
+  for (const auto& [label, pattern] :
+       {std::pair{"indices", "{:02d}_{:02d}.png"}, std::pair{"dashes", "card-{}-{}.png"}}) {
+    const std::string format = pattern;
+    const auto [dir, original] = renamed(fmt::format("lfcam_axes_{}_", label), [&](int t, int c) {
+      return fmt::format(fmt::runtime(format), t + 1, c + 1);
+    });
+    dirs.push_back(dir);
+    const ImportedGrid g = ScanGridFolder(dir, false);
+    EXPECT_EQ(g.naming, GridNaming::kUnitGrid) << label;
+    same_grid(g, original);
+  }
+  const auto [rows, by_rows] = renamed("lfcam_axes_sequence_", [](int top, int c) {
+    return fmt::format("view{:04d}.png", 100 + top * kN + c);
+  });
+  dirs.push_back(rows);
+  const ImportedGrid sequence = ScanGridFolder(rows, false);
+  EXPECT_EQ(sequence.naming, GridNaming::kSequence);
+  EXPECT_EQ(sequence.rig, RigModel::kRectified);
+  EXPECT_FALSE(sequence.positions_known);
+  same_grid(sequence, by_rows);
+  EXPECT_EQ(MeasureParallaxAxes(rows, sequence).verdict, AxesVerdict::kAgree);
+  EXPECT_EQ(ScanGridFolder(rows, false, GridNaming::kSequence).naming, GridNaming::kSequence);
+  // The sequence's order is said.
+  const RectifiedGeometry geometry = ResolveRectifiedGeometry(sequence, {});
+  ASSERT_EQ(geometry.notes.size(), 1u);
+  EXPECT_NE(geometry.notes.front().find("row by row from the top left"), std::string::npos);
+
+  const auto [columns, by_columns] = renamed("lfcam_axes_sequence_columns_", [](int top, int c) {
+    return fmt::format("{:03d}.png", c * kN + top);
+  });
+  dirs.push_back(columns);
+  const ImportedGrid transposed = ScanGridFolder(columns, false);
+  EXPECT_EQ(transposed.naming, GridNaming::kSequence);
+  const ParallaxAxes swapped = MeasureParallaxAxes(columns, transposed);
+  EXPECT_EQ(swapped.verdict, AxesVerdict::kSwapped) << Describe(swapped);
+  same_grid(WithAxesSwapped(transposed), by_columns);
+
+  // Not a sequence: a gap in the numbers, a file of another name; a name whose stem carries a
+  // number is still read as the more specific naming it fits (here the rig's NAME_RR_CC).
+  const auto refused = [&](const fs::path& dir, const std::string& what) {
+    try {
+      ScanGridFolder(dir, false);
+      ADD_FAILURE() << "accepted " << dir;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+    }
+  };
+  fs::rename(rows / "view0124.png", rows / "view0200.png");
+  refused(rows, "sequence: the numbers run from 100 to 200 with gaps (25 files)");
+  fs::rename(rows / "view0200.png", rows / "frame0124.png");
+  refused(rows, "are not named alike (one name, then the number)");
+  fs::remove(rows / "frame0124.png");
+  refused(rows, "sequence: 24 views are not a square grid, and numbered names say nothing of its");
+  EXPECT_EQ(truth.naming, GridNaming::kUnitGrid);
+
+  // A real plenoptic camera's views (../shared/data/lytro-2067, NAME_RR_CC), linked under one
+  // numbered sequence: the same grid, and its parallax agrees with that order.
+  const fs::path lytro = fs::path(LFCAM_SOURCE_DIR) / "../shared/data/lytro-2067";
+  if (fs::is_directory(lytro)) {
+    const ImportedGrid as_named = ScanGridFolder(lytro, false);
+    const fs::path linked =
+        fs::temp_directory_path() / ("lfcam_axes_lytro_sequence_" + std::to_string(::getpid()));
+    fs::remove_all(linked);
+    fs::create_directories(linked);
+    dirs.push_back(linked);
+    std::map<std::string, std::string> original;
+    for (int top = 0; top < as_named.rows; ++top)
+      for (int c = 0; c < as_named.cols; ++c) {
+        const std::string from = as_named.view(as_named.rows - 1 - top, c).file;
+        const std::string to = fmt::format("lytro_{}.png", 1 + top * as_named.cols + c);
+        fs::create_symlink(lytro / from, linked / to);
+        original[to] = from;
+      }
+    const ImportedGrid g = ScanGridFolder(linked, false);
+    EXPECT_EQ(g.naming, GridNaming::kSequence);
+    ASSERT_EQ(g.rows, as_named.rows);
+    for (int r = 0; r < g.rows; ++r)
+      for (int c = 0; c < g.cols; ++c)
+        EXPECT_EQ(original.at(g.view(r, c).file), as_named.view(r, c).file);
+    const ParallaxAxes axes = MeasureParallaxAxes(linked, g);
+    EXPECT_EQ(axes.verdict, AxesVerdict::kAgree) << Describe(axes);
+  } else {
+    std::cout << "[parallax axes] the Lytro views as a sequence skipped: " << lytro
+              << " is not here\n";
+  }
+  for (const fs::path& dir : dirs) fs::remove_all(dir);
 }
 
 TEST(ParallaxAxes, TheRealDataSetsAgreeWithTheirNames) {
