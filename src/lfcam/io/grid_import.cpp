@@ -37,6 +37,17 @@ std::optional<double> Number(const std::string& text) {
   return value;
 }
 
+// The fields of `text` between the `separator`s (one field when there is none).
+std::vector<std::string> Fields(const std::string& text, char separator) {
+  std::vector<std::string> fields;
+  for (std::size_t start = 0;;) {
+    const auto at = text.find(separator, start);
+    fields.push_back(text.substr(start, at - start));
+    if (at == std::string::npos) return fields;
+    start = at + 1;
+  }
+}
+
 std::optional<int> Index(const std::string& text) {
   if (text.empty() || text.size() > 4 || !std::all_of(text.begin(), text.end(), ::isdigit))
     return std::nullopt;
@@ -47,13 +58,7 @@ std::optional<int> Index(const std::string& text) {
 
 std::optional<NamedView> ParseViewName(const std::string& file, GridNaming naming) {
   std::string stem = fs::path(file).stem().string();
-  std::vector<std::string> parts;
-  for (std::size_t start = 0;;) {
-    const auto underscore = stem.find('_', start);
-    parts.push_back(stem.substr(start, underscore - start));
-    if (underscore == std::string::npos) break;
-    start = underscore + 1;
-  }
+  const std::vector<std::string> parts = Fields(stem, '_');
   auto tail = [&](std::size_t n, std::size_t skip) {
     return std::vector<std::string>(parts.end() - std::ptrdiff_t(n + skip),
                                     parts.end() - std::ptrdiff_t(skip));
@@ -89,16 +94,7 @@ std::optional<NamedView> ParseViewName(const std::string& file, GridNaming namin
     case GridNaming::kUnitGrid: {
       // [NAME_]RR_CC, or [NAME-]RR-CC where the name holds no '_' (beside a '_', a '-' is a
       // Stanford position's sign, and no index carries one).
-      std::vector<std::string> fields = parts;
-      if (parts.size() == 1) {
-        fields.clear();
-        for (std::size_t start = 0;;) {
-          const auto dash = stem.find('-', start);
-          fields.push_back(stem.substr(start, dash - start));
-          if (dash == std::string::npos) break;
-          start = dash + 1;
-        }
-      }
+      const std::vector<std::string> fields = parts.size() == 1 ? Fields(stem, '-') : parts;
       if (fields.size() >= 2 && (fields.size() == 2 || !fields.front().empty())) {
         const auto rr = Index(fields[fields.size() - 2]), cc = Index(fields.back());
         if (rr && cc) {
