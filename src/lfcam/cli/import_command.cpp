@@ -31,8 +31,6 @@ void PrintImport(const nlohmann::json& s) {
         s["seconds"].get<double>());
     for (const auto& assumed : s["assumed"])
       fmt::print("  assumed: {}\n", assumed.get<std::string>());
-    if (s.contains("notes"))
-      for (const auto& note : s["notes"]) fmt::print("  note: {}\n", note.get<std::string>());
   } else {
     fmt::print(
         "imported {}x{} views of {}x{} ({} naming), pitch {:.3f} mm, focal length {:.1f} px\n",
@@ -53,6 +51,8 @@ void PrintImport(const nlohmann::json& s) {
                s["st_distance_mm"].get<double>(), estimated, s["n_s"].get<int>(),
                s["n_t"].get<int>(), s["seconds"].get<double>());
   }
+  if (s.contains("notes"))
+    for (const auto& note : s["notes"]) fmt::print("  note: {}\n", note.get<std::string>());
   if (s.contains("axes") && s["axes"]["verdict"] != "agree")
     fmt::print("  note: {}\n", s["axes"]["said"].get<std::string>());
   for (const auto& filled : s["filled"])

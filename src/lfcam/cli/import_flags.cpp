@@ -255,6 +255,7 @@ ImportedLightField ImportFlags::Run(bool quiet) const {
                    {"st_distance_estimate_mm",
                     session.st_distance_unsnapped_mm.value_or(session.st_distance_mm)},
                    {"st_distance_snapped", session.st_distance_unsnapped_mm.has_value()},
+                   {"notes", NamingNotes(grid)},
                    {"samples_between_neighbours", session.samples_between_neighbours}});
 }
 

@@ -519,6 +519,15 @@ std::string ToString(GridNaming naming) {
   return "?";
 }
 
+std::vector<std::string> NamingNotes(const ImportedGrid& grid) {
+  if (grid.naming != GridNaming::kSequence) return {};
+  return {fmt::format(
+      "the views taken in the order of their files' numbers, row by row from the top left of a "
+      "{}x{} grid (as the HCI benchmark numbers its cameras); the views' own parallax checks that "
+      "order (axes)",
+      grid.rows, grid.cols)};
+}
+
 GridNaming GridNamingFromString(const std::string& name) {
   for (const GridNaming n : {GridNaming::kStanford, GridNaming::kBlender, GridNaming::kHci,
                              GridNaming::kUnitGrid, GridNaming::kSequence})
@@ -755,6 +764,7 @@ ImportedSession MakeImportedSession(const fs::path& dir, const ImportedGrid& g,
                    {"st_distance_mm", d},
                    {"st_distance_estimated", s.st_distance_estimated},
                    {"st_distance_estimate_mm", s.st_distance_unsnapped_mm.value_or(d)},
+                   {"notes", NamingNotes(g)},
                    {"missing", g.missing}}}};
 
   CaptureManifest& m = s.manifest;

@@ -92,6 +92,10 @@ ImportedGrid GridFromDescription(const nlohmann::json& j, const std::string& whe
 ImportedGrid ScanGridFolder(const std::filesystem::path& dir, bool allow_missing,
                             std::optional<GridNaming> naming = std::nullopt);
 
+// What the naming itself took for granted, for the import's `note:` lines and the file's
+// import.notes, whatever the rig: a numbered sequence's reading order.
+std::vector<std::string> NamingNotes(const ImportedGrid& grid);
+
 struct ImportOptions {
   // Parallel: the st-plane's distance (default: the description's, else estimated); rectified:
   // the zero-disparity plane's (default: the description's or parameters.cfg's, else assumed).

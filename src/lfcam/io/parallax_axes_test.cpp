@@ -279,6 +279,24 @@ TEST(ParallaxAxes, ViewsNamedByIndicesAloneOrInOneSequenceFormTheirGrid) {
   const RectifiedGeometry geometry = ResolveRectifiedGeometry(sequence, {});
   ASSERT_EQ(geometry.notes.size(), 1u);
   EXPECT_NE(geometry.notes.front().find("row by row from the top left"), std::string::npos);
+  EXPECT_TRUE(NamingNotes(truth).empty());
+  // Imported as a parallel rig (--rig parallel), the file's import.notes say it too.
+  ImportedGrid parallel = sequence;
+  parallel.rig = RigModel::kParallel;
+  ImportOptions focal;
+  focal.focal_px = 100;
+  EXPECT_EQ(MakeImportedSession(rows, parallel, focal).calibration.summary["import"]["notes"],
+            nlohmann::json(geometry.notes));
+  for (const std::string rig : {"rectified", "parallel"}) {
+    const std::string lf = (rows.parent_path() / (rows.filename().string() + rig + ".lf")).string();
+    const auto run = testing::Lfcam("import " + rows.string() + " --out " + lf + " --rig " + rig +
+                                    " --focal-px 100 --quiet");
+    fs::remove(lf);
+    ASSERT_EQ(run.status, 0) << run.output;
+    EXPECT_NE(run.output.find("  note: the views taken in the order of their files' numbers"),
+              std::string::npos)
+        << rig << ": " << run.output;
+  }
 
   const auto [columns, by_columns] = renamed("lfcam_axes_sequence_columns_", [](int top, int c) {
     return fmt::format("{:03d}.png", c * kN + top);

@@ -81,12 +81,7 @@ RectifiedGeometry ResolveRectifiedGeometry(const ImportedGrid& g, const ImportOp
                             ToString(g.naming)));
   r.pitch_mm = o.pitch_mm.value_or(g.pitch_mm);
   r.metric = g.positions_known || o.pitch_mm.has_value();
-  if (g.naming == GridNaming::kSequence)
-    r.notes.push_back(fmt::format(
-        "the views taken in the order of their files' numbers, row by row from the top left of "
-        "a {}x{} grid (as the HCI benchmark numbers its cameras); the views' own parallax checks "
-        "that order (axes)",
-        g.rows, g.cols));
+  r.notes = NamingNotes(g);
   if (!g.positions_known && !o.pitch_mm)
     r.assumed.push_back(fmt::format(
         "the cameras 1 unit apart (the names give grid indices only; --pitch-mm sets it)"));
