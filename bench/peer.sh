@@ -3,7 +3,8 @@
 # and `lfcam render --integrator cameras` on the same light field, the same 1024^2 frame and a
 # full aperture (d_l = 256 mm, f = 444 mm, d_o = 4000 mm), then the peer's pinhole (the four
 # views around the eye) and lfcam's (--aperture 0), one after the other in one run, and prints
-# the medians and the ratios (docs/benchmarks.md).
+# the medians and the ratios (docs/benchmarks.md); last, the floor under any pinhole frame on this
+# machine (bench/frame_floor.cpp: the bytes a frame reads and writes, moved with no arithmetic).
 # Usage: bench/peer.sh [LIGHTFIELD.lf] [--runs N]
 #   default light field: the paper's 10x10x1248x1152, simulated once into out/bench/paper.lf
 set -euo pipefail
@@ -21,7 +22,7 @@ done
 
 LFCAM_PEER_DEPS=1 scripts/install-deps.sh
 cmake --preset release >/dev/null
-cmake --build --preset release --target lfcam >/dev/null
+cmake --build --preset release --target lfcam lfcam_frame_floor >/dev/null
 lfcam=build/release/lfcam
 if [ -z "$lf" ]; then
   lf=out/bench/paper.lf
@@ -58,3 +59,4 @@ compare "d_l 256 (every view: lfcam --integrator cameras)" "" \
   "--aperture 256 --integrator cameras" cameras
 compare "pinhole (the four views around the eye, the focal-plane lookup)" "--pinhole" \
   "--aperture 0 --interpolation focal-plane" pinhole
+build/release/lfcam_frame_floor 2
