@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "lfcam/cli/parse.h"
@@ -331,6 +332,20 @@ VirtualCamera CameraFlags::MakeCamera(const ArrayPlane& array) const {
         view_file.empty() ? "--eye, --look-at, --up" : "--camera " + view_file + " and the flags",
         e.what()));
   }
+}
+
+std::unique_ptr<ParsedCameraFlags> ParseCameraFlags(std::vector<std::string> args, bool rig_cameras,
+                                                    bool sweeps, bool allow_extras) {
+  auto parsed = std::make_unique<ParsedCameraFlags>();
+  parsed->parser.allow_extras(allow_extras);
+  parsed->flags.AddTo(parsed->parser, rig_cameras, sweeps);
+  std::reverse(args.begin(), args.end());  // CLI11 takes its arguments last first
+  try {
+    parsed->parser.parse(args);
+  } catch (const CLI::ParseError& e) {
+    throw UsageError(e.what());
+  }
+  return parsed;
 }
 
 }  // namespace lfcam::cli

@@ -3,8 +3,10 @@
 // through the paper's camera.
 #include <CLI/CLI.hpp>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "lfcam/core/lightfield.h"
 #include "lfcam/core/slab.h"
@@ -68,5 +70,18 @@ struct CameraFlags {
   mutable std::optional<ViewSettings> view_;
   mutable bool view_read_ = false;
 };
+
+// Camera flags parsed on their own, as a command parses them: `args` as typed (first to last)
+// through CLI11, the flags then held with their parser (they keep pointers into it); with
+// `allow_extras`, arguments that are no camera flag are left over, not refused. A parse error
+// comes out as UsageError. For callers without a command of their own (the fuzz targets of the
+// flags and of the Python module's keywords), so that CLI11's parser is compiled once, here.
+struct ParsedCameraFlags {
+  CLI::App parser;
+  CameraFlags flags;
+};
+std::unique_ptr<ParsedCameraFlags> ParseCameraFlags(std::vector<std::string> args,
+                                                    bool rig_cameras = false, bool sweeps = false,
+                                                    bool allow_extras = false);
 
 }  // namespace lfcam::cli

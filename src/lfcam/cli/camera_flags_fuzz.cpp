@@ -35,9 +35,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   {
     // The sweepable flags through CLI11, as `render --video` takes them.
-    lfcam::cli::CameraFlags swept;
-    CLI::App app;
-    swept.AddTo(app, /*rig_cameras=*/true, /*sweeps=*/true);
     std::vector<std::string> args;
     for (const char* flag :
          {"--focus-distance", "--aperture", "--focal-length", "--eye", "--look-at"})
@@ -45,14 +42,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         args.push_back(flag);
         args.push_back(in.ConsumeRandomLengthString(40));
       }
-    std::reverse(args.begin(), args.end());  // CLI11 takes them last first
     try {
-      app.parse(args);
+      const auto parsed = lfcam::cli::ParseCameraFlags(args, /*rig_cameras=*/true, /*sweeps=*/true);
+      const lfcam::cli::CameraFlags& swept = parsed->flags;
       swept.Validate();
       const lfcam::CameraPath path =
           lfcam::CameraPath::Sweep(swept.MakeCamera(lfcam::ArrayPlane{}).params(), swept.sweep());
       for (int k = 0; k < 5; ++k) (void)lfcam::VirtualCamera(path.AtFrame(k, 5));
-    } catch (const CLI::Error&) {
     } catch (const lfcam::Error&) {
     }
   }

@@ -1,8 +1,6 @@
 // libFuzzer: the Python module's keyword arguments (cli/keyword_arguments.h) as bytes decode
 // them: any names and values, through the conversion to render's flags and the camera flags'
 // own parser and checks. Only lfcam::Error (a UsageError) may come out.
-#include <CLI/CLI.hpp>
-#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <string>
@@ -73,16 +71,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     arguments.push_back({name, value});
   }
   try {
-    std::vector<std::string> args = lfcam::cli::FlagArguments(table, arguments);
-    lfcam::cli::CameraFlags camera;
-    CLI::App app;
-    app.allow_extras();
-    camera.AddTo(app, /*rig_cameras=*/true);
-    std::reverse(args.begin(), args.end());
-    app.parse(args);
-    camera.Validate();
+    const std::vector<std::string> args = lfcam::cli::FlagArguments(table, arguments);
+    lfcam::cli::ParseCameraFlags(args, /*rig_cameras=*/true, /*sweeps=*/false,
+                                 /*allow_extras=*/true)
+        ->flags.Validate();
   } catch (const lfcam::Error&) {
-  } catch (const CLI::ParseError&) {
   }
   return 0;
 }

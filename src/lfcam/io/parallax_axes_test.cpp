@@ -17,6 +17,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "lfcam/cli/cli_test_support.h"
+#include "lfcam/core/error.h"
 #include "lfcam/io/grid_import.h"
 #include "lfcam/io/rectified_import.h"
 
