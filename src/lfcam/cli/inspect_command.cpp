@@ -170,14 +170,14 @@ void AddInfoCommand(CLI::App& app) {
       fmt::print(
           "  lengths       in units of the cameras' spacing, not mm (the import knew no scale; "
           "import with --pitch-mm for mm)\n");
-    fmt::print("  uv (array)    p_ca {}  rows {}  cols {}  pitch {} {}\n", Vec(s.uv.p_ca),
+    fmt::print("  uv (array)    p_ca {}  rows {}  cols {}  pitch {:.6g} {}\n", Vec(s.uv.p_ca),
                s.uv.rows, s.uv.cols, s.uv.pitch_mm, unit);
     fmt::print("                u_ca {}  v_ca {}  n_ca {}\n", Vec(s.uv.u_ca), Vec(s.uv.v_ca),
                Vec(s.uv.n_ca));
-    fmt::print("  st (view window) origin {}  x {}  y {}  {} x {} {}\n", Vec(s.st.origin),
+    fmt::print("  st (view window) origin {}  x {}  y {}  {:.6g} x {:.6g} {}\n", Vec(s.st.origin),
                Vec(s.st.x_axis), Vec(s.st.y_axis), s.st.width_mm, s.st.height_mm, unit);
-    fmt::print("  st domain     [{}, {}] x [{}, {}]\n", s.st_domain.s0, s.st_domain.s1,
-               s.st_domain.t0, s.st_domain.t1);
+    fmt::print("  st domain     [{:.6g}, {:.6g}] x [{:.6g}, {:.6g}]\n", s.st_domain.s0,
+               s.st_domain.s1, s.st_domain.t0, s.st_domain.t1);
     if (!h.st_offsets.empty()) {
       int k0 = 0, k1 = 0, l0 = 0, l1 = 0;
       for (const StOffset& o : h.st_offsets)

@@ -38,9 +38,9 @@ double Degrees(double radians) { return radians * 180.0 / std::numbers::pi; }
 std::string DescribeCamera(const VirtualCamera& camera, const std::string& samples,
                            const std::string& unit) {
   const auto& p = camera.params();
-  return fmt::format("{}x{}, f {} mm, d_o {} {}, d_l {} {}, {}, fov {:.3f} deg ({})", p.width,
-                     p.height, p.focal_length_mm, p.focus_distance_mm, unit, p.aperture_mm, unit,
-                     samples, Degrees(camera.field_of_view_rad()),
+  return fmt::format("{}x{}, f {:.6g} mm, d_o {:.6g} {}, d_l {:.6g} {}, {}, fov {:.3f} deg ({})",
+                     p.width, p.height, p.focal_length_mm, p.focus_distance_mm, unit, p.aperture_mm,
+                     unit, samples, Degrees(camera.field_of_view_rad()),
                      p.breathing ? "breathing" : "no breathing");
 }
 
