@@ -186,14 +186,15 @@ cv::Mat DepthPreview(const DepthMap& map, const std::string& length_unit) {
   const int w = map.n_s(), h = map.n_t();
   // A depth's label: metres where lengths are mm, else the light field's own numbers.
   const bool metric = length_unit == "mm";
-  const auto label = [&](int i) {  // the scale's i-th of five labels, near (0) to far (4)
-    const double depth = map.range.near_mm + (map.range.far_mm - map.range.near_mm) * i / 4.0;
-    if (metric) return fmt::format("{:.2f} m", depth / 1000.0);
-    const int decimals = depth >= 100 ? 0 : depth >= 10 ? 1 : 2;
-    return fmt::format("{:.{}f} {}", depth, decimals, length_unit);
-  };
-  // Inverse depth spreads the colours where a light field resolves depth best (near).
+  // Inverse depth spreads the colours where a light field resolves depth best (near); the scale
+  // bar is laid out the same way, so that each of its colours sits beside its own depth.
   const double q_near = 1.0 / map.range.near_mm, q_far = 1.0 / map.range.far_mm;
+  const auto label = [&](int i) {  // the scale's i-th of five labels, near (0) to far (4)
+    const double depth = 1.0 / (q_near + (q_far - q_near) * i / 4.0);
+    const double shown = metric ? depth / 1000.0 : depth;
+    const int decimals = shown >= 100 ? 0 : shown >= 10 ? 1 : 2;
+    return fmt::format("{:.{}f} {}", shown, decimals, metric ? "m" : length_unit);
+  };
   cv::Mat index(h, w, CV_8UC1), unknown(h, w, CV_8UC1);
   for (int l = 0; l < h; ++l) {
     const float* d = map.depth.ptr<float>(l);
@@ -221,10 +222,10 @@ cv::Mat DepthPreview(const DepthMap& map, const std::string& length_unit) {
   colour.copyTo(sheet(cv::Rect(0, 0, w, h)));
   cv::Mat ramp(h, 1, CV_8UC1);
   for (int y = 0; y < h; ++y) {
-    // Row y shows the depth at fraction y / (h - 1) between near and far, in depth (not 1/D).
-    const double depth = map.range.near_mm + (map.range.far_mm - map.range.near_mm) * y / (h - 1.0);
-    const double x = (1.0 / depth - q_far) / (q_near - q_far);
-    ramp.at<std::uint8_t>(y) = std::uint8_t(std::lround(255.0 * std::clamp(x, 0.0, 1.0)));
+    // Row y shows the depth at fraction y / (h - 1) of the way from near to far in 1/D, as the
+    // map's colours run: the labels' depths at rows 0, (h - 1) / 4, ... h - 1.
+    const double x = h > 1 ? 1.0 - y / (h - 1.0) : 1.0;
+    ramp.at<std::uint8_t>(y) = std::uint8_t(std::lround(255.0 * x));
   }
   cv::Mat ramp_colour;
   cv::applyColorMap(ramp, ramp_colour, cv::COLORMAP_TURBO);

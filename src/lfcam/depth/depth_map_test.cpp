@@ -72,6 +72,32 @@ TEST(DepthMapFile, RoundTripsDepthRangeViewAndConfidence) {
   EXPECT_GT(preview.cols, map.n_s());
 }
 
+// The scale bar runs in inverse depth as the map's colours do, so that over a range of depths
+// 40 times apart (a real scene's: 4 m to 164 m) each label sits beside its colour in the map.
+TEST(DepthMapFile, TheScaleBarShowsEachLabelsDepthInTheMapsColour) {
+  DepthMap map = Ramp(1, 1, 40, 41);
+  map.range = {4100, 164100};
+  const double q_near = 1.0 / map.range.near_mm, q_far = 1.0 / map.range.far_mm;
+  // Row l of the map (drawn upside down: image row n_t - 1 - l) at the depth of the label a
+  // fraction l / 40 of the way from near to far in 1/D.
+  for (int l = 0; l < map.n_t(); ++l)
+    for (int k = 0; k < map.n_s(); ++k)
+      map.depth.at<float>(l, k) = float(1.0 / (q_near + (q_far - q_near) * l / 40.0));
+  const cv::Mat preview = DepthPreview(map);
+  // The bar: the first column right of the map whose colour is not the sheet's white.
+  int bar = map.n_s();
+  while (bar < preview.cols && preview.at<cv::Vec3b>(20, bar) == cv::Vec3b(255, 255, 255)) ++bar;
+  ASSERT_LT(bar, preview.cols);
+  for (int i = 0; i <= 4; ++i) {
+    const int y = (map.n_t() - 1) * i / 4;       // the bar's row of label i
+    const int map_row = map.n_t() - 1 - 10 * i;  // the map's image row at that label's depth
+    const cv::Vec3b in_bar = preview.at<cv::Vec3b>(y, bar),
+                    in_map = preview.at<cv::Vec3b>(map_row, 5);
+    EXPECT_LE(cv::norm(cv::Vec3i(in_bar) - cv::Vec3i(in_map), cv::NORM_INF), 8)
+        << "label " << i << ": bar " << in_bar << ", map " << in_map;
+  }
+}
+
 // A light field imported without a metric scale (lengths in units of the cameras' spacing)
 // gets a scale in those units, not in metres; the files say which.
 TEST(DepthMapFile, LabelsItsScaleInTheLightFieldsLengthUnit) {
