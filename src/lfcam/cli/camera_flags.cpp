@@ -2,9 +2,10 @@
 
 #include <fmt/format.h>
 
-#include <algorithm>
 #include <cmath>
+#include <utility>
 
+#include "lfcam/cli/keyword_arguments.h"
 #include "lfcam/cli/parse.h"
 #include "lfcam/core/error.h"
 #include "lfcam/core/limits.h"
@@ -339,12 +340,7 @@ std::unique_ptr<ParsedCameraFlags> ParseCameraFlags(std::vector<std::string> arg
   auto parsed = std::make_unique<ParsedCameraFlags>();
   parsed->parser.allow_extras(allow_extras);
   parsed->flags.AddTo(parsed->parser, rig_cameras, sweeps);
-  std::reverse(args.begin(), args.end());  // CLI11 takes its arguments last first
-  try {
-    parsed->parser.parse(args);
-  } catch (const CLI::ParseError& e) {
-    throw UsageError(e.what());
-  }
+  ParseArguments(parsed->parser, std::move(args));
   return parsed;
 }
 

@@ -266,13 +266,7 @@ std::unique_ptr<ImportRequest> ParseImportKeywords(const std::string& dir,
   request->parser = std::make_unique<CLI::App>("lfcam.import_views", "import");
   request->flags.AddTo(*request->parser);
   request->flags.dir = dir;
-  std::vector<std::string> args = FlagArguments(table, arguments);
-  std::reverse(args.begin(), args.end());  // CLI11 takes its arguments last first
-  try {
-    request->parser->parse(args);
-  } catch (const CLI::ParseError& e) {
-    throw UsageError(InKeywords(table, e.what()));
-  }
+  ParseKeywords(*request->parser, table, arguments);
   return request;
 }
 

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -168,6 +169,25 @@ std::vector<std::string> FlagArguments(const KeywordTable& table,
     args.push_back(FlagOf(argument.name) + "=" + text);
   }
   return args;
+}
+
+void ParseArguments(CLI::App& app, std::vector<std::string> args) {
+  std::reverse(args.begin(), args.end());  // CLI11 takes its arguments last first
+  try {
+    app.parse(args);
+  } catch (const CLI::ParseError& e) {
+    throw UsageError(e.what());
+  }
+}
+
+void ParseKeywords(CLI::App& app, const KeywordTable& table,
+                   const std::vector<KeywordArgument>& arguments) {
+  const std::vector<std::string> args = FlagArguments(table, arguments);
+  try {
+    ParseArguments(app, args);
+  } catch (const UsageError& e) {
+    throw UsageError(InKeywords(table, e.what()));
+  }
 }
 
 }  // namespace lfcam::cli

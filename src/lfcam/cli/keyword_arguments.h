@@ -10,6 +10,10 @@
 #include <variant>
 #include <vector>
 
+namespace CLI {
+class App;
+}
+
 namespace lfcam::cli {
 
 // A keyword's value as the caller gave it: True/False, a whole number, a number, a string, or a
@@ -44,5 +48,13 @@ std::vector<std::string> FlagArguments(const KeywordTable& table,
 // A message of the flags' code with the keywords' names for the flags' ("--focal-length: ..."
 // -> "focal_length: ...").
 std::string InKeywords(const KeywordTable& table, std::string message);
+
+// `args` (as typed, first to last) parsed by `app`, as a command line is; a parse error comes out
+// as UsageError with CLI11's message.
+void ParseArguments(CLI::App& app, std::vector<std::string> args);
+// The keywords through `app`'s flags (FlagArguments, then ParseArguments); a bad keyword or value
+// is a UsageError in the keywords' terms (InKeywords).
+void ParseKeywords(CLI::App& app, const KeywordTable& table,
+                   const std::vector<KeywordArgument>& arguments);
 
 }  // namespace lfcam::cli

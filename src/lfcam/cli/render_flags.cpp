@@ -91,13 +91,7 @@ std::unique_ptr<RenderRequest> ParseRenderKeywords(const std::vector<KeywordArgu
   request->camera.AddTo(app, /*rig_cameras=*/true, /*sweeps=*/false);
   request->render.AddTo(app);
   request->backend.AddTo(app);
-  std::vector<std::string> args = FlagArguments(table, arguments);
-  std::reverse(args.begin(), args.end());  // CLI11 takes its arguments last first
-  try {
-    app.parse(args);
-  } catch (const CLI::ParseError& e) {
-    throw UsageError(InKeywords(table, e.what()));
-  }
+  ParseKeywords(app, table, arguments);
   try {
     request->camera.Validate();
     request->options = request->render.Resolve(request->camera.view());
