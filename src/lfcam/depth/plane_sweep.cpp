@@ -62,9 +62,10 @@ constexpr double kNarrowGradientShare = 0.89, kWideGradientShare = 0.5;
 // each view's brightness is also made the reference's (CostVolumeOptions::equalise_brightness).
 constexpr double kEqualiseRange = kNarrowRange;
 // There too, the silhouettes are re-decided by visibility over a window of 5 samples, up to 10
-// passes (elsewhere its defaults: 3 and 3). Every narrow rig measured gains, the thin gaps
-// between near objects most; on the wide `paper` rig the wider window took a point off its
-// grazing table (docs/depth.md, "Visibility at the silhouettes").
+// passes (elsewhere its defaults: 3 and 3), each depth judged by its own side of the cost's
+// window. Every narrow rig measured gains, the thin gaps between near objects most; on the wide
+// `paper` rig the wider window took a point off its grazing table, and the one-sided cost half a
+// point (docs/depth.md, "Visibility at the silhouettes").
 constexpr int kNarrowVisibilityWindow = 5, kNarrowVisibilityPasses = 10;
 
 double GradientShare(double neighbour_range) {
@@ -344,6 +345,7 @@ DepthMap EstimateDepth(const LightField& lf, int row, int col, const PlaneSweepO
     if (narrow) {
       visibility.window = kNarrowVisibilityWindow;
       visibility.passes = kNarrowVisibilityPasses;
+      visibility.same_side_window = true;
     }
     RefineSilhouettesByVisibility(views, q, per_plane, choice.label, visibility);
   }

@@ -128,6 +128,10 @@ int RefineSilhouettesByVisibility(const SweepViews& views, const std::vector<dou
             for (int dx = -1; dx <= 1; ++dx) {
               const int rx = c.x + dx, ry = c.y + dy;
               if (rx < 0 || ry < 0 || rx >= w || ry >= h) continue;
+              // The window's samples on the edge's other side are not this hypothesis's.
+              if (o.same_side_window && (dx != 0 || dy != 0) &&
+                  std::abs(label.at<float>(ry, rx) - hypothesis) > edge)
+                continue;
               float d = 0, read = 0;
               bool inside = true;
               for (int ch = 0; ch < 3 && inside; ++ch) {
@@ -159,6 +163,7 @@ int RefineSilhouettesByVisibility(const SweepViews& views, const std::vector<dou
         moved_here.at<unsigned char>(c.y, c.x) = 1;
         ++moved;
       }
+    changed += moved;
     cv::dilate(moved_here, near_moved, kernel);
     if (moved == 0) break;
   }

@@ -10,7 +10,10 @@
 // it. So each sample on the near side of a depth edge (a jump between neighbouring samples, not a
 // slope) is judged between its own depth and the farthest one around it, by their mean matching
 // cost over the views that see the point at each (the map's own samples splatted into every
-// view, nearest first: a z-buffer); it takes the far depth where that matches better. Only
+// view, nearest first: a z-buffer); it takes the far depth where that matches better. Its cost
+// is over a 3 x 3 window, which at an edge straddles it: with `same_side_window` a depth is
+// judged by the sample and those of its window whose label is that depth's (within the edge's
+// threshold), not by the other side's samples read at a shift that is not theirs. Only
 // towards the far side: the near side is seen by every view that sees its neighbours, so the
 // sweep's own choice stands there. A few passes, each over the samples next to those the last
 // one moved.
@@ -27,6 +30,7 @@ struct SilhouetteVisibilityOptions {
   double edge_samples = 0.5;       // a depth edge: its sides this far apart (nearest view's shift)
   double tolerance_samples = 0.3;  // nearer than this (nearest view's shift) hides a point
   double color_cap = 0.1;          // the colour cost's truncation (sRGB 0 .. 1)
+  bool same_side_window = false;   // each depth's cost over its own side of the window only
 };
 
 // Re-decides `label` (CV_32F, the planes of inverse depth q[i] as SweepViews::Sweep swept them;
