@@ -208,12 +208,14 @@ TEST(DepthOnABenchmarkLikeScene, IgnoresBrightnessThatChangesFromViewToView) {
 // whole at whole-sample shifts and 0.41 of its variance halfway between samples, so the planes at
 // which the farthest views fall halfway matched better by that alone, and the estimate came in
 // terraces a quarter of a pixel apart. Noisy views are now read through a Gaussian (docs/depth.md,
-// "Noisy views"): measured 14.12% and 1.24 (14.10% and 1.18 with the visibility step's cost over
-// the whole window at the silhouettes), against 31.93% and 2.59 with Keys' reads.
+// "Noisy views"): measured 14.10% and 1.18, against 31.93% and 2.59 with Keys' reads. Their
+// silhouettes are judged by visibility over the whole cost window, not each depth by its own
+// side of it: that lost here (1.24), and at noise of 1.5 and 3 levels (0.548 -> 0.590, 0.620 ->
+// 0.671; docs/depth.md, "Visibility at the silhouettes").
 TEST(DepthOnABenchmarkLikeScene, HoldsUpOnNoisyViews) {
   const SimulatedScore s = ScoreSimulatedRig(MakePaperScene(), 5.0, 0.0, 8.0);
   EXPECT_LE(s.badpix, 18.0);
-  EXPECT_LE(s.mse100, 1.8);
+  EXPECT_LE(s.mse100, 1.2);
 }
 
 Texture Faint(Texture t, double contrast, double scale) {

@@ -63,10 +63,10 @@ constexpr double kNarrowGradientShare = 0.89, kWideGradientShare = 0.5;
 constexpr double kEqualiseRange = kNarrowRange;
 // There too, the silhouettes are re-decided by visibility over a window of 5 samples, up to 10
 // passes (elsewhere its defaults: 3 and 3), each depth judged by its own side of the cost's
-// window. Every narrow rig measured gains from the wider window and passes, the thin gaps between
-// near objects most, and all but two from the one-sided cost (the noisy rig and the slats lose a
-// little); on the wide `paper` rig the wider window took a point off its grazing table, and the
-// one-sided cost half a point (docs/depth.md, "Visibility at the silhouettes").
+// window unless the views are noisy. Every narrow rig measured gains from the wider window and
+// passes, the thin gaps between near objects most, and all but the slats from the one-sided cost
+// (noisy rigs lost by it); on the wide `paper` rig the wider window took a point off its grazing
+// table, and the one-sided cost half a point (docs/depth.md, "Visibility at the silhouettes").
 constexpr int kNarrowVisibilityWindow = 5, kNarrowVisibilityPasses = 10;
 
 double GradientShare(double neighbour_range) {
@@ -346,7 +346,9 @@ DepthMap EstimateDepth(const LightField& lf, int row, int col, const PlaneSweepO
     if (narrow) {
       visibility.window = kNarrowVisibilityWindow;
       visibility.passes = kNarrowVisibilityPasses;
-      visibility.same_side_window = true;
+      // Not on noisy views: read through a Gaussian of more than a sample, a sample's colour
+      // already holds the other side's, and the one-sided window only averages less noise.
+      visibility.same_side_window = views.noise_level() <= kNoisyViewLevels;
     }
     RefineSilhouettesByVisibility(views, q, per_plane, choice.label, visibility);
   }
