@@ -55,6 +55,10 @@ void PrintImport(const nlohmann::json& s) {
     for (const auto& note : s["notes"]) fmt::print("  note: {}\n", note.get<std::string>());
   if (s.contains("axes") && s["axes"]["verdict"] != "agree")
     fmt::print("  note: {}\n", s["axes"]["said"].get<std::string>());
+  if (s.contains("occlusions"))
+    fmt::print("  {}{} ({:.1f} s)\n", s["occlusions"]["verdict"] == "as-named" ? "" : "note: ",
+               s["occlusions"]["said"].get<std::string>(),
+               s["occlusions"]["seconds"].get<double>());
   for (const auto& filled : s["filled"])
     fmt::print(stderr, "lfcam: warning: filled {}\n", filled.get<std::string>());
 }

@@ -11,6 +11,7 @@
 #include "lfcam/core/error.h"
 #include "lfcam/core/limits.h"
 #include "lfcam/core/progress.h"
+#include "lfcam/depth/occlusion_order.h"
 #include "lfcam/io/grid_import.h"
 #include "lfcam/io/parallax_axes.h"
 #include "lfcam/io/rectified_import.h"
@@ -180,13 +181,35 @@ nlohmann::json ImportFlags::CheckAxes(ImportedGrid& grid) const {
                                                                   : "columns are")
             : fmt::format(
                   "the rows are taken in reverse (as --flip-rows would), so that they agree with "
-                  "the columns. Which of the two was named the other way the views of a "
-                  "rectified rig cannot tell: if near and far come out exchanged, import with "
-                  "{}--flip-cols instead",
+                  "the columns. Which of the two was named the other way the parallax of a "
+                  "rectified rig cannot tell; its occlusions decide below (where they cannot, "
+                  "and near and far come out exchanged, import with {}--flip-cols instead)",
                   said.size() > 2 ? "--swap-axes " : ""));
   }
   if (said.size() > 1) said.back() += " (--keep-axes: as named)";
   j["said"] = fmt::format("{}", fmt::join(said, "; "));
+  return j;
+}
+
+nlohmann::json ImportFlags::CheckOcclusionOrder(ImportedLightField& imported, ImportedGrid& grid,
+                                                const ImportOptions& options, bool quiet) const {
+  const OcclusionOrder order = MeasureOcclusionOrder(imported.lightfield);
+  nlohmann::json j = {{"verdict", ToString(order.verdict)},
+                      {"as_named", order.as_named},
+                      {"reversed", order.reversed},
+                      {"seconds", order.seconds},
+                      {"turned", false},
+                      {"said", Describe(order)}};
+  // The flags say the user has chosen: what the occlusions say is then reported, not acted on.
+  if (order.verdict != OcclusionVerdict::kReversed || swap_axes || flip_rows || flip_cols ||
+      keep_axes)
+    return j;
+  grid = WithAxesReversed(grid, true, true);
+  imported = ImportRectified(dir, grid, options, quiet);
+  j["turned"] = true;
+  j["said"] = Describe(order) +
+              "; so the rig is taken turned half a turn, its rows and its columns in reverse "
+              "(--keep-axes: as named)";
   return j;
 }
 
@@ -228,7 +251,18 @@ ImportedLightField ImportFlags::Run(bool quiet) const {
             "parallel resamples them)",
             flag->get_name()));
     ImportedLightField imported = ImportRectified(dir, grid, o, quiet);
+    nlohmann::json order = CheckOcclusionOrder(imported, grid, o, quiet);
     imported.summary["axes"] = axes;
+    if (order.value("turned", false)) {
+      const bool rows = !axes.value("flip_rows", false), cols = !axes.value("flip_cols", false);
+      imported.summary["axes"]["flip_rows"] = rows;
+      imported.summary["axes"]["flip_cols"] = cols;
+      if (cols && !rows)
+        order["said"] = order["said"].get<std::string>() +
+                        "; with the rows' reversal above, the columns are what is taken in "
+                        "reverse (as --flip-cols would)";
+    }
+    imported.summary["occlusions"] = std::move(order);
     return imported;
   }
   if (o.pitch_mm && grid.positions_known)

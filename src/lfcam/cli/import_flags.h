@@ -48,6 +48,12 @@ struct ImportFlags {
   // swapped back, then a reversed axis reversed), and throws lfcam::Error where the views agree
   // with no reading. What it found and did, for the summary.
   nlohmann::json CheckAxes(ImportedGrid& grid) const;
+  // A rectified rig's near and far told by its occlusions (depth/occlusion_order.h): where they
+  // say the rig stands turned half a turn, and no axis flag was given, `grid` is taken turned
+  // (its rows and columns in reverse) and imported again into `imported`. What it found and
+  // did, for the summary.
+  nlohmann::json CheckOcclusionOrder(ImportedLightField& imported, ImportedGrid& grid,
+                                     const ImportOptions& options, bool quiet) const;
 
   CLI::Option *st_res_ = nullptr, *st_domain_ = nullptr, *resampling_ = nullptr,
               *st_windows_ = nullptr;

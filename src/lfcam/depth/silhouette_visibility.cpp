@@ -9,19 +9,10 @@
 #include <limits>
 #include <opencv2/imgproc.hpp>
 
+#include "lfcam/depth/bilinear_read.h"
+
 namespace lfcam {
 namespace {
-
-// A plane's bilinear read at (x, y); false outside the plane.
-inline bool BilinearAt(const cv::Mat& m, double x, double y, float* out) {
-  if (!(x >= 0 && y >= 0 && x <= m.cols - 1 && y <= m.rows - 1)) return false;
-  const int x0 = std::min(int(x), m.cols - 2), y0 = std::min(int(y), m.rows - 2);
-  const float fx = float(x - x0), fy = float(y - y0);
-  const float* a = m.ptr<float>(y0) + x0;
-  const float* b = m.ptr<float>(y0 + 1) + x0;
-  *out = (a[0] * (1 - fx) + a[1] * fx) * (1 - fy) + (b[0] * (1 - fx) + b[1] * fx) * fy;
-  return true;
-}
 
 // A sample on the near side of a depth edge, and the two depths it is judged between.
 struct EdgeSample {

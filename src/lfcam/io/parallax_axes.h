@@ -17,7 +17,8 @@
 // turned half a turn about its axis: every view's parallax is then consistent, near and far
 // exchanged), and which of two disagreeing axes is the wrong one. lfcam takes the columns as
 // named (left to right is near-universal) and reverses the rows (whether a row index or y counts
-// up or down is what conventions disagree on), and says so. Parallel cameras (centred sensors)
+// up or down is what conventions disagree on), and says so; then the occlusions tell the half turn
+// (depth/occlusion_order.h). Parallel cameras (centred sensors)
 // tell each axis apart: every point moves against its camera (f / Z > 0, no constant), so an
 // axis along which the points move with the camera is reversed.
 #include <filesystem>

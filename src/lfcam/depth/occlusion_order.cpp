@@ -1,0 +1,199 @@
+#include "lfcam/depth/occlusion_order.h"
+
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <opencv2/imgproc.hpp>
+#include <optional>
+#include <vector>
+
+#include "lfcam/core/error.h"
+#include "lfcam/depth/bilinear_read.h"
+#include "lfcam/depth/cost_volume.h"
+#include "lfcam/depth/plane_sweep.h"
+
+namespace lfcam {
+namespace {
+
+// A pair of neighbouring samples votes where one view at least moves them this many samples
+// relative to each other, and where its two sides' mismatch differs by this much (sRGB, 0 .. 1,
+// the mean over R, G and B).
+constexpr double kFewestSamplesApart = 1.0;
+constexpr double kSmallestMismatch = 0.01;
+
+// A side's mismatch, summed over the closing and over the opening views.
+struct SideCost {
+  double closing = 0, opening = 0;
+  int closing_n = 0, opening_n = 0;
+  bool complete() const { return closing_n > 0 && opening_n > 0; }
+  double excess() const { return closing / closing_n - opening / opening_n; }
+};
+
+}  // namespace
+
+OcclusionOrder MeasureOcclusionOrder(const LightField& lf) {
+  const auto start = std::chrono::steady_clock::now();
+  OcclusionOrder out;
+  const auto done = [&] {
+    out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return out;
+  };
+  const LightFieldDims& d = lf.dims();
+  if (d.view_count() < 2) {
+    out.why = "a single view";
+    return done();
+  }
+  const int row = d.rows / 2, col = d.cols / 2;
+  // The map without the one step that assumes which side of an edge is near.
+  PlaneSweepOptions sweep;
+  sweep.silhouette_visibility = false;
+  sweep.slant_prior = false;
+  sweep.reach = 2;
+  std::optional<DepthMap> map;
+  std::optional<SweepViews> views_or;
+  try {
+    map = EstimateDepth(lf, row, col, sweep);
+    views_or.emplace(lf, row, col, CostVolumeOptions{});  // the views within reach 4
+  } catch (const Error& e) {
+    out.why = e.what();
+    return done();
+  }
+  const SweepViews& views = *views_or;
+  const auto shifts = views.ReadShifts();
+  if (!shifts) {
+    out.why = "the views are warped by a homography (the st-plane not parallel to the array)";
+    return done();
+  }
+  const int w = views.width(), h = views.height();
+  cv::Mat inverse_depth;
+  cv::resize(map->depth, inverse_depth, {w, h}, 0, 0, cv::INTER_NEAREST);
+  cv::divide(1.0, inverse_depth, inverse_depth);
+  double largest_per_q = 0;
+  for (const SweepViews::ReadShift& s : *shifts)
+    largest_per_q = std::max({largest_per_q, std::abs(s.per_q.x), std::abs(s.per_q.y)});
+
+  // The pairs of neighbouring samples some view moves a sample or more apart.
+  struct Edge {
+    cv::Point a, dir;
+    float qa = 0, qb = 0;
+    std::array<SideCost, 2> side;  // 0: a and the sample before it; 1: b and the one after it
+  };
+  std::vector<Edge> edges;
+  for (const cv::Point dir : {cv::Point(1, 0), cv::Point(0, 1)})
+    for (int y = 0; y + dir.y < h; ++y)
+      for (int x = 0; x + dir.x < w; ++x) {
+        const float qa = inverse_depth.at<float>(y, x),
+                    qb = inverse_depth.at<float>(y + dir.y, x + dir.x);
+        if (std::isfinite(qa) && std::isfinite(qb) &&
+            std::abs(qa - qb) * largest_per_q >= kFewestSamplesApart)
+          edges.push_back({{x, y}, dir, qa, qb, {}});
+      }
+
+  const std::array<cv::Mat, 3> reference = views.Colour(-1);
+  for (int i = 0; i < views.view_count(); ++i) {
+    const std::array<cv::Mat, 3> colour = views.Colour(i);
+    const SweepViews::ReadShift& s = (*shifts)[std::size_t(i)];
+    // Sample p's mismatch in this view at its own depth; false where unknown or outside it.
+    const auto mismatch = [&](cv::Point p, double* cost) {
+      if (p.x < 0 || p.y < 0 || p.x >= w || p.y >= h) return false;
+      const float q = inverse_depth.at<float>(p);
+      if (!std::isfinite(q)) return false;
+      const double vx = p.x + s.offset.x + q * s.per_q.x, vy = p.y + s.offset.y + q * s.per_q.y;
+      double sum = 0;
+      for (int c = 0; c < 3; ++c) {
+        float v = 0;
+        if (!BilinearAt(colour[std::size_t(c)], vx, vy, &v)) return false;
+        sum += std::abs(double(v) - reference[std::size_t(c)].at<float>(p));
+      }
+      *cost = sum / 3;
+      return true;
+    };
+    for (Edge& e : edges) {
+      const cv::Point2d r = s.per_q * double(e.qa - e.qb);
+      const double apart = r.x * e.dir.x + r.y * e.dir.y;  // > 0: a's surface moves toward b's
+      if (std::abs(apart) < kFewestSamplesApart) continue;
+      const bool closing = apart > 0;
+      for (int side = 0; side < 2; ++side)
+        for (int step = 0; step < 2; ++step) {
+          const cv::Point p = side == 0 ? e.a - step * e.dir : e.a + (1 + step) * e.dir;
+          double cost = 0;
+          if (!mismatch(p, &cost)) continue;
+          SideCost& c = e.side[std::size_t(side)];
+          if (closing)
+            c.closing += cost, ++c.closing_n;
+          else
+            c.opening += cost, ++c.opening_n;
+        }
+    }
+  }
+  for (const Edge& e : edges) {
+    if (!e.side[0].complete() || !e.side[1].complete()) continue;
+    const std::size_t far = e.qa < e.qb ? 0 : 1;  // the smaller inverse depth
+    const double stat = e.side[far].excess() - e.side[1 - far].excess();
+    if (stat > kSmallestMismatch)
+      ++out.as_named;
+    else if (stat < -kSmallestMismatch)
+      ++out.reversed;
+  }
+
+  const int votes = out.as_named + out.reversed;
+  if (votes < kFewestOcclusionVotes) {
+    out.why = fmt::format("{} depth edges voted, fewer than {}", votes, kFewestOcclusionVotes);
+  } else if (out.as_named >= kOcclusionMajority * votes) {
+    out.verdict = OcclusionVerdict::kAsNamed;
+  } else if (out.reversed >= kOcclusionMajority * votes) {
+    out.verdict = OcclusionVerdict::kReversed;
+  } else {
+    out.why = fmt::format("the votes split {} to {}", out.as_named, out.reversed);
+  }
+  return done();
+}
+
+LightField WithViewsTurnedHalfATurn(const LightField& lf) {
+  if (lf.has_view_windows())
+    throw Error("a light field whose views have their own st windows cannot be turned");
+  LightField turned(lf.dims(), lf.sample_type(), lf.slab());
+  const LightFieldDims& d = lf.dims();
+  for (int r = 0; r < d.rows; ++r)
+    for (int c = 0; c < d.cols; ++c)
+      std::memcpy(turned.mutable_view_data(r, c), lf.view_data(d.rows - 1 - r, d.cols - 1 - c),
+                  lf.view_bytes());
+  if (!lf.measured_poses().empty()) turned.set_measured_poses(lf.measured_poses());
+  turned.metadata() = lf.metadata();
+  return turned;
+}
+
+std::string ToString(OcclusionVerdict verdict) {
+  switch (verdict) {
+    case OcclusionVerdict::kAsNamed:
+      return "as-named";
+    case OcclusionVerdict::kReversed:
+      return "reversed";
+    case OcclusionVerdict::kUndecided:
+      break;
+  }
+  return "undecided";
+}
+
+std::string Describe(const OcclusionOrder& o) {
+  const int votes = o.as_named + o.reversed;
+  const std::string counts = fmt::format(
+      "of {} depth edges in the central view, {} hide their far side from the views that "
+      "close over it and {} their near side",
+      votes, o.as_named, o.reversed);
+  switch (o.verdict) {
+    case OcclusionVerdict::kAsNamed:
+      return fmt::format("near and far as named ({})", counts);
+    case OcclusionVerdict::kReversed:
+      return fmt::format("near and far exchanged as named ({})", counts);
+    case OcclusionVerdict::kUndecided:
+      break;
+  }
+  return fmt::format("near and far not told by the occlusions ({}), taken as named", o.why);
+}
+
+}  // namespace lfcam
