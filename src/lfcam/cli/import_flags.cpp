@@ -144,6 +144,7 @@ nlohmann::json ImportFlags::CheckAxes(ImportedGrid& grid) const {
   nlohmann::json j = {{"verdict", ToString(axes.verdict)},
                       {"points", axes.points},
                       {"correlation", axes.correlation},
+                      {"largest_px_per_step", axes.largest_px_per_step},
                       {"swap_axes", swap_axes},
                       {"flip_rows", flip_rows},
                       {"flip_cols", flip_cols}};
@@ -159,6 +160,7 @@ nlohmann::json ImportFlags::CheckAxes(ImportedGrid& grid) const {
     said.push_back(
         "the names' rows are taken as columns and their columns as rows (as --swap-axes would)");
     axes = MeasureParallaxAxes(dir, grid);
+    j["largest_px_per_step"] = axes.largest_px_per_step;
     if (axes.verdict == AxesVerdict::kSwapped || axes.verdict == AxesVerdict::kUndecided)
       throw Error(
           fmt::format("{}: {}; exchanged, they do not agree either ({}): describe the grid "
@@ -244,6 +246,11 @@ ImportedLightField ImportFlags::Run(bool quiet) const {
   if (o.rig) grid.rig = *o.rig;
   const nlohmann::json axes = CheckAxes(grid);
   if (grid.rig == RigModel::kRectified) {
+    // Where no distance is known, infinity is put behind the zero-disparity plane by twice the
+    // largest parallax the views show (at least kAssumedInfinityDisparityPx), so that the depth
+    // sweep's span (half to twenty times that plane's distance) holds the scene either way round.
+    o.infinity_disparity_px = std::max(kAssumedInfinityDisparityPx,
+                                       std::ceil(2 * axes.value("largest_px_per_step", 0.0)));
     for (const CLI::Option* flag : {st_res_, st_domain_, resampling_, st_windows_})
       if (flag && flag->count() > 0)
         throw UsageError(fmt::format(

@@ -15,10 +15,12 @@
 // the rig turned half a turn, the map is the same but near and far are exchanged, and so are the
 // closing and opening views: the mismatch then lies on the side the reading calls near.
 //
-// Measured on the central view: its depth (the plane sweep without the silhouettes' visibility
-// step, the one step that assumes which side is near), every pair of neighbouring samples whose
-// depths move them at least a sample apart in some view, and each side's two samples next to the
-// edge, read in every view at their own depth.
+// Measured on the central view (views of 1024 samples a side or more first reduced to 512-1023):
+// its depth (the plane sweep at reach 2 without the silhouettes' visibility step, the one step
+// that assumes which side is near), every pair of neighbouring samples whose depths move them two
+// samples or more apart in some view and whose sides each go on at their depth for four samples
+// (a jump, not a slope or an island) and are confident, and each side's two samples next to the
+// edge, read at their own depth in every view within reach 4 that moves them that far apart.
 #include <string>
 
 #include "lfcam/core/lightfield.h"

@@ -104,6 +104,9 @@ struct ImportOptions {
   std::optional<double> focal_mm, sensor_width_mm;
   std::optional<double> pitch_mm;  // the cameras' spacing when the names give indices only
   std::optional<RigModel> rig;     // default: as the naming or description implies
+  // Rectified, where no distance is known: how far behind the zero-disparity plane infinity is
+  // assumed to lie, px of disparity between neighbours (default kAssumedInfinityDisparityPx).
+  std::optional<double> infinity_disparity_px;
 };
 
 struct ImportedSession {

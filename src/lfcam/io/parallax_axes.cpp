@@ -167,6 +167,14 @@ ParallaxAxes MeasureParallaxAxes(const fs::path& dir, const ImportedGrid& g) {
     return out;
   }
   out.correlation = ClippedCorrelation(along_row, along_col);
+  if (g.pitch_mm > 0) {
+    const double row_steps = std::abs(dx) / g.pitch_mm, col_steps = std::abs(dy) / g.pitch_mm;
+    std::vector<double> per_step;
+    for (std::size_t i = 0; i < row_x.size(); ++i)
+      per_step.push_back(std::max(std::abs(row_x[i]) / row_steps, std::abs(col_y[i]) / col_steps));
+    std::sort(per_step.begin(), per_step.end());
+    out.largest_px_per_step = per_step[per_step.size() * 98 / 100];
+  }
   const double expected = std::min(Spread(row_x), Spread(col_y));
   const double crossed = std::max(Spread(row_y), Spread(col_x));
   out.spread_px = expected;

@@ -43,8 +43,11 @@ struct ParallaxAxes {
   double correlation = 0;  // of the vertical against the horizontal parallax, point by point
   double cross = 0;        // of the vertical parallax against the row views' vertical motion
   double spread_px = 0;    // the horizontal parallax's spread over the points, px
-  std::string views;       // which views were compared, for the messages
-  std::string why;         // undecided: why
+  // The points' largest parallax (their 98th percentile) a grid step, either axis, px of the
+  // views as read: for a rectified rig, how far from zero disparity the scene reaches.
+  double largest_px_per_step = 0;
+  std::string views;  // which views were compared, for the messages
+  std::string why;    // undecided: why
 };
 
 // Reads the centre view of `grid` (a parallel rig's axes judged each on its own, a rectified

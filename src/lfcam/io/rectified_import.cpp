@@ -149,12 +149,16 @@ RectifiedGeometry ResolveRectifiedGeometry(const ImportedGrid& g, const ImportOp
     r.reference_principal_point = {x(0), x(1)};
     r.zero_disparity_mm = r.focal_px / x(2);
   } else {
-    r.zero_disparity_mm = r.focal_px * r.pitch_mm / kAssumedInfinityDisparityPx;
+    const double behind = o.infinity_disparity_px.value_or(kAssumedInfinityDisparityPx);
+    r.zero_disparity_mm = r.focal_px * r.pitch_mm / behind;
     r.assumed.push_back(fmt::format(
         "the zero-disparity plane {:.4g} {} from the cameras, so that infinity lies {} px of "
-        "disparity behind it (no distance is published; --st-distance sets it); disparities are "
-        "as photographed, distances in these units",
-        r.zero_disparity_mm, units, kAssumedInfinityDisparityPx));
+        "disparity behind it (no distance is published; --st-distance sets it){}; disparities "
+        "are as photographed, distances in these units",
+        r.zero_disparity_mm, units, behind,
+        behind > kAssumedInfinityDisparityPx
+            ? fmt::format(", twice the largest parallax the views show between neighbours")
+            : std::string()));
   }
   if (!(r.zero_disparity_mm > 0) || !std::isfinite(r.zero_disparity_mm))
     throw Error("the zero-disparity plane's distance must be positive");

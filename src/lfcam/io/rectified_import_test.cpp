@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -19,6 +20,7 @@
 #include "lfcam/core/error.h"
 #include "lfcam/core/image_io.h"
 #include "lfcam/core/lightfield_file.h"
+#include "lfcam/depth/depth_set.h"
 #include "lfcam/depth/plane_sweep.h"
 #include "lfcam/io/lightfield_export.h"
 #include "lfcam/render/rig_camera.h"
@@ -438,6 +440,75 @@ cv::Mat ReadPfm(const fs::path& path) {
   cv::Mat m(h, w, CV_32F);
   for (int y = h - 1; y >= 0; --y) in.read(reinterpret_cast<char*>(m.ptr<float>(y)), w * 4);
   return magic == "Pf" && scale < 0 && in ? m : cv::Mat();
+}
+
+// A rig whose scene lies farther from zero disparity than the 8 px a step behind which infinity
+// is assumed to lie (the `paper` scene through a 3 x 3 gantry zoomed in twice: the world beyond
+// its board lies more than 8 px behind it), named the Stanford way with no focal length or
+// distance. With infinity put 8 px behind the zero-disparity plane, the sweep could not reach
+// what lies beyond it, nor nearer than 8 px in front; infinity is now put twice the largest
+// parallax the views show behind it, and the estimate finds the simulator's true disparity.
+TEST(RectifiedImport, AStanfordRigWithLargeParallaxGetsItsTrueDisparity) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("lfcam_rectified_parallax_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir / "stanford");
+  const std::string sim = (dir / "sim.lf").string(), truth = (dir / "truth").string();
+  auto run = testing::Lfcam(
+      fmt::format("simulate lightfield --grid 3x3 --st-res 512x472 --st-domain 0.25,0.25,0.75,0.75 "
+                  "--depth-out {} --out {} --quiet",
+                  truth, sim));
+  ASSERT_EQ(run.status, 0) << run.output;
+  run = testing::Lfcam(
+      fmt::format("export {} --format png-views --out {} --quiet", sim, (dir / "views").string()));
+  ASSERT_EQ(run.status, 0) << run.output;
+  std::ifstream cameras_file(dir / "views" / "cameras.json");
+  const nlohmann::json cameras = nlohmann::json::parse(cameras_file);
+  double fx = 0;
+  for (const auto& v : cameras["views"]) {
+    const double x = v["center_mm"][0], y = v["center_mm"][1];
+    if (v["row"] == 1 && v["col"] == 1) fx = v["fx"];
+    fs::copy_file(dir / "views" / v["file"].get<std::string>(),
+                  dir / "stanford" /
+                      fmt::format("out_{:02d}_{:02d}_{:.6f}_{:.6f}_.png", 2 - v["row"].get<int>(),
+                                  v["col"].get<int>(), -y, x));
+  }
+  ASSERT_GT(fx, 0);
+  // The true disparity between neighbours (28 mm apart, zero at the board 3.6 m away), the
+  // central view's, rows top-down as the PFM is read.
+  const DepthMap true_depth = ReadDepthSet(truth, ReadLightField(sim)).at(1, 1);
+  const int w = true_depth.n_s(), h = true_depth.n_t();
+  const auto within = [&](const std::string& import_flags, double* largest_true) {
+    const std::string lf = (dir / "imported.lf").string(), pfm = (dir / "d.pfm").string();
+    auto r = testing::Lfcam(
+        fmt::format("import {} --out {} {}", (dir / "stanford").string(), lf, import_flags));
+    EXPECT_EQ(r.status, 0) << r.output;
+    r = testing::Lfcam(fmt::format("depth {} --out {} --disparity-pfm {} --quiet", lf,
+                                   (dir / "d.png").string(), pfm));
+    EXPECT_EQ(r.status, 0) << r.output;
+    const cv::Mat estimate = ReadPfm(pfm);
+    EXPECT_EQ(estimate.cols, w);
+    int good = 0, counted = 0;
+    for (int y = 15; y < h - 15; y += 2)
+      for (int x = 15; x < w - 15; x += 2) {
+        const double d = true_depth.depth.at<float>(h - 1 - y, x);
+        const double disparity = fx * 28.0 * (1 / d - 1 / 3600.0);
+        *largest_true = std::max(*largest_true, std::abs(disparity));
+        ++counted;
+        good += std::abs(estimate.at<float>(y, x) - disparity) < 0.5;
+      }
+    return double(good) / counted;
+  };
+  double largest = 0;
+  const double share = within("--quiet", &largest);
+  EXPECT_GT(largest, 8.5);  // the scene reaches past the fixed assumption's 8 px (behind)
+  EXPECT_GT(share, 0.9);
+  // The fixed assumption (zero disparity where infinity lies 8 px behind: 512 x 28 / 8 units).
+  const double fixed = within("--st-distance 1792 --quiet", &largest);
+  EXPECT_LT(fixed, share - 0.1);
+  std::printf("within 0.5 px of the true disparity: %.1f%% (the fixed assumption: %.1f%%)\n",
+              100 * share, 100 * fixed);
+  fs::remove_all(dir);
 }
 
 TEST(RectifiedImport, TheHciSceneLinesUpWithItsTrueDisparity) {
