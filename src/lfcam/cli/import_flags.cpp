@@ -133,8 +133,9 @@ void ImportFlags::AddTo(CLI::App& command) {
                    "two indices (or two numbers) come the other way round (before any --flip)");
   command.add_flag("--keep-axes", keep_axes,
                    "Keep the names' axes even where the views' own parallax says a row runs "
-                   "against a column (without this or a --flip or --swap flag lfcam does what "
-                   "the views say, and says so)");
+                   "against a column, or a rectified rig's occlusions say it stands half a turn "
+                   "round (without this or a --flip or --swap flag lfcam does what the views "
+                   "say, and says so)");
 }
 
 nlohmann::json ImportFlags::CheckAxes(ImportedGrid& grid) const {
