@@ -248,10 +248,13 @@ ImportedLightField ImportFlags::Run(bool quiet) const {
   const nlohmann::json axes = CheckAxes(grid);
   if (grid.rig == RigModel::kRectified) {
     // Where no distance is known, infinity is put behind the zero-disparity plane by twice the
-    // largest parallax the views show (at least kAssumedInfinityDisparityPx), so that the depth
-    // sweep's span (half to twenty times that plane's distance) holds the scene either way round.
-    o.infinity_disparity_px = std::max(kAssumedInfinityDisparityPx,
-                                       std::ceil(2 * axes.value("largest_px_per_step", 0.0)));
+    // largest parallax the views show (a whole px, at least 1), so that the depth sweep's span
+    // (half to twenty times that plane's distance) holds the scene either way round and little
+    // more: a span many times the scene's lets a repeating texture match at a false depth
+    // (docs/format.md, "What a data set does not say"). Where the parallax was not measured,
+    // kAssumedInfinityDisparityPx.
+    if (const double largest = axes.value("largest_px_per_step", 0.0); largest > 0)
+      o.infinity_disparity_px = std::max(1.0, std::ceil(2 * largest));
     for (const CLI::Option* flag : {st_res_, st_domain_, resampling_, st_windows_})
       if (flag && flag->count() > 0)
         throw UsageError(fmt::format(

@@ -105,7 +105,8 @@ struct ImportOptions {
   std::optional<double> pitch_mm;  // the cameras' spacing when the names give indices only
   std::optional<RigModel> rig;     // default: as the naming or description implies
   // Rectified, where no distance is known: how far behind the zero-disparity plane infinity is
-  // assumed to lie, px of disparity between neighbours (default kAssumedInfinityDisparityPx).
+  // assumed to lie, px of disparity between neighbours (default kAssumedInfinityDisparityPx;
+  // `lfcam import` sets it from the parallax the views show).
   std::optional<double> infinity_disparity_px;
 };
 

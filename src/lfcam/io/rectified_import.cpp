@@ -156,7 +156,7 @@ RectifiedGeometry ResolveRectifiedGeometry(const ImportedGrid& g, const ImportOp
         "disparity behind it (no distance is published; --st-distance sets it){}; disparities "
         "are as photographed, distances in these units",
         r.zero_disparity_mm, units, behind,
-        behind > kAssumedInfinityDisparityPx
+        o.infinity_disparity_px
             ? fmt::format(", twice the largest parallax the views show between neighbours")
             : std::string()));
   }

@@ -442,6 +442,34 @@ cv::Mat ReadPfm(const fs::path& path) {
   return magic == "Pf" && scale < 0 && in ? m : cv::Mat();
 }
 
+// The simulator's `paper` scene through a rows x rows rectified gantry (`simulate lightfield`
+// with `sim_flags`), its views in `dir`/stanford named the Stanford archive's way
+// (out_RR_CC_Y_X_.png: rows counted from the top, Y = -y, X = x, no focal length or distance),
+// its true depth in `dir`/truth. Returns the central view's focal length in px.
+double WriteStanfordGantry(const fs::path& dir, int rows, const std::string& sim_flags) {
+  fs::remove_all(dir);
+  fs::create_directories(dir / "stanford");
+  auto run = testing::Lfcam(
+      fmt::format("simulate lightfield --grid {}x{} {} --depth-out {} --out {} --quiet", rows, rows,
+                  sim_flags, (dir / "truth").string(), (dir / "sim.lf").string()));
+  EXPECT_EQ(run.status, 0) << run.output;
+  run = testing::Lfcam(fmt::format("export {} --format png-views --out {} --quiet",
+                                   (dir / "sim.lf").string(), (dir / "views").string()));
+  EXPECT_EQ(run.status, 0) << run.output;
+  std::ifstream cameras_file(dir / "views" / "cameras.json");
+  const nlohmann::json cameras = nlohmann::json::parse(cameras_file);
+  double fx = 0;
+  for (const auto& v : cameras["views"]) {
+    const double x = v["center_mm"][0], y = v["center_mm"][1];
+    if (v["row"] == rows / 2 && v["col"] == rows / 2) fx = v["fx"];
+    fs::copy_file(dir / "views" / v["file"].get<std::string>(),
+                  dir / "stanford" /
+                      fmt::format("out_{:02d}_{:02d}_{:.6f}_{:.6f}_.png",
+                                  rows - 1 - v["row"].get<int>(), v["col"].get<int>(), -y, x));
+  }
+  return fx;
+}
+
 // A rig whose scene lies farther from zero disparity than the 8 px a step behind which infinity
 // is assumed to lie (the `paper` scene through a 3 x 3 gantry zoomed in twice: the world beyond
 // its board lies more than 8 px behind it), named the Stanford way with no focal length or
@@ -451,28 +479,8 @@ cv::Mat ReadPfm(const fs::path& path) {
 TEST(RectifiedImport, AStanfordRigWithLargeParallaxGetsItsTrueDisparity) {
   const fs::path dir =
       fs::temp_directory_path() / ("lfcam_rectified_parallax_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir / "stanford");
   const std::string sim = (dir / "sim.lf").string(), truth = (dir / "truth").string();
-  auto run = testing::Lfcam(
-      fmt::format("simulate lightfield --grid 3x3 --st-res 512x472 --st-domain 0.25,0.25,0.75,0.75 "
-                  "--depth-out {} --out {} --quiet",
-                  truth, sim));
-  ASSERT_EQ(run.status, 0) << run.output;
-  run = testing::Lfcam(
-      fmt::format("export {} --format png-views --out {} --quiet", sim, (dir / "views").string()));
-  ASSERT_EQ(run.status, 0) << run.output;
-  std::ifstream cameras_file(dir / "views" / "cameras.json");
-  const nlohmann::json cameras = nlohmann::json::parse(cameras_file);
-  double fx = 0;
-  for (const auto& v : cameras["views"]) {
-    const double x = v["center_mm"][0], y = v["center_mm"][1];
-    if (v["row"] == 1 && v["col"] == 1) fx = v["fx"];
-    fs::copy_file(dir / "views" / v["file"].get<std::string>(),
-                  dir / "stanford" /
-                      fmt::format("out_{:02d}_{:02d}_{:.6f}_{:.6f}_.png", 2 - v["row"].get<int>(),
-                                  v["col"].get<int>(), -y, x));
-  }
+  const double fx = WriteStanfordGantry(dir, 3, "--st-res 512x472 --st-domain 0.25,0.25,0.75,0.75");
   ASSERT_GT(fx, 0);
   // The true disparity between neighbours (28 mm apart, zero at the board 3.6 m away), the
   // central view's, rows top-down as the PFM is read.
@@ -508,6 +516,71 @@ TEST(RectifiedImport, AStanfordRigWithLargeParallaxGetsItsTrueDisparity) {
   EXPECT_LT(fixed, share - 0.1);
   std::printf("within 0.5 px of the true disparity: %.1f%% (the fixed assumption: %.1f%%)\n",
               100 * share, 100 * fixed);
+  fs::remove_all(dir);
+}
+
+// A rig of small parallax (the `paper` scene through a 9 x 9 gantry 7 mm apart: up to 1.3 px
+// between neighbours, the parallax of the Stanford archive's views at 256 px), named the Stanford
+// way. Infinity assumed 16 px behind the zero-disparity plane (what `bench/heldout.py`'s kept half
+// of such a rig 3.5 mm apart had, with the 8 px a step that the import assumed before it measured
+// the parallax) lets the depth sweep reach the false depths where the scene's repeating textures
+// (the board's squares, the lines of text) match again: the central view's range then spans nine
+// times the scene's, and the maps of `depth --all` (reach 1) take false depths in streaks. Put
+// twice the views' parallax behind, the range holds the scene and little more.
+TEST(RectifiedImport, AStanfordRigWithSmallParallaxSweepsNoFartherThanItsScene) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("lfcam_rectified_small_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  constexpr int kRows = 9;
+  constexpr double kPitch = 7.0;
+  nlohmann::json centres;
+  for (int r = 0; r < kRows; ++r)
+    for (int c = 0; c < kRows; ++c)
+      centres["cameras"].push_back(
+          {{"row", r},
+           {"col", c},
+           {"center", {300 + kPitch * (c - 4), 275 + kPitch * (r - 4), 3600.0}}});
+  const fs::path centres_file = dir.parent_path() / (dir.filename().string() + "_centres.json");
+  std::ofstream(centres_file) << centres.dump();
+  const double fx = WriteStanfordGantry(
+      dir, kRows, fmt::format("--st-res 256x236 --centers-from {}", centres_file.string()));
+  fs::remove(centres_file);
+  ASSERT_GT(fx, 0);
+  // The scene's true disparities between neighbours, the central view's.
+  const DepthMap true_depth =
+      ReadDepthSet((dir / "truth").string(), ReadLightField((dir / "sim.lf").string())).at(4, 4);
+  double true_near = -1e9, true_far = 1e9;
+  for (int y = 0; y < true_depth.n_t(); ++y)
+    for (int x = 0; x < true_depth.n_s(); ++x) {
+      const double disparity = fx * kPitch * (1 / true_depth.depth.at<float>(y, x) - 1 / 3600.0);
+      true_near = std::max(true_near, disparity), true_far = std::min(true_far, disparity);
+    }
+  EXPECT_LT(true_near - true_far, 2.5);
+  // The range the central view's sweep takes, in px of disparity between neighbours.
+  const auto swept = [&](const std::string& import_flags) {
+    const std::string lf = (dir / "imported.lf").string();
+    auto r = testing::Lfcam(fmt::format("import {} --out {} --json --quiet {}",
+                                        (dir / "stanford").string(), lf, import_flags));
+    EXPECT_EQ(r.status, 0) << r.output;
+    const nlohmann::json imported = nlohmann::json::parse(r.output);
+    const double f = imported["focal_px"], z0 = imported["zero_disparity_distance_mm"];
+    r = testing::Lfcam(
+        fmt::format("depth {} --out {} --json --quiet", lf, (dir / "d.png").string()));
+    EXPECT_EQ(r.status, 0) << r.output;
+    const nlohmann::json range = nlohmann::json::parse(r.output)["map"]["range_mm"];
+    const auto disparity = [&](double z) { return f * kPitch * (1 / z - 1 / z0); };
+    return std::pair{disparity(range[0].get<double>()), disparity(range[1].get<double>())};
+  };
+  const auto [near, far] = swept("");
+  EXPECT_GT(near, true_near);
+  EXPECT_LT(far, true_far);
+  EXPECT_LT(near - far, 2.2 * (true_near - true_far));  // 8 px assumed: 2.5 times
+  // Infinity assumed 16 px behind (256 px x 7 mm / 16 = 112 units).
+  const auto [wide_near, wide_far] = swept("--st-distance 112");
+  EXPECT_GT(wide_near - wide_far, 4 * (true_near - true_far));
+  std::printf(
+      "the scene %.2f .. %.2f px; swept %.2f .. %.2f px (infinity 16 px behind: %.2f .. %.2f)\n",
+      true_near, true_far, near, far, wide_near, wide_far);
   fs::remove_all(dir);
 }
 
