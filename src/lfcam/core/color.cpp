@@ -31,6 +31,16 @@ const std::array<float, 256>& SrgbDecodeTable() {
   return table;
 }
 
+const std::array<float, kSrgbFineSteps + 1>& SrgbDecodeFineTable() {
+  static const std::array<float, kSrgbFineSteps + 1> table = [] {
+    std::array<float, kSrgbFineSteps + 1> t{};
+    for (int i = 0; i <= kSrgbFineSteps; ++i)
+      t[std::size_t(i)] = SrgbToLinear(static_cast<float>(i) / kSrgbFineSteps);
+    return t;
+  }();
+  return table;
+}
+
 const std::array<std::uint8_t, 65536>& LinearToSrgb8EncodeTable() {
   static const std::array<std::uint8_t, 65536> table = [] {
     std::array<std::uint8_t, 65536> t{};

@@ -11,6 +11,18 @@ float SrgbToLinear(float encoded);  // both in [0, 1]
 float LinearToSrgb(float linear);   // clamps to [0, 1]
 std::uint8_t LinearToSrgb8(float linear);
 
+// SrgbToLinear through a table of kSrgbFineSteps steps, interpolated linearly (within 4e-7 of
+// it; the input clamped to [0, 1], NaN to 0): for bulk work on encoded values between the 8-bit
+// codes (the depth lookup's cubic reads, render/lightfield_sampler.h).
+inline constexpr int kSrgbFineSteps = 4096;
+const std::array<float, kSrgbFineSteps + 1>& SrgbDecodeFineTable();
+inline float SrgbToLinearFine(const std::array<float, kSrgbFineSteps + 1>& table, float encoded) {
+  const float x = (encoded > 0.0f ? (encoded < 1.0f ? encoded : 1.0f) : 0.0f) * kSrgbFineSteps;
+  const int i = static_cast<int>(x) < kSrgbFineSteps ? static_cast<int>(x) : kSrgbFineSteps - 1;
+  const float f = x - static_cast<float>(i);
+  return table[std::size_t(i)] + f * (table[std::size_t(i) + 1] - table[std::size_t(i)]);
+}
+
 // Decoding table for 8-bit sRGB: SrgbDecodeTable()[v] == SrgbToLinear(v / 255).
 const std::array<float, 256>& SrgbDecodeTable();
 

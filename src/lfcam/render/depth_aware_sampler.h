@@ -13,7 +13,8 @@
 // means the ray passed behind an occluding edge). Each camera's hit is then put to the others:
 // the hit most of the cameras' weight agrees with wins (the nearest on a tie), and the cameras
 // that agree, each read at the hit's projection (bilinearly, or with a cubic kernel for frames at
-// the views' resolution or finer), are blended with their bilinear weights renormalised. A ray
+// the views' resolution or finer: an 8-bit view's codes interpolated, LightFieldSampler::
+// AccumulateAtCubic), are blended in linear light with their bilinear weights renormalised. A ray
 // no camera finds a hit for falls back to the paper's lookup.
 #include <vector>
 

@@ -155,6 +155,7 @@ GlRenderer::~GlRenderer() {
   glDeleteBuffers(1, &range_buffer_);
   glDeleteTextures(2, filtered_);
   glDeleteQueries(1, &timer_);
+  if (views_encoded_) glDeleteTextures(1, &views_encoded_);
   if (views_) glDeleteTextures(1, &views_);
   if (output_) glDeleteTextures(1, &output_);
   if (depth_maps_) glDeleteTextures(1, &depth_maps_);
@@ -209,9 +210,19 @@ void GlRenderer::Upload(const LightField& lf) {
   uploaded_serial_ = 0;
   if (!reuse) {
     RequireGpuMemory(bytes, "the light field");
+    if (views_encoded_) glDeleteTextures(1, &views_encoded_);
     if (views_) glDeleteTextures(1, &views_);
-    views_ = 0;
+    views_ = views_encoded_ = 0;
     views_ = NewTextureArray(srgb8 ? GL_SRGB8 : GL_RGB16F, d, GL_LINEAR, bytes, "the light field");
+    if (srgb8) {
+      glGenTextures(1, &views_encoded_);
+      glTextureView(views_encoded_, GL_TEXTURE_2D_ARRAY, views_, GL_RGB8, 0, 1, 0,
+                    GLuint(d.view_count()));
+      glBindTexture(GL_TEXTURE_2D_ARRAY, views_encoded_);
+      glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+      glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+      glBindTexture(GL_TEXTURE_2D_ARRAY, views_);
+    }
   } else {
     glBindTexture(GL_TEXTURE_2D_ARRAY, views_);
   }
@@ -559,11 +570,15 @@ double GlRenderer::RenderDepth(const LightField& lf, const VirtualCamera& camera
   u.Int("lens_count", int(lens.size() / 4));
   u.Int("antialias", options.antialias ? 1 : 0);
   u.Int("cubic_reads", DepthLookupReadsCubic(camera, sampler) ? 1 : 0);
+  u.Int("encoded_reads", views_encoded_ ? 1 : 0);
   u.Float("q_near", reference.q_near());
   u.Float("q_far", reference.q_far());
   u.Float("unit_q", reference.unit_q());
   u.Int("views", 0);
   u.Int("depth_maps", 1);
+  u.Int("views_encoded", 2);
+  glActiveTexture(GL_TEXTURE2);
+  glBindTexture(GL_TEXTURE_2D_ARRAY, views_encoded_ ? views_encoded_ : views_);
   glActiveTexture(GL_TEXTURE1);
   glBindTexture(GL_TEXTURE_2D_ARRAY, depth_maps_);
   glActiveTexture(GL_TEXTURE0);

@@ -109,6 +109,9 @@ class GlRenderer {
   std::unique_ptr<GlContext> context_;
   GlLimits limits_;
   unsigned views_ = 0;              // the light field's texture array
+  // The same storage seen as GL_RGB8, its sRGB codes read undecoded (8-bit light fields only):
+  // the depth lookup's cubic reads interpolate the encoding (render/lightfield_sampler.h).
+  unsigned views_encoded_ = 0;
   const void* uploaded_ = nullptr;  // whose samples it holds (address and buffer serial)
   std::uint64_t uploaded_serial_ = 0;
   LightFieldDims uploaded_dims_{};

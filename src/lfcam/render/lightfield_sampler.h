@@ -14,6 +14,7 @@
 #include <array>
 #include <cmath>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "lfcam/core/color.h"
@@ -130,6 +131,11 @@ class LightFieldSampler {
   // As AccumulateAt, read with Keys' cubic convolution (a = -0.5) over 4 x 4 samples, the
   // view's edge repeated: between samples bilinear reads blur by up to half a sample, which a
   // blend of a few views read at fractional positions (the depth lookup) shows as softness.
+  // 8-bit views are interpolated in their sRGB encoding and the result decoded (the blend of
+  // views stays in linear light): a photograph is smooth in the encoding it was filtered in (a
+  // camera's processing, a rectification's or resize's resampling, JPEG's blocks), and Keys'
+  // overshoot beside an edge, taken in linear light, lands where the encoding is steepest, on
+  // the dark side (docs/fidelity.md, "Reading a photograph between its samples").
   float AccumulateAtCubic(int row, int col, double k, double l, float w, float acc[3]) const {
     if (!InOwnWindow(row, col, k, l)) return 0.0f;
     if (srgb8_)
@@ -265,13 +271,20 @@ class LightFieldSampler {
     l = std::clamp(l, 0.0, double(n_t_ - 1));
     const int k0 = int(std::floor(k)), l0 = int(std::floor(l));
     const auto wk = KeysCubicWeights(k - k0), wl = KeysCubicWeights(l - l0);
+    float sum[3] = {0, 0, 0};  // encoded (8-bit codes) or linear (half floats)
     for (int j = 0; j < 4; ++j) {
       const std::size_t lj = std::size_t(std::clamp(l0 - 1 + j, 0, n_t_ - 1));
       for (int i = 0; i < 4; ++i) {
         const std::size_t o = (lj * n_s_ + std::size_t(std::clamp(k0 - 1 + i, 0, n_s_ - 1))) * 3;
-        const float ww = w * wk[i] * wl[j];
-        for (int ch = 0; ch < 3; ++ch) acc[ch] += ww * Decode(view[o + ch], lut_);
+        const float ww = wk[i] * wl[j];
+        for (int ch = 0; ch < 3; ++ch) sum[ch] += ww * static_cast<float>(view[o + ch]);
       }
+    }
+    if constexpr (std::is_same_v<T, std::uint8_t>) {
+      const auto& fine = SrgbDecodeFineTable();
+      for (int ch = 0; ch < 3; ++ch) acc[ch] += w * SrgbToLinearFine(fine, sum[ch] / 255.0f);
+    } else {
+      for (int ch = 0; ch < 3; ++ch) acc[ch] += w * sum[ch];
     }
   }
 

@@ -78,6 +78,55 @@ TEST(LightFieldSampler, CubicReadsAreExactOnAQuadratic) {
   EXPECT_NEAR(at[1], 2.0 * quadratic(7, 9), 2e-3);
 }
 
+// An 8-bit view is interpolated in its sRGB encoding and the result decoded. On a view whose
+// codes are a quadratic (which Keys' cubic reproduces exactly), a read between samples is the
+// decoded quadratic. Beside an edge from code 20 to 200, it is Keys' cubic of the codes: the
+// cubic through the decoded samples would overshoot below black on the dark side (where the
+// encoding is steepest, so the error is largest once encoded) and lie far brighter at the edge.
+TEST(LightFieldSampler, CubicReadsOfAn8BitViewInterpolateItsEncoding) {
+  Slab slab;
+  slab.uv.rows = 1;
+  slab.uv.cols = 2;
+  slab.uv.p_ca = Vec3(0, 0, 1000);
+  slab.st = ViewWindow{Vec3::Zero(), Vec3::UnitX(), Vec3::UnitY(), 200, 100};
+  LightField lf({1, 2, 40, 30}, SampleType::kSrgb8, slab);
+  const auto quadratic = [](double k, double l) { return 30 + (k - 20) * (k - 20) + 2 * l; };
+  const auto edge = [](int k) { return k < 20 ? 20 : 200; };
+  for (int l = 0; l < 30; ++l)
+    for (int k = 0; k < 40; ++k) {
+      const std::size_t o = (std::size_t(l) * 40 + std::size_t(k)) * 3;
+      for (int ch = 0; ch < 3; ++ch) {
+        lf.mutable_view_data(0, 0)[o + ch] = std::uint8_t(edge(k));
+        if (k >= 8 && k < 32) lf.mutable_view_data(0, 1)[o + ch] = std::uint8_t(quadratic(k, l));
+      }
+    }
+  const LightFieldSampler sampler(lf);
+  const auto decoded = [](double code) { return double(SrgbToLinear(float(code / 255))); };
+  double worst = 0;
+  for (double k : {12.5, 16.5, 20.5, 23.5, 27.5})
+    for (double l : {4.0, 15.5, 22.25}) {
+      float read[3] = {0, 0, 0};
+      EXPECT_EQ(sampler.AccumulateAtCubic(0, 1, k, l, 1.0f, read), 1.0f);
+      worst = std::max(worst, std::abs(read[1] - decoded(quadratic(k, l))));
+    }
+  EXPECT_LT(worst, 2e-6);  // the fine decoding table's error
+  // Beside the edge, halfway between samples: Keys' weights -1/16, 9/16, 9/16, -1/16.
+  for (const auto& [k, codes] : {std::pair{18.5, 20 * 17 / 16.0 - 200 / 16.0},  // 8.75
+                                 {19.5, 110.0}}) {
+    float read[3] = {0, 0, 0};
+    sampler.AccumulateAtCubic(0, 0, k, 10.0, 1.0f, read);
+    EXPECT_NEAR(read[0], decoded(codes), 2e-6) << k;
+  }
+  float dark[3] = {0, 0, 0};
+  sampler.AccumulateAtCubic(0, 0, 18.5, 10.0, 1.0f, dark);
+  EXPECT_GT(dark[0], 0.0f);  // through the decoded samples: 17/16 x 0.0070 - 0.578 / 16 < 0
+  EXPECT_LT(17 / 16.0 * decoded(20) - decoded(200) / 16, -0.02);
+  // At a sample the read is the sample's own decoded code.
+  float at[3] = {0, 0, 0};
+  sampler.AccumulateAtCubic(0, 1, 14.0, 9.0, 2.0f, at);
+  EXPECT_FLOAT_EQ(at[0], 2.0f * SrgbDecodeTable()[std::size_t(quadratic(14, 9))]);
+}
+
 TEST(LightFieldSampler, LinesThroughTheSlabFetchTheRightSample) {
   const LightField lf = MakeMultilinearLightField();
   const LightFieldSampler sampler(lf);

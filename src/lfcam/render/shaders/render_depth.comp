@@ -17,6 +17,8 @@ layout(local_size_x = WORKGROUP_X, local_size_y = WORKGROUP_Y) in;
 layout(rgba32f, binding = 0) uniform writeonly image2D frame_image;
 layout(binding = 0) uniform sampler2DArray views;       // linear light, bilinear
 layout(binding = 1) uniform sampler2DArray depth_maps;  // mm, one layer a view; NaN: unknown
+// The views' sRGB codes, undecoded (8-bit light fields; encoded_reads), for the cubic reads.
+layout(binding = 2) uniform sampler2DArray views_encoded;
 
 layout(std430, binding = 0) readonly buffer LensPoints { vec4 lens_points[]; };
 layout(std430, binding = 1) readonly buffer CameraCentres { vec4 camera_centre[]; };
@@ -39,7 +41,7 @@ uniform vec3 eye, cam_u, cam_v, cam_n;
 uniform vec2 tan_half, principal_offset;
 uniform float focus_distance;
 uniform int lens_count;  // 0: a pinhole
-uniform bool antialias, cubic_reads;
+uniform bool antialias, cubic_reads, encoded_reads;
 // The depth range's ends (inverse depth, 1/mm, widened) and the inverse depth that moves a
 // point one sample between neighbouring cameras.
 uniform float q_near, q_far, unit_q;
@@ -119,7 +121,13 @@ vec4 KeysWeights(float f) {
               ((a * x3 - 5.0 * a) * x3 + 8.0 * a) * x3 - 4.0 * a);
 }
 
-// View c read at its own sample coordinates: bilinearly, or with Keys' cubic over 4 x 4.
+vec3 SrgbToLinear(vec3 e) {
+  e = clamp(e, 0.0, 1.0);
+  return mix(e / 12.92, pow((e + 0.055) / 1.055, vec3(2.4)), greaterThan(e, vec3(0.04045)));
+}
+
+// View c read at its own sample coordinates: bilinearly, or with Keys' cubic over 4 x 4 (an
+// 8-bit view's sRGB codes interpolated and the result decoded, as the CPU reads them).
 vec3 ReadView(int c, vec2 kl) {
   if (!cubic_reads) return texture(views, vec3((kl + 0.5) / vec2(st_size), float(c))).rgb;
   kl = clamp(kl, vec2(0.0), vec2(st_size - 1));
@@ -130,10 +138,12 @@ vec3 ReadView(int c, vec2 kl) {
     const int l = clamp(base.y - 1 + j, 0, st_size.y - 1);
     for (int i = 0; i < 4; ++i) {
       const int k = clamp(base.x - 1 + i, 0, st_size.x - 1);
-      sum += wk[i] * wl[j] * texelFetch(views, ivec3(k, l, c), 0).rgb;
+      const ivec3 at = ivec3(k, l, c);
+      sum += wk[i] * wl[j] *
+             (encoded_reads ? texelFetch(views_encoded, at, 0).rgb : texelFetch(views, at, 0).rgb);
     }
   }
-  return sum;
+  return encoded_reads ? SrgbToLinear(sum) : sum;
 }
 
 // Whether camera c sees point p (inverse depth q); if so, `rgb` is the view read there.
