@@ -14,8 +14,9 @@
 // When a data set publishes no focal length or units (the Stanford archive, plenoptic views),
 // any consistent choice renders the same images: lfcam takes a focal length of max(W, H) px, a
 // pitch of 1 mm where the names give indices only, and puts the zero-disparity plane where
-// infinity lies kAssumedInfinityDisparityPx behind it in disparity; what was assumed is reported
-// and recorded in the file's metadata.
+// infinity lies ImportOptions::infinity_disparity_px behind it in disparity (`lfcam import`: twice
+// the parallax the views show; kAssumedInfinityDisparityPx where unmeasured); what was assumed is
+// reported and recorded in the file's metadata.
 #include <filesystem>
 #include <functional>
 #include <string>
