@@ -108,7 +108,7 @@ class GlRenderer {
 
   std::unique_ptr<GlContext> context_;
   GlLimits limits_;
-  unsigned views_ = 0;              // the light field's texture array
+  unsigned views_ = 0;  // the light field's texture array
   // The same storage seen as GL_RGB8, its sRGB codes read undecoded (8-bit light fields only):
   // the depth lookup's cubic reads interpolate the encoding (render/lightfield_sampler.h).
   unsigned views_encoded_ = 0;

@@ -16,13 +16,18 @@ Eigen::Vector3f Multilinear(double c, double r, double k, double l) {
   return Eigen::Vector3f(float(a), float(b), float(d));
 }
 
-LightField MakeMultilinearLightField() {
+// A rows x cols array 1 m in front of a 200 x 100 mm st window.
+Slab TestSlab(int rows, int cols) {
   Slab slab;
-  slab.uv.rows = 4;
-  slab.uv.cols = 5;
+  slab.uv.rows = rows;
+  slab.uv.cols = cols;
   slab.uv.p_ca = Vec3(0, 0, 1000);
   slab.st = ViewWindow{Vec3::Zero(), Vec3::UnitX(), Vec3::UnitY(), 200, 100};
-  LightField lf({4, 5, 40, 30}, SampleType::kLinearF16, slab);
+  return slab;
+}
+
+LightField MakeMultilinearLightField() {
+  LightField lf({4, 5, 40, 30}, SampleType::kLinearF16, TestSlab(4, 5));
   for (int r = 0; r < 4; ++r)
     for (int c = 0; c < 5; ++c)
       for (int l = 0; l < 30; ++l)
@@ -84,12 +89,7 @@ TEST(LightFieldSampler, CubicReadsAreExactOnAQuadratic) {
 // cubic through the decoded samples would overshoot below black on the dark side (where the
 // encoding is steepest, so the error is largest once encoded) and lie far brighter at the edge.
 TEST(LightFieldSampler, CubicReadsOfAn8BitViewInterpolateItsEncoding) {
-  Slab slab;
-  slab.uv.rows = 1;
-  slab.uv.cols = 2;
-  slab.uv.p_ca = Vec3(0, 0, 1000);
-  slab.st = ViewWindow{Vec3::Zero(), Vec3::UnitX(), Vec3::UnitY(), 200, 100};
-  LightField lf({1, 2, 40, 30}, SampleType::kSrgb8, slab);
+  LightField lf({1, 2, 40, 30}, SampleType::kSrgb8, TestSlab(1, 2));
   const auto quadratic = [](double k, double l) { return 30 + (k - 20) * (k - 20) + 2 * l; };
   const auto edge = [](int k) { return k < 20 ? 20 : 200; };
   for (int l = 0; l < 30; ++l)
