@@ -253,8 +253,10 @@ ImportedLightField ImportFlags::Run(bool quiet) const {
     // more: a span many times the scene's lets a repeating texture match at a false depth
     // (docs/format.md, "What a data set does not say"). Where the parallax was not measured,
     // kAssumedInfinityDisparityPx.
-    if (const double largest = axes.value("largest_px_per_step", 0.0); largest > 0)
-      o.infinity_disparity_px = std::max(1.0, std::ceil(2 * largest));
+    if (const double largest = axes.value("largest_px_per_step", 0.0); largest > 0) {
+      o.infinity_disparity_px = SceneBracketPx(largest);
+      o.scene_parallax_px = largest;
+    }
     for (const CLI::Option* flag : {st_res_, st_domain_, resampling_, st_windows_})
       if (flag && flag->count() > 0)
         throw UsageError(fmt::format(

@@ -4,6 +4,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -12,6 +13,7 @@
 #include <vector>
 
 #include "lfcam/core/error.h"
+#include "lfcam/core/lightfield.h"
 #include "lfcam/depth/cost_volume.h"
 #include "lfcam/depth/local_planes.h"
 #include "lfcam/depth/semi_global.h"
@@ -142,6 +144,26 @@ Choice Choose(const CostVolume& decide, const CostVolume& match, double truncati
   return out;
 }
 
+// The disparities (px between neighbouring views, {farthest <= 0, nearest >= 0}) within which
+// the import found the views' scene (a rectified rig's `import.scene_disparity_px`,
+// docs/format.md); nullopt where the file records none.
+std::optional<std::array<double, 2>> RecordedSceneDisparity(const LightField& lf) {
+  const nlohmann::json& m = lf.metadata();
+  if (!m.is_object() || !m.contains("import") || !m["import"].is_object() ||
+      !m["import"].contains("scene_disparity_px"))
+    return std::nullopt;
+  const nlohmann::json& s = m["import"]["scene_disparity_px"];
+  if (!s.is_array() || s.size() != 2 || !s[0].is_number() || !s[1].is_number() ||
+      !(s[0].get<double>() <= 0) || !(s[1].get<double>() >= 0) ||
+      !(s[1].get<double>() - s[0].get<double>() > 0) ||
+      !std::isfinite(s[1].get<double>() - s[0].get<double>()))
+    throw Error(fmt::format(
+        "the light field's metadata import.scene_disparity_px is {}: not [farthest <= 0, "
+        "nearest >= 0] px of disparity between neighbouring views",
+        s.dump()));
+  return std::array{s[0].get<double>(), s[1].get<double>()};
+}
+
 }  // namespace
 
 DepthRange EstimateDepthRange(const LightField& lf, int row, int col,
@@ -164,13 +186,24 @@ DepthRange EstimateDepthRange(const LightField& lf, int row, int col,
     o.equalise_brightness = true;
     return o;
   };
-  // The farthest view's shift over the bracket swept (2 to 0.05 over the st-plane's distance),
-  // in full-resolution samples.
+  // The bracket swept, in inverse depth times the st-plane's distance: 2 to 0.05 (half to twenty
+  // times that distance), narrowed to where the import found the scene where it recorded that
+  // (a rectified rig: twice the parallax its views show), so that the bracket is the same in the
+  // views' own samples whatever the units or wherever infinity lies (a parameters.cfg's metric
+  // geometry puts infinity 16-40 px behind a scene of +-2 px, and a sweep of that many px
+  // reaches the false depths where a repeating texture matches again; docs/depth.md).
   const SweepGeometry full = GeometryOf(lf, row, col, coarse_options(1.0));
-  const double shift_samples = 1.95 * full.farthest_mm / full.full_sample_mm;
+  double near_factor = 2.0, far_factor = 0.05;
+  if (const auto scene = RecordedSceneDisparity(lf)) {
+    const double px_per_step = lf.slab().uv.pitch_mm / full.full_sample_mm;  // infinity's
+    near_factor = std::min(near_factor, 1.0 + (*scene)[1] / px_per_step);
+    far_factor = std::max(far_factor, 1.0 + (*scene)[0] / px_per_step);
+  }
+  // The farthest view's shift over the bracket, in full-resolution samples.
+  const double shift_samples = (near_factor - far_factor) * full.farthest_mm / full.full_sample_mm;
   const double factor = std::min({kCoarseFactor, shift_samples / 16.0, d.n_s / 16.0, d.n_t / 16.0});
   const SweepViews coarse(lf, row, col, coarse_options(std::max(1.0, factor)));
-  const double q_near = 2.0 / coarse.st_depth(), q_far = 0.05 / coarse.st_depth();
+  const double q_near = near_factor / coarse.st_depth(), q_far = far_factor / coarse.st_depth();
   const std::vector<double> q = Planes(q_near, q_far, 1.0 / coarse.farthest_shift_per_q(),
                                        coarse.width() * coarse.height(), kFewestCoarseLabels);
   const CostVolume volume = coarse.Sweep(q, 0.5, options.engine);

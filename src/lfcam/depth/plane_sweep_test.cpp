@@ -7,6 +7,7 @@
 #include <iostream>
 
 #include "lfcam/core/error.h"
+#include "lfcam/core/test_support.h"
 #include "lfcam/depth/cost_volume.h"
 #include "lfcam/depth/depth_set.h"
 #include "lfcam/depth/depth_test_scene.h"
@@ -229,6 +230,14 @@ TEST(PlaneSweepInput, RefusesASingleViewAndAViewOutsideTheGrid) {
   PlaneSweepOptions bad;
   bad.range = DepthRange{5000, 3000};
   EXPECT_THROW(EstimateDepth(two, 0, 0, bad), Error);
+  // A recorded scene bracket that is not [farthest <= 0, nearest >= 0] px is named, not guessed at.
+  LightField recorded = SimulateLightField(testing::TwoPlaneScene(), o);
+  for (const nlohmann::json& wrong :
+       {nlohmann::json("wide"), nlohmann::json::array({1.0, 2.0}), nlohmann::json::array({-1.0})}) {
+    recorded.metadata()["import"]["scene_disparity_px"] = wrong;
+    const std::string what = testing::ErrorOf([&] { EstimateDepthRange(recorded, 0, 0); });
+    EXPECT_NE(what.find("import.scene_disparity_px is " + wrong.dump()), std::string::npos) << what;
+  }
 }
 
 }  // namespace

@@ -108,6 +108,10 @@ struct ImportOptions {
   // assumed to lie, px of disparity between neighbours (default kAssumedInfinityDisparityPx;
   // `lfcam import` sets it from the parallax the views show).
   std::optional<double> infinity_disparity_px;
+  // Rectified: the scene's largest parallax between neighbouring views, px, as the views show it
+  // (`lfcam import` measures it: MeasureParallaxAxes); what the depth sweep brackets
+  // (RectifiedGeometry::scene_disparity_px).
+  std::optional<double> scene_parallax_px;
 };
 
 struct ImportedSession {

@@ -115,6 +115,18 @@ TEST(HciParameters, ABenchmarkFolderWithItImportsMetrically) {
   EXPECT_NEAR(grid.view(1, 2).x_mm - grid.view(1, 1).x_mm, 90.0, 1e-12);
   EXPECT_NEAR(geo.PrincipalPoint(90, 0).x() - geo.PrincipalPoint(0, 0).x(),
               geo.focal_px * 90 / 4250, 1e-9);
+  // Where the depth sweep looks for the scene: the file's disparity range (-2 .. 1.5) widened by
+  // half its span, joined to twice the parallax the views show (a whole px), whatever the units.
+  ASSERT_TRUE(geo.scene_disparity_px.has_value());
+  EXPECT_DOUBLE_EQ((*geo.scene_disparity_px)[0], -3.75);
+  EXPECT_DOUBLE_EQ((*geo.scene_disparity_px)[1], 3.25);
+  ImportOptions tracked;
+  tracked.scene_parallax_px = 2.2;
+  const RectifiedGeometry wider = ResolveRectifiedGeometry(grid, tracked);
+  EXPECT_DOUBLE_EQ((*wider.scene_disparity_px)[0], -5.0);
+  EXPECT_DOUBLE_EQ((*wider.scene_disparity_px)[1], 5.0);
+  EXPECT_EQ(ImportRectifiedViews(dir, grid, wider).metadata()["import"]["scene_disparity_px"],
+            nlohmann::json::array({-5.0, 5.0}));
 }
 
 // A copy whose views were resized since keeps the sensor: the focal length scales with them, and

@@ -70,7 +70,37 @@ double FocalPxOfTheViews(const ImportedGrid& g, double focal_px, std::vector<std
   return scaled;
 }
 
+// Where the views show the scene, in px of disparity between neighbours: twice the parallax
+// tracked in them, joined to parameters.cfg's disparity range (at the views' size) widened by
+// half its span, since a published range may fall short (antinous' "about +-2 px" reaches
+// -3.1 .. +2.7).
+std::optional<std::array<double, 2>> SceneDisparityPx(const ImportedGrid& g,
+                                                      const ImportOptions& o) {
+  std::optional<std::array<double, 2>> bracket;
+  const auto join = [&](double farthest, double nearest) {
+    if (!bracket) bracket = std::array{0.0, 0.0};
+    (*bracket)[0] = std::min((*bracket)[0], farthest);
+    (*bracket)[1] = std::max((*bracket)[1], nearest);
+  };
+  if (o.scene_parallax_px && *o.scene_parallax_px > 0 && std::isfinite(*o.scene_parallax_px)) {
+    const double d = SceneBracketPx(*o.scene_parallax_px);
+    join(-d, d);
+  }
+  if (g.hci && g.hci->disp_min && g.hci->disp_max && *g.hci->disp_min < *g.hci->disp_max) {
+    const double scale =
+        g.hci->width_px && g.hci->height_px
+            ? double(std::max(g.width, g.height)) / std::max(*g.hci->width_px, *g.hci->height_px)
+            : 1.0;
+    const double lo = *g.hci->disp_min * scale, hi = *g.hci->disp_max * scale;
+    const double margin = 0.5 * (hi - lo);
+    join(lo - margin, hi + margin);
+  }
+  return bracket;
+}
+
 }  // namespace
+
+double SceneBracketPx(double parallax_px) { return std::max(1.0, std::ceil(2 * parallax_px)); }
 
 RectifiedGeometry ResolveRectifiedGeometry(const ImportedGrid& g, const ImportOptions& o) {
   RectifiedGeometry r;
@@ -162,6 +192,7 @@ RectifiedGeometry ResolveRectifiedGeometry(const ImportedGrid& g, const ImportOp
   }
   if (!(r.zero_disparity_mm > 0) || !std::isfinite(r.zero_disparity_mm))
     throw Error("the zero-disparity plane's distance must be positive");
+  r.scene_disparity_px = SceneDisparityPx(g, o);
   return r;
 }
 
@@ -251,6 +282,8 @@ LightField ImportRectifiedViews(const fs::path& dir, const ImportedGrid& g,
                      {"filled_views", r.filled},
                      {"ignored", g.ignored}}},
                    {"created", fmt::format("{:%Y-%m-%dT%H:%M:%SZ}", now)}};
+  if (geo.scene_disparity_px)
+    lf.metadata()["import"]["scene_disparity_px"] = *geo.scene_disparity_px;
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (report) *report = r;
   return lf;

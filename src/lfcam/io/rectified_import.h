@@ -17,8 +17,10 @@
 // infinity lies ImportOptions::infinity_disparity_px behind it in disparity (`lfcam import`: twice
 // the parallax the views show; kAssumedInfinityDisparityPx where unmeasured); what was assumed is
 // reported and recorded in the file's metadata.
+#include <array>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -29,6 +31,11 @@ namespace lfcam {
 
 inline constexpr double kAssumedInfinityDisparityPx = 8.0;
 
+// How far either side of zero disparity a scene whose views show `parallax_px` between
+// neighbours (their largest) is taken to reach: twice that, rounded up to a whole px, at least 1
+// (where `lfcam import` puts infinity when no distance is known, and what depth sweeps).
+double SceneBracketPx(double parallax_px);
+
 struct RectifiedGeometry {
   double focal_px = 0;
   double zero_disparity_mm = 0;  // Z0: the st-plane's distance from the cameras
@@ -38,6 +45,12 @@ struct RectifiedGeometry {
   std::vector<std::string> assumed;  // what the data set did not say, as chosen (for the user)
   std::vector<std::string> notes;    // what the data set said that was adapted to the views
   bool metric = true;                // false: no scale known, the cameras' spacing taken as 1 unit
+  // The disparities (px between neighbours) within which the views show the scene, {farthest,
+  // nearest} (<= 0 <= ): twice the parallax they show (ImportOptions::scene_parallax_px, a whole
+  // px, at least 1), joined to parameters.cfg's disp_min .. disp_max widened by half its span.
+  // Recorded in the file (import.scene_disparity_px), where the depth range's coarse sweep
+  // brackets it, whatever the units or wherever infinity lies. Nullopt where neither is known.
+  std::optional<std::array<double, 2>> scene_disparity_px;
 
   // Camera at (x, y) mm on the camera plane: its principal point (OpenCV's convention).
   Vec2 PrincipalPoint(double x_mm, double y_mm) const;
