@@ -166,8 +166,14 @@ std::optional<std::array<double, 2>> RecordedSceneDisparity(const LightField& lf
 
 }  // namespace
 
-DepthRange EstimateDepthRange(const LightField& lf, int row, int col,
-                              const PlaneSweepOptions& options) {
+namespace {
+
+// EstimateDepthRange within the bracket of inverse depths near_factor .. far_factor over the
+// st-plane's distance; `reaches` says whether the depths found reach the bracket's near end and
+// its far end with the margin the range adds to them (the bracket then cuts the margin short).
+DepthRange RangeWithinBracket(const LightField& lf, int row, int col,
+                              const PlaneSweepOptions& options, double near_factor,
+                              double far_factor, std::array<bool, 2>& reaches) {
   const auto& d = lf.dims();
   // A quarter of the resolution, unless the swept depths would then move the farthest view by
   // fewer than 16 coarse samples (small baselines, wide views: an imported data set).
@@ -186,19 +192,7 @@ DepthRange EstimateDepthRange(const LightField& lf, int row, int col,
     o.equalise_brightness = true;
     return o;
   };
-  // The bracket swept, in inverse depth times the st-plane's distance: 2 to 0.05 (half to twenty
-  // times that distance), narrowed to where the import found the scene where it recorded that
-  // (a rectified rig: twice the parallax its views show), so that the bracket is the same in the
-  // views' own samples whatever the units or wherever infinity lies (a parameters.cfg's metric
-  // geometry puts infinity 16-40 px behind a scene of +-2 px, and a sweep of that many px
-  // reaches the false depths where a repeating texture matches again; docs/depth.md).
   const SweepGeometry full = GeometryOf(lf, row, col, coarse_options(1.0));
-  double near_factor = 2.0, far_factor = 0.05;
-  if (const auto scene = RecordedSceneDisparity(lf)) {
-    const double px_per_step = lf.slab().uv.pitch_mm / full.full_sample_mm;  // infinity's
-    near_factor = std::min(near_factor, 1.0 + (*scene)[1] / px_per_step);
-    far_factor = std::max(far_factor, 1.0 + (*scene)[0] / px_per_step);
-  }
   // The farthest view's shift over the bracket, in full-resolution samples.
   const double shift_samples = (near_factor - far_factor) * full.farthest_mm / full.full_sample_mm;
   const double factor = std::min({kCoarseFactor, shift_samples / 16.0, d.n_s / 16.0, d.n_t / 16.0});
@@ -261,12 +255,50 @@ DepthRange EstimateDepthRange(const LightField& lf, int row, int col,
       }
   }
   const double margin = kRangeMarginPlanes * per_natural;
+  reaches = {found_lo<margin, found_hi> labels - 1 - margin};
   const double lo = std::max(0.0, found_lo - margin);
   const double hi = std::min(double(labels - 1), found_hi + margin);
   const auto depth_at = [&](double label) {
     return 1.0 / (q_near + (q_far - q_near) * std::clamp(label, 0.0, labels - 1.0) / (labels - 1));
   };
   return {depth_at(lo), depth_at(hi), depth_at(found_lo), depth_at(found_hi)};
+}
+
+}  // namespace
+
+DepthRange EstimateDepthRange(const LightField& lf, int row, int col,
+                              const PlaneSweepOptions& options) {
+  // The bracket swept, in inverse depth times the st-plane's distance: 2 to 0.05 (half to twenty
+  // times that distance), narrowed to where the import found the scene where it recorded that
+  // (a rectified rig: twice the parallax its views show), so that the bracket is the same in the
+  // views' own samples whatever the units or wherever infinity lies (a parameters.cfg's metric
+  // geometry puts infinity 16-40 px behind a scene of +-2 px, and a sweep of that many px
+  // reaches the false depths where a repeating texture matches again; docs/depth.md).
+  constexpr double kNearest = 2.0, kFarthest = 0.05;
+  const auto scene = RecordedSceneDisparity(lf);
+  if (!scene) {
+    std::array<bool, 2> reaches{};
+    return RangeWithinBracket(lf, row, col, options, kNearest, kFarthest, reaches);
+  }
+  // Infinity's disparity between neighbours, px: the bracket's ends in px are extents of it.
+  const SweepGeometry full = GeometryOf(lf, row, col, VolumeOptions(options, 1.0));
+  const double infinity_px = lf.slab().uv.pitch_mm / full.full_sample_mm;
+  double nearest_px = (*scene)[1], farthest_px = -(*scene)[0];
+  // Confident depths at an end the record narrowed: the scene reaches farther than the views'
+  // tracked points said (a surface they missed), so that end reaches twice as far (a px more at
+  // least), and again, up to the whole bracket.
+  for (;;) {
+    const double near_factor = std::min(kNearest, 1.0 + nearest_px / infinity_px);
+    const double far_factor = std::max(kFarthest, 1.0 - farthest_px / infinity_px);
+    std::array<bool, 2> reaches{};
+    const DepthRange range =
+        RangeWithinBracket(lf, row, col, options, near_factor, far_factor, reaches);
+    const bool near_reached = reaches[0] && near_factor < kNearest;
+    const bool far_reached = reaches[1] && far_factor > kFarthest;
+    if (!near_reached && !far_reached) return range;
+    if (near_reached) nearest_px = std::max(2 * nearest_px, nearest_px + 1);
+    if (far_reached) farthest_px = std::max(2 * farthest_px, farthest_px + 1);
+  }
 }
 
 namespace {

@@ -560,17 +560,22 @@ TEST(RectifiedImport, AStanfordRigWithSmallParallaxSweepsNoFartherThanItsScene) 
     }
   EXPECT_LT(true_near - true_far, 2.5);
   // The range the central view's sweep takes, in px of disparity between neighbours.
-  const auto swept = [&](const std::string& import_flags, bool recorded = true) {
+  // `record`: null leaves the import's record of the scene's disparities as it is; an array
+  // replaces it, anything else takes it out (as an import before the record was written).
+  const auto swept = [&](const std::string& import_flags, const nlohmann::json& record = {}) {
     const std::string lf = (dir / "imported.lf").string();
     auto r = testing::Lfcam(fmt::format("import {} --out {} --json --quiet {}",
                                         (dir / "stanford").string(), lf, import_flags));
     EXPECT_EQ(r.status, 0) << r.output;
     const nlohmann::json imported = nlohmann::json::parse(r.output);
     const double f = imported["focal_px"], z0 = imported["zero_disparity_distance_mm"];
-    if (!recorded) {  // as an import before the record was written
+    if (!record.is_null()) {
       LightField copy = ReadLightField(lf);
       EXPECT_TRUE(copy.metadata()["import"].contains("scene_disparity_px"));
-      copy.metadata()["import"].erase("scene_disparity_px");
+      if (record.is_array())
+        copy.metadata()["import"]["scene_disparity_px"] = record;
+      else
+        copy.metadata()["import"].erase("scene_disparity_px");
       WriteLightField(copy, lf);
     }
     r = testing::Lfcam(
@@ -588,12 +593,18 @@ TEST(RectifiedImport, AStanfordRigWithSmallParallaxSweepsNoFartherThanItsScene) 
   const auto [far_near, far_far] = swept("--st-distance 112");
   EXPECT_LT(far_near - far_far, 2.2 * (true_near - true_far));
   // Without the record, the sweep reaches as far as infinity and finds false depths there.
-  const auto [wide_near, wide_far] = swept("--st-distance 112", false);
+  const auto [wide_near, wide_far] = swept("--st-distance 112", "erase");
   EXPECT_GT(wide_near - wide_far, 4 * (true_near - true_far));
+  // A record narrower than the scene (a surface the tracked points missed): the depths found
+  // reach its end, and the whole bracket is swept after all.
+  const auto [short_near, short_far] = swept("--st-distance 112", nlohmann::json{-0.3, 0.3});
+  EXPECT_GT(short_near, true_near);
+  EXPECT_LT(short_far, true_far);
   std::printf(
       "the scene %.2f .. %.2f px; swept %.2f .. %.2f px (infinity 16 px behind: %.2f .. %.2f; "
-      "without the record %.2f .. %.2f)\n",
-      true_near, true_far, near, far, far_near, far_far, wide_near, wide_far);
+      "without the record %.2f .. %.2f; with one of +-0.3 px %.2f .. %.2f)\n",
+      true_near, true_far, near, far, far_near, far_far, wide_near, wide_far, short_near,
+      short_far);
   fs::remove_all(dir);
 }
 
