@@ -164,10 +164,6 @@ std::optional<std::array<double, 2>> RecordedSceneDisparity(const LightField& lf
   return std::array{s[0].get<double>(), s[1].get<double>()};
 }
 
-}  // namespace
-
-namespace {
-
 // EstimateDepthRange within the bracket of inverse depths near_factor .. far_factor over the
 // st-plane's distance; `reaches` says whether the depths found reach the bracket's near end and
 // its far end with the margin the range adds to them (the bracket then cuts the margin short).
