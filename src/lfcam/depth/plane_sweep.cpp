@@ -165,11 +165,11 @@ std::optional<std::array<double, 2>> RecordedSceneDisparity(const LightField& lf
 }
 
 // EstimateDepthRange within the bracket of inverse depths near_factor .. far_factor over the
-// st-plane's distance; `reaches` says whether the depths found reach the bracket's near end and
-// its far end with the margin the range adds to them (the bracket then cuts the margin short).
+// st-plane's distance; `room` is how far the depths found lie from the bracket's near end and
+// from its far end, in natural planes.
 DepthRange RangeWithinBracket(const LightField& lf, int row, int col,
                               const PlaneSweepOptions& options, double near_factor,
-                              double far_factor, std::array<bool, 2>& reaches) {
+                              double far_factor, std::array<double, 2>& room) {
   const auto& d = lf.dims();
   // A quarter of the resolution, unless the swept depths would then move the farthest view by
   // fewer than 16 coarse samples (small baselines, wide views: an imported data set).
@@ -251,7 +251,7 @@ DepthRange RangeWithinBracket(const LightField& lf, int row, int col,
       }
   }
   const double margin = kRangeMarginPlanes * per_natural;
-  reaches = {found_lo<margin, found_hi> labels - 1 - margin};
+  room = {found_lo / per_natural, (labels - 1 - found_hi) / per_natural};
   const double lo = std::max(0.0, found_lo - margin);
   const double hi = std::min(double(labels - 1), found_hi + margin);
   const auto depth_at = [&](double label) {
@@ -271,26 +271,32 @@ DepthRange EstimateDepthRange(const LightField& lf, int row, int col,
   // geometry puts infinity 16-40 px behind a scene of +-2 px, and a sweep of that many px
   // reaches the false depths where a repeating texture matches again; docs/depth.md).
   constexpr double kNearest = 2.0, kFarthest = 0.05;
-  const auto scene = RecordedSceneDisparity(lf);
-  if (!scene) {
-    std::array<bool, 2> reaches{};
-    return RangeWithinBracket(lf, row, col, options, kNearest, kFarthest, reaches);
-  }
-  // Infinity's disparity between neighbours, px: the bracket's ends in px are extents of it.
+  // How near the bracket may reach where the scene does: an eighth of the st-plane's distance.
+  constexpr double kNearestEver = 8.0;
+  // Infinity's disparity between neighbours relative to the st-plane, px: the bracket's ends in
+  // px are extents of it.
   const SweepGeometry full = GeometryOf(lf, row, col, VolumeOptions(options, 1.0));
   const double infinity_px = lf.slab().uv.pitch_mm / full.full_sample_mm;
-  double nearest_px = (*scene)[1], farthest_px = -(*scene)[0];
-  // Confident depths at an end the record narrowed: the scene reaches farther than the views'
-  // tracked points said (a surface they missed), so that end reaches twice as far (a px more at
-  // least), and again, up to the whole bracket.
+  const auto scene = RecordedSceneDisparity(lf);
+  double nearest_px = scene ? (*scene)[1] : (kNearest - 1.0) * infinity_px;
+  double farthest_px = scene ? -(*scene)[0] : (1.0 - kFarthest) * infinity_px;
+  // The scene reaching farther than the bracket: an end the record narrowed, where the depths
+  // found come so near it that it cuts the range's margin short (a surface the views' tracked
+  // points missed), or the near end at or past half the st-plane's distance, where they lie
+  // within a natural plane of it (a scene nearer than that: an import's estimate puts the plane
+  // at the scene's middle distance). That end then reaches twice as far (a px more at least),
+  // and again, up to half to twenty times the st-plane's distance, an eighth of it nearer.
   for (;;) {
-    const double near_factor = std::min(kNearest, 1.0 + nearest_px / infinity_px);
+    const double near_factor = std::min(kNearestEver, 1.0 + nearest_px / infinity_px);
     const double far_factor = std::max(kFarthest, 1.0 - farthest_px / infinity_px);
-    std::array<bool, 2> reaches{};
+    std::array<double, 2> room{};
     const DepthRange range =
-        RangeWithinBracket(lf, row, col, options, near_factor, far_factor, reaches);
-    const bool near_reached = reaches[0] && near_factor < kNearest;
-    const bool far_reached = reaches[1] && far_factor > kFarthest;
+        RangeWithinBracket(lf, row, col, options, near_factor, far_factor, room);
+    // (The ends compared to a part in 10^9: the defaults come back through px a little off.)
+    const bool near_reached =
+        near_factor < kNearestEver * (1 - 1e-9) &&
+        room[0] < (near_factor < kNearest * (1 - 1e-9) ? kRangeMarginPlanes : 1.0);
+    const bool far_reached = far_factor > kFarthest * (1 + 1e-9) && room[1] < kRangeMarginPlanes;
     if (!near_reached && !far_reached) return range;
     if (near_reached) nearest_px = std::max(2 * nearest_px, nearest_px + 1);
     if (far_reached) farthest_px = std::max(2 * farthest_px, farthest_px + 1);

@@ -13,6 +13,8 @@
 #include "lfcam/cli/cli_test_support.h"
 #include "lfcam/core/image_io.h"
 #include "lfcam/core/image_metrics.h"
+#include "lfcam/core/lightfield_file.h"
+#include "lfcam/depth/plane_sweep.h"
 
 namespace lfcam {
 namespace {
@@ -43,6 +45,11 @@ TEST(DepthHeldOut, TheShopsLeftOutViewsRenderFromTheRest) {
   auto run = testing::Lfcam("import " + (dir / "kept").string() + " --out " + lf +
                             " --st-res 480x320 --st-distance 8628 --quiet");
   ASSERT_EQ(run.status, 0) << run.output;
+  // The shop's counter runs nearer than half the st-plane's distance (the bottom rows): the depth
+  // range's coarse sweep finds it at the end of its bracket and reaches nearer (3.2 m; before, the
+  // range stopped at 4.3 m, and the counter's samples took no nearer depth).
+  const DepthRange range = EstimateDepthRange(ReadLightField(lf), 2, 2);
+  EXPECT_LT(range.near_mm, 0.45 * 8628) << range.near_mm;
   // Camera (file row 13, column 12): between kept (13, 11) and (13, 13); (12, 12): between four.
   // World x is the name's second number, y minus its first (docs/format.md): column 12 is at
   // x = 30.77 mm, row 12 at y = -30.77 mm.
