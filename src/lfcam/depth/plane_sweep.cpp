@@ -277,29 +277,28 @@ DepthRange EstimateDepthRange(const LightField& lf, int row, int col,
   // px are extents of it.
   const SweepGeometry full = GeometryOf(lf, row, col, VolumeOptions(options, 1.0));
   const double infinity_px = lf.slab().uv.pitch_mm / full.full_sample_mm;
+  const auto near_of = [&](double px) { return std::min(kNearestEver, 1.0 + px / infinity_px); };
+  const auto far_of = [&](double px) { return std::max(kFarthest, 1.0 - px / infinity_px); };
+  const auto twice = [](double px) { return std::max(2 * px, px + 1); };  // a px more at least
   const auto scene = RecordedSceneDisparity(lf);
-  double nearest_px = scene ? (*scene)[1] : (kNearest - 1.0) * infinity_px;
-  double farthest_px = scene ? -(*scene)[0] : (1.0 - kFarthest) * infinity_px;
+  double near_factor = scene ? near_of((*scene)[1]) : kNearest;
+  double far_factor = scene ? far_of(-(*scene)[0]) : kFarthest;
   // The scene reaching farther than the bracket: an end the record narrowed, where the depths
   // found come so near it that it cuts the range's margin short (a surface the views' tracked
   // points missed), or the near end at or past half the st-plane's distance, where they lie
   // within a natural plane of it (a scene nearer than that: an import's estimate puts the plane
-  // at the scene's middle distance). That end then reaches twice as far (a px more at least),
-  // and again, up to half to twenty times the st-plane's distance, an eighth of it nearer.
+  // at the scene's middle distance). That end then reaches twice as far in px, and again, up to
+  // half to twenty times the st-plane's distance, an eighth of it nearer.
   for (;;) {
-    const double near_factor = std::min(kNearestEver, 1.0 + nearest_px / infinity_px);
-    const double far_factor = std::max(kFarthest, 1.0 - farthest_px / infinity_px);
     std::array<double, 2> room{};
     const DepthRange range =
         RangeWithinBracket(lf, row, col, options, near_factor, far_factor, room);
-    // (The ends compared to a part in 10^9: the defaults come back through px a little off.)
     const bool near_reached =
-        near_factor < kNearestEver * (1 - 1e-9) &&
-        room[0] < (near_factor < kNearest * (1 - 1e-9) ? kRangeMarginPlanes : 1.0);
-    const bool far_reached = far_factor > kFarthest * (1 + 1e-9) && room[1] < kRangeMarginPlanes;
+        near_factor < kNearestEver && room[0] < (near_factor < kNearest ? kRangeMarginPlanes : 1.0);
+    const bool far_reached = far_factor > kFarthest && room[1] < kRangeMarginPlanes;
     if (!near_reached && !far_reached) return range;
-    if (near_reached) nearest_px = std::max(2 * nearest_px, nearest_px + 1);
-    if (far_reached) farthest_px = std::max(2 * farthest_px, farthest_px + 1);
+    if (near_reached) near_factor = near_of(twice((near_factor - 1.0) * infinity_px));
+    if (far_reached) far_factor = far_of(twice((1.0 - far_factor) * infinity_px));
   }
 }
 
