@@ -12,7 +12,9 @@
 #include <cstdlib>
 #include <new>
 #include <numbers>
+#include <numeric>
 #include <opencv2/imgproc.hpp>
+#include <stdexcept>
 #include <utility>
 
 #include "lfcam/core/color.h"
@@ -270,7 +272,8 @@ struct PlaneScratch {
 // Per-thread working memory of a group of planes.
 struct Scratch {
   std::vector<PlaneScratch> planes;
-  std::vector<float> band_sum;  // per class of views, over a band of rows
+  std::vector<float> band_sum;     // per plane of the group and class of views, over a band
+  std::vector<std::size_t> order;  // the views read shifted, class by class
   std::vector<int> steps;
   std::vector<float> across, unpacked, warped, valid;
   std::vector<float> window_sum, best;
@@ -775,17 +778,39 @@ CostVolume SweepViews::Sweep(const std::vector<double>& q, double gradient_share
       const float* ref = reference_.channels.data();
       s.best.resize(std::size_t(planes) * sw);
       int next_out = 0;  // the first row whose costs are still to be written
+      // The views read shifted, class by class (each class's in their order at every plane).
+      // Every plane of a group reads the same views (a group of more than one plane has no
+      // warped view), so the group's planes take the same list.
+      const auto& listed = s.planes.front().shifted;
+      s.order.resize(listed.size());
+      std::iota(s.order.begin(), s.order.end(), std::size_t(0));
+      std::stable_sort(s.order.begin(), s.order.end(), [&](std::size_t a, std::size_t b) {
+        return views_[listed[a].first].view_class < views_[listed[b].first].view_class;
+      });
+      for (const PlaneScratch& ps : s.planes)
+        if (ps.shifted.size() != listed.size())
+          throw std::logic_error("the planes of a group read different views");
+      const std::size_t plane_band = band_size * classes;
       for (int y0 = 0; y0 < h; y0 += kBandRows) {
         const int y1 = std::min(h, y0 + kBandRows);
-        for (PlaneScratch& ps : s.planes) {
-          s.band_sum.assign(band_size * classes, 0.0f);
-          for (const auto& [v, shift] : ps.shifted) {
+        // Each view's band once for the whole group: its rows are read from memory for the
+        // first plane and from cache for the rest, and its class's sums for the group's planes
+        // stay in cache while the class's views add to them (docs/benchmarks.md, "The sweep's
+        // views read once a group of planes").
+        s.band_sum.assign(plane_band * std::size_t(planes), 0.0f);
+        for (const std::size_t k : s.order)
+          for (int j = 0; j < planes; ++j) {
+            const auto& [v, shift] = s.planes[std::size_t(j)].shifted[k];
             const View& view = views_[v];
-            const std::size_t at = std::size_t(view.view_class) * band_size;
+            const std::size_t at =
+                std::size_t(j) * plane_band + std::size_t(view.view_class) * band_size;
             for (int y = y0; y < y1; ++y)
               AccumulateShiftedRow(view.packed, ref, w, h, y, shift, terms, s.across,
                                    s.band_sum.data() + at + std::size_t(y - y0) * sw);
           }
+        for (int j = 0; j < planes; ++j) {
+          PlaneScratch& ps = s.planes[std::size_t(j)];
+          const float* band_sum = s.band_sum.data() + std::size_t(j) * plane_band;
           // Each sub-array's sums: its classes' sums added; its counts: the shifted views that
           // see each sample (their rectangles), and the warped views' counts.
           for (int y = y0; y < y1; ++y)
@@ -802,7 +827,7 @@ CostVolume SweepViews::Sweep(const std::vector<double>& q, double gradient_share
               }
               for (std::size_t k = 0; k < classes; ++k) {
                 if (!(class_sub_arrays_[k] >> g & 1)) continue;
-                const float* cs = s.band_sum.data() + k * band_size + std::size_t(y - y0) * sw;
+                const float* cs = band_sum + k * band_size + std::size_t(y - y0) * sw;
                 for (std::size_t x = 0; x < sw; ++x) hs[x] += cs[x];
                 if (ps.class_sum.empty()) continue;
                 const float* ws = ps.class_sum.data() + k * plane + std::size_t(y) * sw;
