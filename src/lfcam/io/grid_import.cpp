@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <map>
@@ -54,6 +55,46 @@ std::optional<int> Index(const std::string& text) {
   return std::stoi(text);
 }
 
+// An index with its axis' tag before it ("r05", "col5", "x12"): the tag in lower case and the
+// index; nothing when `text` is not a tag of 1 to 3 letters followed by an index.
+std::optional<std::pair<std::string, int>> TaggedIndex(const std::string& text) {
+  std::size_t letters = 0;
+  while (letters < text.size() && std::isalpha(static_cast<unsigned char>(text[letters])))
+    ++letters;
+  if (letters == 0 || letters > 3) return std::nullopt;
+  const auto index = Index(text.substr(letters));
+  if (!index) return std::nullopt;
+  std::string tag = text.substr(0, letters);
+  for (char& c : tag) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return std::pair{tag, *index};
+}
+
+// The row and column of two tagged indices, in either order: r/c, row/col, y/x, v/u (u being
+// the horizontal angular coordinate, as light fields name it). Other tags are not indices.
+std::optional<std::pair<int, int>> RowAndColumn(const std::pair<std::string, int>& a,
+                                                const std::pair<std::string, int>& b) {
+  static const std::array<std::pair<const char*, const char*>, 4> kPairs = {
+      {{"r", "c"}, {"row", "col"}, {"y", "x"}, {"v", "u"}}};
+  for (const auto& [row, col] : kPairs) {
+    if (a.first == row && b.first == col) return std::pair{a.second, b.second};
+    if (a.first == col && b.first == row) return std::pair{b.second, a.second};
+  }
+  return std::nullopt;
+}
+
+// "r05c07": two tagged indices in one field.
+std::optional<std::pair<int, int>> JoinedRowAndColumn(const std::string& text) {
+  for (std::size_t at = 2; at + 1 < text.size(); ++at) {
+    if (!std::isdigit(static_cast<unsigned char>(text[at - 1])) ||
+        !std::isalpha(static_cast<unsigned char>(text[at])))
+      continue;
+    const auto a = TaggedIndex(text.substr(0, at)), b = TaggedIndex(text.substr(at));
+    if (a && b) return RowAndColumn(*a, *b);
+    return std::nullopt;
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 std::optional<NamedView> ParseViewName(const std::string& file, GridNaming naming) {
@@ -101,6 +142,19 @@ std::optional<NamedView> ParseViewName(const std::string& file, GridNaming namin
           v.rr = *rr, v.cc = *cc;
           return v;
         }
+      }
+      // The indices tagged with their axes: [NAME_]r05_c07, x07_y05, row5_col7, or r05c07.
+      if (fields.size() >= 2) {
+        const auto a = TaggedIndex(fields[fields.size() - 2]), b = TaggedIndex(fields.back());
+        if (a && b)
+          if (const auto rc = RowAndColumn(*a, *b)) {
+            v.rr = rc->first, v.cc = rc->second;
+            return v;
+          }
+      }
+      if (const auto rc = JoinedRowAndColumn(fields.back())) {
+        v.rr = rc->first, v.cc = rc->second;
+        return v;
       }
       return std::nullopt;
     }
@@ -493,7 +547,8 @@ ImportedGrid GridFromNames(const fs::path& dir, std::optional<GridNaming> forced
     throw Error(fmt::format(
         "{}: the names do not form a grid named the Stanford way (NAME_RR_CC_Y_X_), the Blender "
         "camera-grid way (NAME_RR_CC_Y_X_F_W), the HCI benchmark's (input_CamNNN), by indices "
-        "(NAME_RR_CC) or as one numbered sequence of a square grid's views (NAMENNN): {}; "
+        "(NAME_RR_CC, or tagged: NAME_rRR_cCC, xCC_yRR, vRR_uCC) or as one numbered sequence of a "
+        "square grid's views (NAMENNN): {}; "
         "describe the folder in {} instead (docs/format.md)",
         dir.string(), fmt::join(reasons, "; "), kViewsDescriptionName));
   return std::move(fits.front());

@@ -255,7 +255,11 @@ TEST(ParallaxAxes, ViewsNamedByIndicesAloneOrInOneSequenceFormTheirGrid) {
   };
   std::vector<fs::path> dirs{named};
   for (const auto& [label, pattern] :
-       {std::pair{"indices", "{:02d}_{:02d}.png"}, std::pair{"dashes", "card-{}-{}.png"}}) {
+       {std::pair{"indices", "{:02d}_{:02d}.png"}, std::pair{"dashes", "card-{}-{}.png"},
+        // Indices tagged with their axes, in either order, apart or joined.
+        std::pair{"tagged", "card_r{:02d}_c{:02d}.png"},
+        std::pair{"x before y", "view_x{1}_y{0}.png"}, std::pair{"joined", "R{}C{}.png"},
+        std::pair{"u and v", "lf-v{}-u{}.png"}, std::pair{"row and col", "row{}_col{}.png"}}) {
     const std::string format = pattern;
     const auto [dir, original] = renamed(fmt::format("lfcam_axes_{}_", label), [&](int t, int c) {
       return fmt::format(fmt::runtime(format), t + 1, c + 1);
