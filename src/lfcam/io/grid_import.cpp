@@ -471,6 +471,43 @@ std::string NumberedInOrder(std::vector<NamedView>& named) {
   return {};
 }
 
+// Names whose numbers run a row's and a column's index together (NAMERRCC, 0101.png ..
+// 0909.png; no sequence, for the gaps): each number's digits split in two halves, the same
+// number of digits in every name, forming a whole grid of at least 2 x 2. Sets each view's rr
+// and cc and returns the digits an index takes; 0 where the names are not that.
+int SplitJoinedIndices(std::vector<NamedView>& named) {
+  int digits = -1;
+  std::string name;  // what comes before the numbers, and the extension: alike in every file
+  std::set<int> rows, cols;
+  std::set<std::pair<int, int>> seen;
+  for (const NamedView& n : named) {
+    const std::string stem = fs::path(n.file).stem().string();
+    int run = 0;
+    while (run < int(stem.size()) &&
+           std::isdigit(static_cast<unsigned char>(stem[stem.size() - 1 - std::size_t(run)])))
+      ++run;
+    if (run % 2 != 0 || run < 2 || run > 6 || (digits >= 0 && run != digits)) return 0;
+    const std::string before =
+        stem.substr(0, stem.size() - std::size_t(run)) + fs::path(n.file).extension().string();
+    if (digits >= 0 && before != name) return 0;
+    digits = run;
+    name = before;
+    const std::string number = stem.substr(stem.size() - std::size_t(run));
+    const int rr = std::stoi(number.substr(0, std::size_t(run / 2)));
+    const int cc = std::stoi(number.substr(std::size_t(run / 2)));
+    if (!seen.insert({rr, cc}).second) return 0;
+    rows.insert(rr), cols.insert(cc);
+  }
+  if (rows.size() < 2 || cols.size() < 2 || rows.size() * cols.size() != named.size()) return 0;
+  for (NamedView& n : named) {
+    const std::string stem = fs::path(n.file).stem().string();
+    const std::string number = stem.substr(stem.size() - std::size_t(digits));
+    n.rr = std::stoi(number.substr(0, std::size_t(digits / 2)));
+    n.cc = std::stoi(number.substr(std::size_t(digits / 2)));
+  }
+  return digits / 2;
+}
+
 std::optional<HciParameters> ReadHciParameters(const fs::path& dir) {
   std::error_code ec;
   const fs::path path = dir / kHciParametersName;
@@ -519,7 +556,20 @@ ImportedGrid GridFromNames(const fs::path& dir, std::optional<GridNaming> forced
     if (named.empty() && why.empty()) why = "no view is named that way";
     if (naming == GridNaming::kSequence && why.empty()) why = NumberedInOrder(named);
     std::optional<ImportedGrid> grid;
-    if (why.empty())
+    // Not one sequence, but a row's and a column's index run together: a unit grid.
+    if (naming == GridNaming::kSequence && !forced && !why.empty() && !named.empty() &&
+        named.size() == files.size()) {
+      std::vector<NamedView> split = named;
+      if (const int digits = SplitJoinedIndices(split)) {
+        std::string unused;
+        grid = GridFromIndices(GridNaming::kUnitGrid, split, std::nullopt, &unused);
+        if (grid) {
+          grid->joined_digits = digits;
+          why.clear();
+        }
+      }
+    }
+    if (why.empty() && !grid)
       grid = naming == GridNaming::kHci || naming == GridNaming::kUnitGrid ||
                      naming == GridNaming::kSequence
                  ? GridFromIndices(naming, named, naming == GridNaming::kHci ? hci : std::nullopt,
@@ -527,7 +577,7 @@ ImportedGrid GridFromNames(const fs::path& dir, std::optional<GridNaming> forced
                  : GridFromPositions(dir, naming, named, &why);
     if (grid) {
       grid->ignored = std::move(ignored);
-      grid->rig = DefaultRig(naming);
+      grid->rig = DefaultRig(grid->naming);
       if (naming == GridNaming::kHci) grid->hci = hci;
       fits.push_back(std::move(*grid));
     } else {
@@ -547,7 +597,8 @@ ImportedGrid GridFromNames(const fs::path& dir, std::optional<GridNaming> forced
     throw Error(fmt::format(
         "{}: the names do not form a grid named the Stanford way (NAME_RR_CC_Y_X_), the Blender "
         "camera-grid way (NAME_RR_CC_Y_X_F_W), the HCI benchmark's (input_CamNNN), by indices "
-        "(NAME_RR_CC, or tagged: NAME_rRR_cCC, xCC_yRR, vRR_uCC) or as one numbered sequence of a "
+        "(NAME_RR_CC, NAMERRCC, or tagged: NAME_rRR_cCC, xCC_yRR, vRR_uCC) or as one numbered "
+        "sequence of a "
         "square grid's views (NAMENNN): {}; "
         "describe the folder in {} instead (docs/format.md)",
         dir.string(), fmt::join(reasons, "; "), kViewsDescriptionName));
@@ -575,6 +626,12 @@ std::string ToString(GridNaming naming) {
 }
 
 std::vector<std::string> NamingNotes(const ImportedGrid& grid) {
+  if (grid.joined_digits > 0)
+    return {fmt::format(
+        "the numbers in the files' names read as a row's index and a column's run together, {} "
+        "digits each (0102: row 1, column 2), rows from the top; the views' own parallax checks "
+        "that order (axes)",
+        grid.joined_digits)};
   if (grid.naming != GridNaming::kSequence) return {};
   return {fmt::format(
       "the views taken in the order of their files' numbers, row by row from the top left of a "

@@ -59,7 +59,9 @@ struct ImportedGrid {
   RigModel rig = RigModel::kParallel;               // as the naming or description implies
   // The zero-disparity plane's distance (a rectified rig): the description's or parameters.cfg's.
   std::optional<double> zero_disparity_mm;
-  bool positions_known = true;       // false: the names give indices only (unit pitch)
+  bool positions_known = true;  // false: the names give indices only (unit pitch)
+  // A unit grid whose names run row and column together (NAMERRCC): the digits of each.
+  int joined_digits = 0;
   std::optional<HciParameters> hci;  // parameters.cfg, when the folder has one
   std::vector<GridView> views;       // row-major, rows * cols
   std::vector<std::string> missing;  // "camera (r, c)" for each view not in the folder

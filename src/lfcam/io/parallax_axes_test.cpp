@@ -269,6 +269,22 @@ TEST(ParallaxAxes, ViewsNamedByIndicesAloneOrInOneSequenceFormTheirGrid) {
     EXPECT_EQ(g.naming, GridNaming::kUnitGrid) << label;
     same_grid(g, original);
   }
+  // A row's and a column's index run together (0101.png ..): no sequence (it has gaps), but a
+  // whole grid once each number is split in half, and said so.
+  {
+    const auto [dir, original] = renamed("lfcam_axes_joined_", [](int top, int c) {
+      return fmt::format("{:02d}{:02d}.png", top + 1, c + 1);
+    });
+    dirs.push_back(dir);
+    const ImportedGrid g = ScanGridFolder(dir, false);
+    EXPECT_EQ(g.naming, GridNaming::kUnitGrid);
+    EXPECT_EQ(g.joined_digits, 2);
+    same_grid(g, original);
+    ASSERT_EQ(NamingNotes(g).size(), 1u);
+    EXPECT_NE(NamingNotes(g).front().find("run together, 2 digits each"), std::string::npos);
+    // Forced to be a sequence, it is one with gaps.
+    EXPECT_THROW(ScanGridFolder(dir, false, GridNaming::kSequence), Error);
+  }
   const auto [rows, by_rows] = renamed("lfcam_axes_sequence_", [](int top, int c) {
     return fmt::format("view{:04d}.png", 100 + top * kN + c);
   });
