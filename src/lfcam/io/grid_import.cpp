@@ -556,7 +556,8 @@ ImportedGrid GridFromNames(const fs::path& dir, std::optional<GridNaming> forced
     if (named.empty() && why.empty()) why = "no view is named that way";
     if (naming == GridNaming::kSequence && why.empty()) why = NumberedInOrder(named);
     std::optional<ImportedGrid> grid;
-    // Not one sequence, but a row's and a column's index run together: a unit grid.
+    // Not one sequence (gaps in the numbers: numbers without gaps are a sequence, whatever its
+    // shape), but a row's and a column's index run together: a unit grid.
     if (naming == GridNaming::kSequence && !forced && !why.empty() && !named.empty() &&
         named.size() == files.size()) {
       std::vector<NamedView> split = named;

@@ -284,6 +284,22 @@ TEST(ParallaxAxes, ViewsNamedByIndicesAloneOrInOneSequenceFormTheirGrid) {
     EXPECT_NE(NamingNotes(g).front().find("run together, 2 digits each"), std::string::npos);
     // Forced to be a sequence, it is one with gaps.
     EXPECT_THROW(ScanGridFolder(dir, false, GridNaming::kSequence), Error);
+    // Numbers without gaps are a sequence, not split: 20 views numbered 00 .. 19 are no 2 x 10
+    // grid (and, not square, no grid at all).
+    const fs::path run = dir.parent_path() / (dir.filename().string() + "run");
+    fs::create_directories(run);
+    dirs.push_back(run);
+    for (int i = 0; i < 20; ++i)
+      fs::copy_file(named / fmt::format("card_{:02d}_{:02d}.png", i / kN + 1, i % kN + 1),
+                    run / fmt::format("{:02d}.png", i));
+    try {
+      ScanGridFolder(run, false);
+      ADD_FAILURE() << "accepted " << run;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("sequence: 20 views are not a square grid"),
+                std::string::npos)
+          << e.what();
+    }
   }
   const auto [rows, by_rows] = renamed("lfcam_axes_sequence_", [](int top, int c) {
     return fmt::format("view{:04d}.png", 100 + top * kN + c);
