@@ -78,7 +78,8 @@ void ImportFlags::AddTo(CLI::App& command) {
       .add_option("--naming", naming,
                   "How the views are named: auto, stanford (NAME_RR_CC_Y_X_), blender-grid "
                   "(NAME_RR_CC_Y_X_F_W), hci (input_CamNNN.png + parameters.cfg), unit-grid "
-                  "([NAME_]RR_CC: indices only, row 1 at the top) or sequence (NAMENNN: one "
+                  "([NAME_]RR_CC: indices only, row 1 at the top; or tagged, r05_c07, x07_y05, "
+                  "v5_u7; auto also reads NAMERRCC with gaps as one) or sequence (NAMENNN: one "
                   "square grid's views numbered row by row from the top left, tried only where "
                   "no other naming fits); auto refuses names that parse several ways")
       ->capture_default_str();
