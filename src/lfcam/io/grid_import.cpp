@@ -480,6 +480,7 @@ int SplitJoinedIndices(std::vector<NamedView>& named) {
   std::string name;  // what comes before the numbers, and the extension: alike in every file
   std::set<int> rows, cols;
   std::set<std::pair<int, int>> seen;
+  std::vector<std::pair<int, int>> split;
   for (const NamedView& n : named) {
     const std::string stem = fs::path(n.file).stem().string();
     int run = 0;
@@ -497,14 +498,11 @@ int SplitJoinedIndices(std::vector<NamedView>& named) {
     const int cc = std::stoi(number.substr(std::size_t(run / 2)));
     if (!seen.insert({rr, cc}).second) return 0;
     rows.insert(rr), cols.insert(cc);
+    split.push_back({rr, cc});
   }
   if (rows.size() < 2 || cols.size() < 2 || rows.size() * cols.size() != named.size()) return 0;
-  for (NamedView& n : named) {
-    const std::string stem = fs::path(n.file).stem().string();
-    const std::string number = stem.substr(stem.size() - std::size_t(digits));
-    n.rr = std::stoi(number.substr(0, std::size_t(digits / 2)));
-    n.cc = std::stoi(number.substr(std::size_t(digits / 2)));
-  }
+  for (std::size_t i = 0; i < named.size(); ++i)
+    named[i].rr = split[i].first, named[i].cc = split[i].second;
   return digits / 2;
 }
 
