@@ -84,26 +84,15 @@ std::vector<std::string> KeywordTable::names() const {
 
 const KeywordTable& RenderKeywordTable() {
   using K = KeywordKind;
-  static const KeywordTable table{"render",
-                                  {{"size", K::kSize},
-                                   {"eye", K::kVector3},
-                                   {"look_at", K::kVector3},
-                                   {"up", K::kVector3},
-                                   {"focal_length", K::kNumber},
-                                   {"focus_distance", K::kNumber},
-                                   {"aperture", K::kNumber},
-                                   {"lens_rate", K::kNumber},
-                                   {"no_breathing", K::kSwitch},
-                                   {"camera", K::kText},
-                                   {"as_camera", K::kPair},
-                                   {"integrator", K::kText},
-                                   {"interpolation", K::kText},
-                                   {"depth", K::kText},
-                                   {"antialias", K::kSwitch},
-                                   {"threads", K::kNumber},
-                                   {"reference", K::kSwitch},
-                                   {"backend", K::kText},
-                                   {"workgroup", K::kSize}}};
+  static const KeywordTable table{
+      "render",
+      {{"size", K::kSize},          {"eye", K::kVector3},         {"look_at", K::kVector3},
+       {"up", K::kVector3},         {"focal_length", K::kNumber}, {"focus_distance", K::kNumber},
+       {"aperture", K::kNumber},    {"lens_rate", K::kNumber},    {"no_breathing", K::kSwitch},
+       {"camera", K::kText},        {"as_camera", K::kPair},      {"integrator", K::kText},
+       {"interpolation", K::kText}, {"depth", K::kText},          {"antialias", K::kSwitch},
+       {"depth_blend", K::kText},   {"threads", K::kNumber},      {"reference", K::kSwitch},
+       {"backend", K::kText},       {"workgroup", K::kSize}}};
   return table;
 }
 

@@ -79,6 +79,15 @@ TEST(KeywordArguments, MistakesAreUsageErrorsNamingTheKeyword) {
   EXPECT_NE(MessageOf({{"antialias", true}}).find("antialias: only with interpolation depth"),
             std::string::npos)
       << MessageOf({{"antialias", true}});
+  EXPECT_NE(MessageOf({{"depth_blend", std::string("four")}})
+                .find("depth_blend: only with interpolation depth"),
+            std::string::npos)
+      << MessageOf({{"depth_blend", std::string("four")}});
+  EXPECT_NE(
+      MessageOf({{"interpolation", std::string("depth")}, {"depth_blend", std::string("all")}})
+          .find("unknown depth blend 'all'"),
+      std::string::npos)
+      << MessageOf({{"interpolation", std::string("depth")}, {"depth_blend", std::string("all")}});
   EXPECT_NE(MessageOf({{"focus_distance", std::string("3000:4000")}}).find("focus_distance"),
             std::string::npos);
 }

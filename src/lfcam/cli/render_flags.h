@@ -20,7 +20,8 @@ namespace lfcam::cli {
 
 struct RenderOptionFlags {
   std::string integrator = "lens-samples", interpolation = "quadrilinear";
-  std::string depth;  // --depth DIR: the views' depth maps (`lfcam depth --all`)
+  std::string depth;                     // --depth DIR: the views' depth maps (`lfcam depth --all`)
+  std::string depth_blend = "agreeing";  // --depth-blend
   int threads = 0;
   bool reference = false, antialias = false;
 
@@ -34,6 +35,7 @@ struct RenderOptionFlags {
  private:
   CLI::Option* integrator_option_ = nullptr;
   CLI::Option* interpolation_option_ = nullptr;
+  CLI::Option* depth_blend_option_ = nullptr;
 };
 
 // What a caller of render asks for with keyword arguments (the Python module's lfcam.render).

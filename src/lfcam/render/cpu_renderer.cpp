@@ -169,6 +169,7 @@ RenderResult RenderReference(const LightField& lf, const VirtualCamera& camera,
     if (!options.depth) throw Error("the depth lookup needs the views' depth maps");
     depth.emplace(lf, *options.depth, sampler);
     depth->set_cubic_reads(DepthLookupReadsCubic(camera, sampler));
+    depth->set_blend(options.depth_blend);
     frame.depth = &*depth;
     frame.antialias = options.antialias;
   }

@@ -10,6 +10,7 @@
 #include "lfcam/core/lightfield.h"
 #include "lfcam/core/progress.h"
 #include "lfcam/depth/depth_set.h"
+#include "lfcam/render/depth_aware_sampler.h"
 #include "lfcam/render/lightfield_sampler.h"
 #include "lfcam/render/virtual_camera.h"
 
@@ -40,6 +41,8 @@ struct CpuRenderOptions {
   // With the depth lookup: spread each pixel's rays over its area on the film (a sensor pixel's
   // box filter) instead of through its centre (the paper's pixel).
   bool antialias = false;
+  // With the depth lookup: which cameras are blended (render/depth_aware_sampler.h).
+  DepthBlend depth_blend = DepthBlend::kAgreeing;
 };
 
 struct RenderResult {

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "lfcam/core/error.h"
@@ -116,15 +117,59 @@ double DepthAwareSampler::March(int c, const Vec3& origin, const Vec3& direction
   return -1.0;
 }
 
+float AgreeingShare(double u, double v) {
+  const double du = u - std::round(u), dv = v - std::round(v);
+  return float(std::min(1.0, 2.0 * std::hypot(du, dv)));
+}
+
+void DepthAwareSampler::BlendAgreeing(const Vec3& p, double q, double u, double v,
+                                      const Neighbour* around, int count, float rgb[3]) const {
+  u = std::clamp(u, 0.0, double(cols_ - 1));
+  v = std::clamp(v, 0.0, double(rows_ - 1));
+  const float share = AgreeingShare(u, v);
+  if (share <= 0.0f) return;  // at a camera: its own photograph
+  // The four cameras' spread about their blend, in linear light.
+  const float* near = rgb;
+  double spread = 0.0, held = 0.0;
+  for (int j = 0; j < count; ++j) {
+    float one[3] = {0, 0, 0};
+    if (!Read(around[j].index, p, q, 1.0f, one)) continue;
+    double d2 = 0.0;
+    for (int ch = 0; ch < 3; ++ch) d2 += double(one[ch] - near[ch]) * (one[ch] - near[ch]);
+    spread += around[j].weight * d2;
+    held += around[j].weight;
+  }
+  const double s2 = kAgreementFloor * kAgreementFloor + (held > 0.0 ? spread / held : 0.0);
+  // Every camera within kAgreeingReach steps that sees p, by a tent of its distance and how
+  // far its colour lies from the four's.
+  double sum[3] = {0, 0, 0}, weight = 0.0;
+  const int r_lo = std::max(int(std::ceil(v - kAgreeingReach)), 0);
+  const int r_hi = std::min(int(std::floor(v + kAgreeingReach)), rows_ - 1);
+  const int c_lo = std::max(int(std::ceil(u - kAgreeingReach)), 0);
+  const int c_hi = std::min(int(std::floor(u + kAgreeingReach)), cols_ - 1);
+  for (int r = r_lo; r <= r_hi; ++r)
+    for (int col = c_lo; col <= c_hi; ++col) {
+      const double tent =
+          (1.0 - std::abs(r - v) / kAgreeingReach) * (1.0 - std::abs(col - u) / kAgreeingReach);
+      if (!(tent > 0.0)) continue;
+      float one[3] = {0, 0, 0};
+      if (!Read(r * cols_ + col, p, q, 1.0f, one)) continue;
+      double d2 = 0.0;
+      for (int ch = 0; ch < 3; ++ch) d2 += double(one[ch] - near[ch]) * (one[ch] - near[ch]);
+      const double w = tent * std::exp(-0.5 * d2 / s2);
+      for (int ch = 0; ch < 3; ++ch) sum[ch] += w * one[ch];
+      weight += w;
+    }
+  if (!(weight > 0.0)) return;
+  for (int ch = 0; ch < 3; ++ch)
+    rgb[ch] = (1.0f - share) * rgb[ch] + share * float(sum[ch] / weight);
+}
+
 bool DepthAwareSampler::Sample(const Vec3& origin, const Vec3& direction, float rgb[3]) const {
   const auto c = slab_.intersect({origin, direction});
   if (!c || !slab_.contains(*c)) return false;
   const AxisLerp col = AxisLerp::At(c->u * cols_ - 0.5, cols_);
   const AxisLerp row = AxisLerp::At(c->v * rows_ - 0.5, rows_);
-  struct Neighbour {
-    int index;
-    float weight;
-  };
   Neighbour around[4];
   int count = 0;
   const int rs[2] = {row.i0, row.i1}, cs[2] = {col.i0, col.i1};
@@ -159,6 +204,8 @@ bool DepthAwareSampler::Sample(const Vec3& origin, const Vec3& direction, float 
       if (Read(around[j].index, p, best_q, around[j].weight, acc)) total += around[j].weight;
     if (total > 0.0f) {
       for (int ch = 0; ch < 3; ++ch) rgb[ch] = acc[ch] / total;
+      if (blend_ == DepthBlend::kAgreeing)
+        BlendAgreeing(p, best_q, c->u * cols_ - 0.5, c->v * rows_ - 0.5, around, count, rgb);
       return true;
     }
   }

@@ -14,8 +14,10 @@
 // the hit most of the cameras' weight agrees with wins (the nearest on a tie), and the cameras
 // that agree, each read at the hit's projection (bilinearly, or with a cubic kernel for frames at
 // the views' resolution or finer: an 8-bit view's codes interpolated, LightFieldSampler::
-// AccumulateAtCubic), are blended in linear light with their bilinear weights renormalised. A ray
-// no camera finds a hit for falls back to the paper's lookup.
+// AccumulateAtCubic), are blended in linear light with their bilinear weights renormalised, and
+// by default mixed with the agreeing cameras within two steps (DepthBlend below). A ray no
+// camera finds a hit for falls back to the paper's lookup.
+#include <string>
 #include <vector>
 
 #include "lfcam/core/lightfield.h"
@@ -37,6 +39,24 @@ std::vector<bool> DepthViewsNeeded(const LightField& lf, const VirtualCamera& ca
 // detail beyond the frame's sampling aliases, and a sharper kernel keeps more of it: the paper
 // scene's 128 x 128 frames of its 416 x 384 views 3 dB worse with cubic reads).
 inline constexpr double kCubicFootprint = 1.25;
+
+// How the cameras that see a ray's scene point are blended (`render --depth-blend`):
+// - kFourCameras: the (up to four) cameras around where the ray crosses the uv-plane, by their
+//   bilinear weights (the paper's lookup's cameras);
+// - kAgreeing: also every camera within kAgreeingReach grid steps that sees the point, weighted
+//   by a tent of its distance and by how well its colour agrees with the four's (a Gaussian of
+//   the difference, its width the four's own spread about their blend and kAgreementFloor), so
+//   that the photographs' independent noise and compression errors average down while a camera
+//   the depth misplaces (its colour off) counts for little. Its share grows from nothing at a
+//   camera (whose render is its own photograph) to all of it half a step away.
+enum class DepthBlend { kFourCameras, kAgreeing };
+inline constexpr double kAgreeingReach = 2.0;     // grid steps
+inline constexpr double kAgreementFloor = 0.004;  // linear light (about one 8-bit level at grey)
+// The agreeing blend's share at grid position (u, v) (columns, rows; cameras at integers):
+// twice the distance to the nearest camera, at most 1.
+float AgreeingShare(double u, double v);
+std::string ToString(DepthBlend blend);
+DepthBlend DepthBlendFromString(const std::string& name);  // throws lfcam::Error
 bool DepthLookupReadsCubic(const VirtualCamera& camera, const LightFieldSampler& sampler);
 
 class DepthAwareSampler {
@@ -50,6 +70,7 @@ class DepthAwareSampler {
   // Read the views with a cubic kernel instead of bilinearly (for frames at the views' own
   // resolution or finer; CpuRenderer decides).
   void set_cubic_reads(bool cubic) { cubic_reads_ = cubic; }
+  void set_blend(DepthBlend blend) { blend_ = blend; }
 
   // The inverse-depth tolerance of the occlusion test (1/mm) at inverse depth q.
   double tolerance(double q) const;
@@ -78,9 +99,18 @@ class DepthAwareSampler {
   // The inverse depth where the ray (origin, direction) hits the surface camera c sees, or a
   // negative number when it hits none.
   double March(int c, const Vec3& origin, const Vec3& direction) const;
+  struct Neighbour {
+    int index;
+    float weight;
+  };
+  // DepthBlend::kAgreeing: `rgb`, the four cameras' blend at point p (inverse depth q), mixed
+  // with the agreeing cameras' around grid position (u, v).
+  void BlendAgreeing(const Vec3& p, double q, double u, double v, const Neighbour* around,
+                     int count, float rgb[3]) const;
 
   const LightFieldSampler& colour_;
   bool cubic_reads_ = false;
+  DepthBlend blend_ = DepthBlend::kAgreeing;
   Slab slab_;  // LightField::sampled_slab(): its st domain the union of the views' windows
   int rows_, cols_, n_s_, n_t_;
   std::vector<Camera> cameras_;  // row-major

@@ -74,6 +74,7 @@ GlRenderOptions GlOptions(const FrameRenderOptions& options) {
   o.workgroup_y = options.workgroup_y;
   o.depth = options.depth;
   o.antialias = options.antialias;
+  o.depth_blend = options.depth_blend;
   return o;
 }
 
@@ -88,6 +89,7 @@ RenderResult FrameRenderer::Render(const LightField& lf, const VirtualCamera& ca
   o.progress = options.progress;
   o.depth = options.depth;
   o.antialias = options.antialias;
+  o.depth_blend = options.depth_blend;
   return RenderLightFieldCpu(lf, camera, o);
 }
 

@@ -18,12 +18,13 @@ Backend BackendFromString(const std::string& name);  // throws lfcam::Error
 struct FrameRenderOptions {
   Integrator integrator = Integrator::kLensSamples;
   Interpolation interpolation = Interpolation::kQuadrilinear;
-  int threads = 0;                        // CPU: 0 = all cores
-  bool reference = false;                 // CPU: the scalar reference
-  int workgroup_x = 16, workgroup_y = 8;  // GL
-  ProgressCallback progress;              // CPU only
-  const DepthSet* depth = nullptr;        // Interpolation::kDepth
-  bool antialias = false;                 // with it (CpuRenderOptions::antialias)
+  int threads = 0;                                 // CPU: 0 = all cores
+  bool reference = false;                          // CPU: the scalar reference
+  int workgroup_x = 16, workgroup_y = 8;           // GL
+  ProgressCallback progress;                       // CPU only
+  const DepthSet* depth = nullptr;                 // Interpolation::kDepth
+  bool antialias = false;                          // with it (CpuRenderOptions::antialias)
+  DepthBlend depth_blend = DepthBlend::kAgreeing;  // with it: the cameras blended
 };
 
 // The GL renderer's share of the options.

@@ -569,6 +569,9 @@ double GlRenderer::RenderDepth(const LightField& lf, const VirtualCamera& camera
   u.Float("focus_distance", camera.params().focus_distance_mm);
   u.Int("lens_count", int(lens.size() / 4));
   u.Int("antialias", options.antialias ? 1 : 0);
+  u.Int("agreeing_blend", options.depth_blend == DepthBlend::kAgreeing ? 1 : 0);
+  u.Float("agreeing_reach", float(kAgreeingReach));
+  u.Float("agreement_floor", float(kAgreementFloor));
   u.Int("cubic_reads", DepthLookupReadsCubic(camera, sampler) ? 1 : 0);
   u.Int("encoded_reads", views_encoded_ ? 1 : 0);
   u.Float("q_near", reference.q_near());

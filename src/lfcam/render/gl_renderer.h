@@ -33,6 +33,7 @@ struct GlRenderOptions {
   int workgroup_x = 16, workgroup_y = 8;  // the compute shader's local size
   const DepthSet* depth = nullptr;        // Interpolation::kDepth: the views' depth maps
   bool antialias = false;                 // with it: rays over each pixel's area (as the CPU's)
+  DepthBlend depth_blend = DepthBlend::kAgreeing;  // with it: the cameras blended
 };
 
 // The device's limits that decide what it can render.

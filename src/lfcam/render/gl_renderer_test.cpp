@@ -251,18 +251,30 @@ TEST(GlRenderer, DepthLookupAgreesWithTheCpuRenderer) {
     p.look_at = p.eye - Vec3(0, 0, 1000);
     const VirtualCamera camera(p);
     ASSERT_TRUE(DepthLookupReadsCubic(camera, LightFieldSampler(lf)));
-    CpuRenderOptions cpu_options;
-    cpu_options.interpolation = Interpolation::kDepth;
-    cpu_options.depth = &straight;
-    const RenderResult cpu = RenderLightFieldCpu(lf, camera, cpu_options);
-    GlRenderOptions gl_options;
-    gl_options.interpolation = Interpolation::kDepth;
-    gl_options.depth = &straight;
-    const Agreement a = Compare(gl->Render(lf, camera, gl_options), cpu);
-    EXPECT_LT(a.mean_abs, 1.0 / 255) << row << ", " << col;
-    EXPECT_GT(a.psnr, 40.0) << row << ", " << col;
-    worst_mean = std::max(worst_mean, a.mean_abs);
-    ++cases;
+    // Both blends (render/depth_aware_sampler.h), and each backend's two differ: the GL
+    // renderer is told which.
+    RenderResult frames[2];
+    for (const DepthBlend blend : {DepthBlend::kAgreeing, DepthBlend::kFourCameras}) {
+      CpuRenderOptions cpu_options;
+      cpu_options.interpolation = Interpolation::kDepth;
+      cpu_options.depth = &straight;
+      cpu_options.depth_blend = blend;
+      const RenderResult cpu = RenderLightFieldCpu(lf, camera, cpu_options);
+      GlRenderOptions gl_options;
+      gl_options.interpolation = Interpolation::kDepth;
+      gl_options.depth = &straight;
+      gl_options.depth_blend = blend;
+      RenderResult frame = gl->Render(lf, camera, gl_options);
+      const Agreement a = Compare(frame, cpu);
+      EXPECT_LT(a.mean_abs, 1.0 / 255) << row << ", " << col << ", " << ToString(blend);
+      EXPECT_GT(a.psnr, 40.0) << row << ", " << col << ", " << ToString(blend);
+      worst_mean = std::max(worst_mean, a.mean_abs);
+      frames[blend == DepthBlend::kAgreeing ? 0 : 1] = std::move(frame);
+      ++cases;
+    }
+    cv::Mat blend_difference;
+    cv::absdiff(frames[0].image, frames[1].image, blend_difference);
+    EXPECT_GT(cv::mean(blend_difference.reshape(1))[0], 0.05 / 255) << row << ", " << col;
   }
   EXPECT_GE(cases, 20);
   std::cout << cases << " depth-lookup frames: worst mean |difference| " << worst_mean * 255

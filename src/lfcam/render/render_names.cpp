@@ -5,6 +5,7 @@
 
 #include "lfcam/core/error.h"
 #include "lfcam/render/cpu_renderer.h"
+#include "lfcam/render/depth_aware_sampler.h"
 #include "lfcam/render/lightfield_sampler.h"
 
 namespace lfcam {
@@ -47,6 +48,22 @@ Interpolation InterpolationFromString(const std::string& name) {
   if (name == "depth") return Interpolation::kDepth;
   throw Error(fmt::format(
       "unknown interpolation '{}' (expected quadrilinear, focal-plane or depth)", name));
+}
+
+std::string ToString(DepthBlend blend) {
+  switch (blend) {
+    case DepthBlend::kFourCameras:
+      return "four";
+    case DepthBlend::kAgreeing:
+      return "agreeing";
+  }
+  return "?";
+}
+
+DepthBlend DepthBlendFromString(const std::string& name) {
+  if (name == "four") return DepthBlend::kFourCameras;
+  if (name == "agreeing") return DepthBlend::kAgreeing;
+  throw Error(fmt::format("unknown depth blend '{}' (expected agreeing or four)", name));
 }
 
 }  // namespace lfcam

@@ -4,7 +4,8 @@
 // is read from the (up to four) cameras around where it crosses the uv-plane; each camera
 // marches along the ray through its depth map to the surface it sees, the hit most of the
 // cameras' weight agrees with wins, and the cameras that agree are read where that point
-// projects into them. A ray no camera finds a hit for falls back to the paper's lookup.
+// projects into them (and, with agreeing_blend, the agreeing cameras within two steps: BlendAgreeing).
+// A ray no camera finds a hit for falls back to the paper's lookup.
 //
 // World positions arrive relative to the array's corner p_ca (computed in double on the C++
 // side), so that float keeps a thousandth of a millimetre. The C++ side prepends
@@ -42,6 +43,9 @@ uniform vec2 tan_half, principal_offset;
 uniform float focus_distance;
 uniform int lens_count;  // 0: a pinhole
 uniform bool antialias, cubic_reads, encoded_reads;
+// DepthBlend::kAgreeing (render/depth_aware_sampler.h) and its constants.
+uniform bool agreeing_blend;
+uniform float agreeing_reach, agreement_floor;
 // The depth range's ends (inverse depth, 1/mm, widened) and the inverse depth that moves a
 // point one sample between neighbouring cameras.
 uniform float q_near, q_far, unit_q;
@@ -216,6 +220,36 @@ void AxisLerp(float x, int n, out int i0, out int i1, out float w1) {
   w1 = x - float(i0);
 }
 
+// The four cameras' blend `near` at point p (inverse depth q) mixed with the agreeing cameras'
+// around grid position g (columns, rows): DepthAwareSampler::BlendAgreeing.
+vec3 BlendAgreeing(vec3 p, float q, vec2 g, int index[4], float weight[4], int count, vec3 near) {
+  g = clamp(g, vec2(0.0), vec2(grid - 1));
+  const float share = min(1.0, 2.0 * length(g - round(g)));
+  if (share <= 0.0) return near;
+  float spread = 0.0, held = 0.0;
+  vec3 one;
+  for (int j = 0; j < count; ++j)
+    if (Read(index[j], p, q, true, one)) {
+      spread += weight[j] * dot(one - near, one - near);
+      held += weight[j];
+    }
+  const float s2 = agreement_floor * agreement_floor + (held > 0.0 ? spread / held : 0.0);
+  const ivec2 lo = max(ivec2(ceil(g - agreeing_reach)), ivec2(0));
+  const ivec2 hi = min(ivec2(floor(g + agreeing_reach)), grid - 1);
+  vec3 sum = vec3(0.0);
+  float total = 0.0;
+  for (int r = lo.y; r <= hi.y; ++r)
+    for (int c = lo.x; c <= hi.x; ++c) {
+      const float tent = (1.0 - abs(float(r) - g.y) / agreeing_reach) *
+                         (1.0 - abs(float(c) - g.x) / agreeing_reach);
+      if (!(tent > 0.0) || !Read(r * grid.x + c, p, q, true, one)) continue;
+      const float w = tent * exp(-0.5 * dot(one - near, one - near) / s2);
+      sum += w * one;
+      total += w;
+    }
+  return total > 0.0 ? mix(near, sum / total, share) : near;
+}
+
 // Radiance along the line (origin, direction); false when it misses the slab.
 bool Sample(vec3 origin, vec3 direction, out vec3 rgb) {
   rgb = vec3(0.0);
@@ -272,6 +306,8 @@ bool Sample(vec3 origin, vec3 direction, out vec3 rgb) {
     }
     if (total > 0.0) {
       rgb = acc / total;
+      if (agreeing_blend)
+        rgb = BlendAgreeing(p, best_q, uv * vec2(grid) - 0.5, index, weight, count, rgb);
       return true;
     }
   }
