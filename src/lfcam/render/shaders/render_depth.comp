@@ -4,8 +4,8 @@
 // is read from the (up to four) cameras around where it crosses the uv-plane; each camera
 // marches along the ray through its depth map to the surface it sees, the hit most of the
 // cameras' weight agrees with wins, and the cameras that agree are read where that point
-// projects into them (and, with agreeing_blend, the agreeing cameras within two steps: BlendAgreeing).
-// A ray no camera finds a hit for falls back to the paper's lookup.
+// projects into them (and, with agreeing_blend, the agreeing cameras within two steps:
+// BlendAgreeing). A ray no camera finds a hit for falls back to the paper's lookup.
 //
 // World positions arrive relative to the array's corner p_ca (computed in double on the C++
 // side), so that float keeps a thousandth of a millimetre. The C++ side prepends
