@@ -122,47 +122,77 @@ float AgreeingShare(double u, double v) {
   return float(std::min(1.0, 2.0 * std::hypot(du, dv)));
 }
 
-void DepthAwareSampler::BlendAgreeing(const Vec3& p, double q, double u, double v,
+bool DepthAwareSampler::BlendAgreeing(const Vec3& p, double q, double u, double v,
                                       const Neighbour* around, int count, float rgb[3]) const {
   u = std::clamp(u, 0.0, double(cols_ - 1));
   v = std::clamp(v, 0.0, double(rows_ - 1));
-  const float share = AgreeingShare(u, v);
-  if (share <= 0.0f) return;  // at a camera: its own photograph
-  // The four cameras' spread about their blend, in linear light.
-  const float* near = rgb;
-  double spread = 0.0, held = 0.0;
-  for (int j = 0; j < count; ++j) {
-    float one[3] = {0, 0, 0};
-    if (!Read(around[j].index, p, q, 1.0f, one)) continue;
-    double d2 = 0.0;
-    for (int ch = 0; ch < 3; ++ch) d2 += double(one[ch] - near[ch]) * (one[ch] - near[ch]);
-    spread += around[j].weight * d2;
-    held += around[j].weight;
-  }
-  const double s2 = kAgreementFloor * kAgreementFloor + (held > 0.0 ? spread / held : 0.0);
-  // Every camera within kAgreeingReach steps that sees p, by a tent of its distance and how
-  // far its colour lies from the four's.
-  double sum[3] = {0, 0, 0}, weight = 0.0;
+  // Every camera within kAgreeingReach steps, read once (the four around among them): at most
+  // 5 x 5 cameras, those on the block's edge when (u, v) lies on a camera's row or column with a
+  // tent of zero, and skipped.
   const int r_lo = std::max(int(std::ceil(v - kAgreeingReach)), 0);
   const int r_hi = std::min(int(std::floor(v + kAgreeingReach)), rows_ - 1);
   const int c_lo = std::max(int(std::ceil(u - kAgreeingReach)), 0);
   const int c_hi = std::min(int(std::floor(u + kAgreeingReach)), cols_ - 1);
+  const int block_cols = c_hi - c_lo + 1;
+  constexpr int kMostCells = 25;
+  float colour[kMostCells][3];
+  double tent[kMostCells];
+  bool seen[kMostCells];
   for (int r = r_lo; r <= r_hi; ++r)
     for (int col = c_lo; col <= c_hi; ++col) {
-      const double tent =
+      const int cell = (r - r_lo) * block_cols + (col - c_lo);
+      float* one = colour[cell];
+      one[0] = one[1] = one[2] = 0.0f;
+      tent[cell] =
           (1.0 - std::abs(r - v) / kAgreeingReach) * (1.0 - std::abs(col - u) / kAgreeingReach);
-      if (!(tent > 0.0)) continue;
-      float one[3] = {0, 0, 0};
-      if (!Read(r * cols_ + col, p, q, 1.0f, one)) continue;
-      double d2 = 0.0;
-      for (int ch = 0; ch < 3; ++ch) d2 += double(one[ch] - near[ch]) * (one[ch] - near[ch]);
-      const double w = tent * std::exp(-0.5 * d2 / s2);
-      for (int ch = 0; ch < 3; ++ch) sum[ch] += w * one[ch];
-      weight += w;
+      seen[cell] = tent[cell] > 0.0 && Read(r * cols_ + col, p, q, 1.0f, one);
     }
-  if (!(weight > 0.0)) return;
-  for (int ch = 0; ch < 3; ++ch)
-    rgb[ch] = (1.0f - share) * rgb[ch] + share * float(sum[ch] / weight);
+  // Camera `index`'s read: from the block (where the four always lie), else read now.
+  float spare[3];
+  const auto read = [&](int index) -> const float* {
+    const int r = index / cols_, col = index % cols_;
+    if (r >= r_lo && r <= r_hi && col >= c_lo && col <= c_hi) {
+      const int cell = (r - r_lo) * block_cols + (col - c_lo);
+      if (tent[cell] > 0.0) return seen[cell] ? colour[cell] : nullptr;
+    }
+    spare[0] = spare[1] = spare[2] = 0.0f;
+    return Read(index, p, q, 1.0f, spare) ? spare : nullptr;
+  };
+  // The four cameras' blend, and their spread about it, in linear light.
+  float near[3] = {0, 0, 0}, total = 0.0f;
+  for (int j = 0; j < count; ++j)
+    if (const float* one = read(around[j].index)) {
+      for (int ch = 0; ch < 3; ++ch) near[ch] += around[j].weight * one[ch];
+      total += around[j].weight;
+    }
+  if (!(total > 0.0f)) return false;
+  for (int ch = 0; ch < 3; ++ch) rgb[ch] = near[ch] / total;
+  const float share = AgreeingShare(u, v);
+  if (share <= 0.0f) return true;  // at a camera: its own photograph
+  const auto distance2 = [&](const float* one) {
+    double d2 = 0.0;
+    for (int ch = 0; ch < 3; ++ch) d2 += double(one[ch] - rgb[ch]) * (one[ch] - rgb[ch]);
+    return d2;
+  };
+  double spread = 0.0, held = 0.0;
+  for (int j = 0; j < count; ++j)
+    if (const float* one = read(around[j].index)) {
+      spread += around[j].weight * distance2(one);
+      held += around[j].weight;
+    }
+  const double s2 = kAgreementFloor * kAgreementFloor + (held > 0.0 ? spread / held : 0.0);
+  // Each camera that sees p, by its tent and how far its colour lies from the four's.
+  double sum[3] = {0, 0, 0}, weight = 0.0;
+  for (int cell = 0; cell < (r_hi - r_lo + 1) * block_cols; ++cell) {
+    if (!seen[cell]) continue;
+    const double w = tent[cell] * std::exp(-0.5 * distance2(colour[cell]) / s2);
+    for (int ch = 0; ch < 3; ++ch) sum[ch] += w * colour[cell][ch];
+    weight += w;
+  }
+  if (weight > 0.0)
+    for (int ch = 0; ch < 3; ++ch)
+      rgb[ch] = (1.0f - share) * rgb[ch] + share * float(sum[ch] / weight);
+  return true;
 }
 
 bool DepthAwareSampler::Sample(const Vec3& origin, const Vec3& direction, float rgb[3]) const {
@@ -199,14 +229,17 @@ bool DepthAwareSampler::Sample(const Vec3& origin, const Vec3& direction, float 
   }
   if (best_q > 0.0) {
     const Vec3 p = point(best_q);
-    float acc[3] = {0, 0, 0}, total = 0.0f;
-    for (int j = 0; j < count; ++j)
-      if (Read(around[j].index, p, best_q, around[j].weight, acc)) total += around[j].weight;
-    if (total > 0.0f) {
-      for (int ch = 0; ch < 3; ++ch) rgb[ch] = acc[ch] / total;
-      if (blend_ == DepthBlend::kAgreeing)
-        BlendAgreeing(p, best_q, c->u * cols_ - 0.5, c->v * rows_ - 0.5, around, count, rgb);
-      return true;
+    if (blend_ == DepthBlend::kAgreeing) {
+      if (BlendAgreeing(p, best_q, c->u * cols_ - 0.5, c->v * rows_ - 0.5, around, count, rgb))
+        return true;
+    } else {
+      float acc[3] = {0, 0, 0}, total = 0.0f;
+      for (int j = 0; j < count; ++j)
+        if (Read(around[j].index, p, best_q, around[j].weight, acc)) total += around[j].weight;
+      if (total > 0.0f) {
+        for (int ch = 0; ch < 3; ++ch) rgb[ch] = acc[ch] / total;
+        return true;
+      }
     }
   }
   return colour_.Fetch(c->u, c->v, c->s, c->t, rgb);  // no depth found: the paper's lookup

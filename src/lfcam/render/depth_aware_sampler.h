@@ -103,9 +103,10 @@ class DepthAwareSampler {
     int index;
     float weight;
   };
-  // DepthBlend::kAgreeing: `rgb`, the four cameras' blend at point p (inverse depth q), mixed
-  // with the agreeing cameras' around grid position (u, v).
-  void BlendAgreeing(const Vec3& p, double q, double u, double v, const Neighbour* around,
+  // DepthBlend::kAgreeing: rgb = the four cameras' blend at point p (inverse depth q) mixed with
+  // the agreeing cameras' around grid position (u, v), every camera read once; false (rgb
+  // untouched) when none of the four sees p.
+  bool BlendAgreeing(const Vec3& p, double q, double u, double v, const Neighbour* around,
                      int count, float rgb[3]) const;
 
   const LightFieldSampler& colour_;

@@ -220,34 +220,63 @@ void AxisLerp(float x, int n, out int i0, out int i1, out float w1) {
   w1 = x - float(i0);
 }
 
-// The four cameras' blend `near` at point p (inverse depth q) mixed with the agreeing cameras'
-// around grid position g (columns, rows): DepthAwareSampler::BlendAgreeing.
-vec3 BlendAgreeing(vec3 p, float q, vec2 g, int index[4], float weight[4], int count, vec3 near) {
+// The four cameras' blend at point p (inverse depth q), mixed with the agreeing cameras' around
+// grid position g (columns, rows), every camera read once; false when none of the four sees p:
+// DepthAwareSampler::BlendAgreeing.
+bool BlendAgreeing(vec3 p, float q, vec2 g, int index[4], float weight[4], int count,
+                   out vec3 rgb) {
+  rgb = vec3(0.0);
   g = clamp(g, vec2(0.0), vec2(grid - 1));
-  const float share = min(1.0, 2.0 * length(g - round(g)));
-  if (share <= 0.0) return near;
-  float spread = 0.0, held = 0.0;
-  vec3 one;
-  for (int j = 0; j < count; ++j)
-    if (Read(index[j], p, q, true, one)) {
-      spread += weight[j] * dot(one - near, one - near);
-      held += weight[j];
-    }
-  const float s2 = agreement_floor * agreement_floor + (held > 0.0 ? spread / held : 0.0);
+  // At most 5 x 5 cameras within agreeing_reach (2) steps; those with a tent of zero skipped.
   const ivec2 lo = max(ivec2(ceil(g - agreeing_reach)), ivec2(0));
   const ivec2 hi = min(ivec2(floor(g + agreeing_reach)), grid - 1);
-  vec3 sum = vec3(0.0);
-  float total = 0.0;
+  const int block_cols = hi.x - lo.x + 1, cells = (hi.y - lo.y + 1) * block_cols;
+  vec3 colour[25];
+  float tent[25];
+  bool seen[25];
   for (int r = lo.y; r <= hi.y; ++r)
     for (int c = lo.x; c <= hi.x; ++c) {
-      const float tent = (1.0 - abs(float(r) - g.y) / agreeing_reach) *
-                         (1.0 - abs(float(c) - g.x) / agreeing_reach);
-      if (!(tent > 0.0) || !Read(r * grid.x + c, p, q, true, one)) continue;
-      const float w = tent * exp(-0.5 * dot(one - near, one - near) / s2);
-      sum += w * one;
+      const int cell = (r - lo.y) * block_cols + (c - lo.x);
+      tent[cell] = (1.0 - abs(float(r) - g.y) / agreeing_reach) *
+                   (1.0 - abs(float(c) - g.x) / agreeing_reach);
+      colour[cell] = vec3(0.0);
+      seen[cell] = tent[cell] > 0.0 && Read(r * grid.x + c, p, q, true, colour[cell]);
+    }
+  // The four's reads, from the block (where they always lie: within a step of g).
+  bool four_seen[4];
+  vec3 four[4];
+  vec3 near = vec3(0.0);
+  float held = 0.0;
+  for (int j = 0; j < count; ++j) {
+    const ivec2 at = ivec2(index[j] % grid.x, index[j] / grid.x) - lo;
+    const int cell = at.y * block_cols + at.x;
+    four_seen[j] = seen[cell];
+    four[j] = colour[cell];
+    if (four_seen[j]) {
+      near += weight[j] * four[j];
+      held += weight[j];
+    }
+  }
+  if (!(held > 0.0)) return false;
+  near /= held;
+  rgb = near;
+  const float share = min(1.0, 2.0 * length(g - round(g)));
+  if (share <= 0.0) return true;
+  float spread = 0.0;
+  for (int j = 0; j < count; ++j)
+    if (four_seen[j]) spread += weight[j] * dot(four[j] - near, four[j] - near);
+  const float s2 = agreement_floor * agreement_floor + spread / held;
+  vec3 sum = vec3(0.0);
+  float total = 0.0;
+  for (int cell = 0; cell < cells; ++cell)
+    if (seen[cell]) {
+      const vec3 d = colour[cell] - near;
+      const float w = tent[cell] * exp(-0.5 * dot(d, d) / s2);
+      sum += w * colour[cell];
       total += w;
     }
-  return total > 0.0 ? mix(near, sum / total, share) : near;
+  if (total > 0.0) rgb = mix(near, sum / total, share);
+  return true;
 }
 
 // Radiance along the line (origin, direction); false when it misses the slab.
@@ -295,20 +324,22 @@ bool Sample(vec3 origin, vec3 direction, out vec3 rgb) {
   }
   if (best_q > 0.0) {
     const vec3 p = PointAt(origin, direction, origin_depth, n_dir, best_q);
-    vec3 acc = vec3(0.0);
-    float total = 0.0;
-    for (int j = 0; j < count; ++j) {
-      vec3 read;
-      if (Read(index[j], p, best_q, true, read)) {
-        acc += weight[j] * read;
-        total += weight[j];
+    if (agreeing_blend) {
+      if (BlendAgreeing(p, best_q, uv * vec2(grid) - 0.5, index, weight, count, rgb)) return true;
+    } else {
+      vec3 acc = vec3(0.0);
+      float total = 0.0;
+      for (int j = 0; j < count; ++j) {
+        vec3 read;
+        if (Read(index[j], p, best_q, true, read)) {
+          acc += weight[j] * read;
+          total += weight[j];
+        }
       }
-    }
-    if (total > 0.0) {
-      rgb = acc / total;
-      if (agreeing_blend)
-        rgb = BlendAgreeing(p, best_q, uv * vec2(grid) - 0.5, index, weight, count, rgb);
-      return true;
+      if (total > 0.0) {
+        rgb = acc / total;
+        return true;
+      }
     }
   }
   // No depth found: the paper's lookup at the ray's own (u, v, s, t).
