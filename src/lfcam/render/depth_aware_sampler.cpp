@@ -135,6 +135,8 @@ bool DepthAwareSampler::BlendAgreeing(const Vec3& p, double q, double u, double 
   const int c_hi = std::min(int(std::floor(u + kAgreeingReach)), cols_ - 1);
   const int block_cols = c_hi - c_lo + 1;
   constexpr int kMostCells = 25;
+  static_assert(kMostCells >= (2 * int(kAgreeingReach) + 1) * (2 * int(kAgreeingReach) + 1),
+                "the block holds every camera within kAgreeingReach steps");
   float colour[kMostCells][3];
   double tent[kMostCells];
   bool seen[kMostCells];

@@ -570,6 +570,8 @@ double GlRenderer::RenderDepth(const LightField& lf, const VirtualCamera& camera
   u.Int("lens_count", int(lens.size() / 4));
   u.Int("antialias", options.antialias ? 1 : 0);
   u.Int("agreeing_blend", options.depth_blend == DepthBlend::kAgreeing ? 1 : 0);
+  // render_depth.comp's BlendAgreeing holds the cameras within reach in arrays of 5 x 5.
+  static_assert(kAgreeingReach <= 2.0, "render_depth.comp's block would overflow");
   u.Float("agreeing_reach", float(kAgreeingReach));
   u.Float("agreement_floor", float(kAgreementFloor));
   u.Int("cubic_reads", DepthLookupReadsCubic(camera, sampler) ? 1 : 0);
