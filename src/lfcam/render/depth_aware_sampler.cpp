@@ -149,24 +149,24 @@ bool DepthAwareSampler::BlendAgreeing(const Vec3& p, double q, double u, double 
           (1.0 - std::abs(r - v) / kAgreeingReach) * (1.0 - std::abs(col - u) / kAgreeingReach);
       seen[cell] = tent[cell] > 0.0 && Read(r * cols_ + col, p, q, 1.0f, one);
     }
-  // Camera `index`'s read: from the block (where the four always lie), else read now.
-  float spare[3];
-  const auto read = [&](int index) -> const float* {
-    const int r = index / cols_, col = index % cols_;
-    if (r >= r_lo && r <= r_hi && col >= c_lo && col <= c_hi) {
-      const int cell = (r - r_lo) * block_cols + (col - c_lo);
-      if (tent[cell] > 0.0) return seen[cell] ? colour[cell] : nullptr;
-    }
-    spare[0] = spare[1] = spare[2] = 0.0f;
-    return Read(index, p, q, 1.0f, spare) ? spare : nullptr;
-  };
-  // The four cameras' blend, and their spread about it, in linear light.
+  // The four's reads, from the block (where they always lie: within a step of (u, v)), else
+  // read here; then their blend, and their spread about it, in linear light.
+  const float* four[4];
+  float spare[4][3];
   float near[3] = {0, 0, 0}, total = 0.0f;
-  for (int j = 0; j < count; ++j)
-    if (const float* one = read(around[j].index)) {
-      for (int ch = 0; ch < 3; ++ch) near[ch] += around[j].weight * one[ch];
-      total += around[j].weight;
+  for (int j = 0; j < count; ++j) {
+    const int index = around[j].index, r = index / cols_, col = index % cols_;
+    const int cell = (r - r_lo) * block_cols + (col - c_lo);
+    if (r >= r_lo && r <= r_hi && col >= c_lo && col <= c_hi && tent[cell] > 0.0) {
+      four[j] = seen[cell] ? colour[cell] : nullptr;
+    } else {
+      spare[j][0] = spare[j][1] = spare[j][2] = 0.0f;
+      four[j] = Read(index, p, q, 1.0f, spare[j]) ? spare[j] : nullptr;
     }
+    if (!four[j]) continue;
+    for (int ch = 0; ch < 3; ++ch) near[ch] += around[j].weight * four[j][ch];
+    total += around[j].weight;
+  }
   if (!(total > 0.0f)) return false;
   for (int ch = 0; ch < 3; ++ch) rgb[ch] = near[ch] / total;
   const float share = AgreeingShare(u, v);
@@ -178,8 +178,8 @@ bool DepthAwareSampler::BlendAgreeing(const Vec3& p, double q, double u, double 
   };
   double spread = 0.0, held = 0.0;
   for (int j = 0; j < count; ++j)
-    if (const float* one = read(around[j].index)) {
-      spread += around[j].weight * distance2(one);
+    if (four[j]) {
+      spread += around[j].weight * distance2(four[j]);
       held += around[j].weight;
     }
   const double s2 = kAgreementFloor * kAgreementFloor + (held > 0.0 ? spread / held : 0.0);
