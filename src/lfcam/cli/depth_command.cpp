@@ -49,7 +49,19 @@ nlohmann::json Summary(const DepthMap& map) {
           {"confident_share", n > 0 ? confident / n : 0.0},
           {"noise_levels", map.noise_levels},
           {"near_nyquist_share", map.near_nyquist_share},
-          {"read_sigma", map.read_sigma}};
+          {"read_sigma", map.read_sigma},
+          {"views_too_dark", map.views_too_dark}};
+}
+
+// Says which views a map left out as too dark to match its reference.
+void PrintViewsTooDark(const DepthMap& map) {
+  if (map.views_too_dark.empty()) return;
+  std::vector<std::string> views;
+  for (const auto& [r, c] : map.views_too_dark) views.push_back(fmt::format("{},{}", r, c));
+  fmt::print(
+      "  left out {} view{} darker than 1/{:g} of the reference view's brightness, too dark to "
+      "match (black, or vignetted nearly so): {} (docs/depth.md, \"Views too dark to match\")\n",
+      views.size(), views.size() == 1 ? "" : "s", kMaxBrightnessGain, fmt::join(views, " "));
 }
 
 // Says how noisy or sharp views were read, when they were read through a Gaussian.
@@ -233,6 +245,15 @@ void AddDepthCommand(CLI::App& app) {
                  f->out, set.range().near_mm, set.range().far_mm, WorldLengthUnit(lf.metadata()),
                  seconds());
       PrintGaussianReads(report["central"]);
+      int darkened = 0;
+      for (int r = 0; r < d.rows; ++r)
+        for (int c = 0; c < d.cols; ++c) darkened += !set.at(r, c).views_too_dark.empty();
+      if (darkened > 0)
+        fmt::print(
+            "  {} of the {} maps left out neighbouring views darker than 1/{:g} of their "
+            "reference's brightness, too dark to match (docs/depth.md, \"Views too dark to "
+            "match\")\n",
+            darkened, set.count(), kMaxBrightnessGain);
       return;
     }
     const DepthMap map = EstimateDepth(lf, row, col, options);
@@ -264,6 +285,7 @@ void AddDepthCommand(CLI::App& app) {
         100.0 * s["confident_share"].get<double>(), report["confidence"].get<std::string>(),
         report["preview"].get<std::string>(), seconds());
     PrintGaussianReads(s);
+    PrintViewsTooDark(map);
     if (!f->disparity_pfm.empty())
       fmt::print(
           "wrote {} (disparity between neighbouring views, st samples; {} unknown written "

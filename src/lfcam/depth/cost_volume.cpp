@@ -446,7 +446,13 @@ SweepViews::SweepViews(const LightField& lf, int row, int col, const CostVolumeO
       const cv::Scalar mean = cv::mean(f(middle));
       cv::Scalar gain;
       for (int i = 0; i < 3; ++i)
-        gain[i] = mean[i] > 1e-3 ? std::clamp(reference_mean[i] / mean[i], 0.5, 2.0) : 1.0;
+        gain[i] = mean[i] > 1e-3 ? std::clamp(reference_mean[i] / mean[i], kMinBrightnessGain,
+                                              kMaxBrightnessGain)
+                                 : 1.0;
+      // Black, or darker over its three channels than a gain can take back: matched by nothing.
+      const double brightness = mean[0] + mean[1] + mean[2],
+                   reference = reference_mean[0] + reference_mean[1] + reference_mean[2];
+      v.too_dark = reference > 1e-3 && brightness * kMaxBrightnessGain < reference;
       cv::multiply(f, gain, f);
     }
     cv::cvtColor(f, grey, cv::COLOR_RGB2GRAY);
@@ -485,6 +491,16 @@ SweepViews::SweepViews(const LightField& lf, int row, int col, const CostVolumeO
   views_.resize(around.size());
   tbb::parallel_for(std::size_t(0), around.size(),
                     [&](std::size_t i) { views_[i] = load(around[i].first, around[i].second); });
+  // Views too dark to match are left out, unless every view is.
+  if (std::any_of(views_.begin(), views_.end(), [](const View& v) { return !v.too_dark; })) {
+    std::vector<View> kept;
+    for (std::size_t i = 0; i < views_.size(); ++i)
+      if (views_[i].too_dark)
+        too_dark_.push_back(around[i]);
+      else
+        kept.push_back(std::move(views_[i]));
+    views_ = std::move(kept);
+  }
   for (View& v : views_) {
     const auto found = std::find(class_sub_arrays_.begin(), class_sub_arrays_.end(), v.sub_arrays);
     v.view_class = int(found - class_sub_arrays_.begin());

@@ -47,7 +47,11 @@ struct CostVolumeOptions {
   // Each view's brightness made the reference's, channel by channel (a gain from their means over
   // the middle of the frame): for views narrowly apart, which see the same things (a plenoptic
   // camera's outer views are darker than its centre's). Not for views far apart, whose means
-  // differ by what each sees (docs/depth.md, "An eighth round").
+  // differ by what each sees (docs/depth.md, "An eighth round"). A view darker than the
+  // reference by more than kMaxBrightnessGain (black: a plenoptic view outside the main lens's
+  // image, a camera that recorded nothing) is left out of the sweep, unless no view would
+  // remain: a clamped gain would leave it mismatched at every plane (docs/depth.md, "Views too
+  // dark to match").
   bool equalise_brightness = false;
   // Views whose noise (NoiseLevel of the reference) is above kNoisyViewLevels, or whose texture
   // is sharper than their sampling (NearNyquistShare), read through a Gaussian rather than Keys'
@@ -59,6 +63,12 @@ struct CostVolumeOptions {
 
 // The noise (8-bit levels) above which views are noisy (CostVolumeOptions::adapt_to_noise).
 inline constexpr double kNoisyViewLevels = 1.0;
+
+// The most a view's brightness is scaled by to match the reference's, and the least
+// (CostVolumeOptions::equalise_brightness): a view at a sixteenth of the reference's brightness
+// (16 levels of 255) still has texture to match.
+inline constexpr double kMaxBrightnessGain = 16.0;
+inline constexpr double kMinBrightnessGain = 1.0 / kMaxBrightnessGain;
 
 // A sweep's geometry, from the light field's alone (no view loaded): what SweepViews(lf, row,
 // col, options) will have.
@@ -188,6 +198,9 @@ class SweepViews {
   double noise_level() const { return noise_level_; }
   double near_nyquist_share() const { return near_nyquist_share_; }
   double read_sigma() const { return read_sigma_; }
+  // The views within reach that were too dark to match the reference (grid row, col), left out
+  // (CostVolumeOptions::equalise_brightness, kMaxBrightnessGain).
+  const std::vector<std::pair<int, int>>& too_dark() const { return too_dark_; }
 
   // The cost volume over the planes of inverse depth q[i] (1/mm). Each view's cost at a sample
   // is 2 ((1 - a) min(colour, color_cap) + a min(gradient, gradient_cap)), a the gradient term's
@@ -220,7 +233,8 @@ class SweepViews {
     StSampling sampling;
     // Bit g < 8: in the half-array of direction g * 45 degrees; bit g + 8: in its quarter-array.
     unsigned sub_arrays = 0;
-    int view_class = 0;  // index in class_sub_arrays_
+    int view_class = 0;     // index in class_sub_arrays_
+    bool too_dark = false;  // darker than the reference by more than kMaxBrightnessGain
   };
   cv::Matx33d Homography(const View& view, double depth) const;
 
@@ -232,6 +246,7 @@ class SweepViews {
   std::vector<unsigned> class_sub_arrays_;       // the distinct sub-array memberships of the views
   int sub_array_count_ = ShiftedSweep::kHalves;  // as ShiftedSweep::sub_array_count
   double noise_level_ = 0, near_nyquist_share_ = 0, read_sigma_ = 0;
+  std::vector<std::pair<int, int>> too_dark_;
   cv::Mat reference_rgb8_;
 };
 

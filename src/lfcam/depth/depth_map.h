@@ -20,6 +20,8 @@
 #include <opencv2/core.hpp>
 #include <span>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace lfcam {
 
@@ -43,6 +45,9 @@ struct DepthMap {
   // width in samples of the Gaussian its neighbours were read through (0: Keys' cubic;
   // docs/depth.md, "Noisy views", "Sharp views").
   double noise_levels = 0, near_nyquist_share = 0, read_sigma = 0;
+  // The views within reach left out as too dark to match the reference (grid row, col; not
+  // stored; CostVolumeOptions::equalise_brightness).
+  std::vector<std::pair<int, int>> views_too_dark;
 
   int n_s() const { return depth.cols; }
   int n_t() const { return depth.rows; }
