@@ -14,6 +14,7 @@
 #include "lfcam/depth/occlusion_order.h"
 #include "lfcam/io/grid_import.h"
 #include "lfcam/io/parallax_axes.h"
+#include "lfcam/io/parallel_import.h"
 #include "lfcam/io/rectified_import.h"
 
 namespace lfcam::cli {

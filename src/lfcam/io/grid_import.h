@@ -9,9 +9,10 @@
 //
 // Two rigs (DESIGN.md, "Rigs of the research community"): parallel cameras with centred sensors
 // (Blender grids) become what `lfcam build` reads, a capture manifest and a calibration of ideal
-// cameras, so that their views and a Pi array's photographs go through the one resampler
-// (calib/lightfield_build.h); rectified rigs, whose shifted sensors give one plane zero
-// disparity (Stanford, HCI, plenoptic), are stored sample for sample (io/rectified_import.h).
+// cameras (io/parallel_import.h), so that their views and a Pi array's photographs go through
+// the one resampler (calib/lightfield_build.h); rectified rigs, whose shifted sensors give one
+// plane zero disparity (Stanford, HCI, plenoptic), are stored sample for sample
+// (io/rectified_import.h).
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -20,6 +21,7 @@
 
 #include "lfcam/calib/calibration_file.h"
 #include "lfcam/io/hci_parameters.h"
+#include "lfcam/io/view_names.h"
 #include "lfcam/session/session.h"
 
 namespace lfcam {
@@ -27,10 +29,6 @@ namespace lfcam {
 inline constexpr const char* kViewsDescriptionName = "lfcam-views.json";
 
 inline constexpr const char* kHciParametersName = "parameters.cfg";
-
-enum class GridNaming { kStanford, kBlender, kDescription, kHci, kUnitGrid, kSequence };
-std::string ToString(GridNaming naming);
-GridNaming GridNamingFromString(const std::string& name);  // throws lfcam::Error
 
 // Parallel cameras with centred sensors (zero disparity at infinity), or a rectified rig: parallel
 // cameras whose sensors are shifted so that the plane at one distance has zero disparity.
@@ -70,19 +68,6 @@ struct ImportedGrid {
   const GridView& view(int row, int col) const { return views[std::size_t(row * cols + col)]; }
 };
 
-// One file's name, parsed the way `naming` names views: NAME_RR_CC_Y_X_F_W (Blender),
-// NAME_RR_CC_Y_X[_] (Stanford), input_CamNNN (HCI: rr = NNN), [NAME_]RR_CC (unit grid; with '-'
-// in place of '_' where the name has no '_'), NAMENNN (sequence: rr = NNN, up to 6 digits), NAME
-// anything; the grid indices and the position numbers as named. Nullopt when it does not parse
-// that way (kDescription never parses).
-struct NamedView {
-  std::string file;
-  int rr = 0, cc = 0;
-  double first = 0, second = 0;  // as named: -y and x (docs/format.md)
-  std::optional<double> focal_mm, sensor_width_mm;
-};
-std::optional<NamedView> ParseViewName(const std::string& file, GridNaming naming);
-
 // The grid an lfcam-views.json describes (files not checked); throws lfcam::Error naming `where`.
 ImportedGrid GridFromDescription(const nlohmann::json& j, const std::string& where);
 
@@ -115,42 +100,5 @@ struct ImportOptions {
   // (RectifiedGeometry::scene_disparity_px).
   std::optional<double> scene_parallax_px;
 };
-
-struct ImportedSession {
-  CaptureManifest manifest;     // one scene shot, files relative to the folder
-  CalibrationFile calibration;  // ideal cameras at the named positions, looking along -z
-  double st_distance_mm = 0;
-  bool st_distance_estimated = false;
-  // Estimated, then moved to where neighbouring views lie a whole number of samples apart on
-  // the st-plane (WholeSampleStDistance): the estimate, and that number.
-  std::optional<double> st_distance_unsnapped_mm;
-  int samples_between_neighbours = 0;
-  double focal_px = 0;
-};
-
-// The st-plane distance nearest `distance_mm` at which neighbouring cameras of a regular grid of
-// parallel cameras see the plane a whole number n >= 1 of samples (pixels) apart: every view's
-// pixels then fall on st samples (the window centred on the grid moved by half a sample where a
-// count is even and n odd), and the build's resampling copies them. Returns the distance
-// and n; nullopt when the cameras are not on a regular grid (to within 0.001 px).
-// Half a sample where `count` cameras (even) lie n (odd) samples apart, else 0.
-double HalfSample(int count, int samples_between_neighbours);
-std::optional<std::pair<double, int>> WholeSampleStDistance(const ImportedGrid& grid,
-                                                            double focal_px, double distance_mm);
-
-// The manifest and calibration `build` needs. The world frame: x right, y up, z toward the
-// cameras, which sit on the plane z = st distance and look along -z; the st-plane is z = 0 and
-// its window is what the central camera of the grid sees there; the calibration's st domain
-// covers what every camera sees there (the window widened by the grid's extent). Throws
-// lfcam::Error when the intrinsics are not known (give --focal-px or --focal-mm and
-// --sensor-width-mm).
-ImportedSession MakeImportedSession(const std::filesystem::path& dir, const ImportedGrid& grid,
-                                    const ImportOptions& options);
-
-// The depth most of the scene lies at: from the disparity between the two outermost views of
-// the middle row (or column), by phase correlation; the default st distance. Throws
-// lfcam::Error when the views show no measurable disparity.
-double EstimateDominantDepthMm(const std::filesystem::path& dir, const ImportedGrid& grid,
-                               double focal_px);
 
 }  // namespace lfcam

@@ -2,6 +2,7 @@
 // known (a textured plane photographed by ideal cameras at named positions), bad folders, and
 // the real Blender data set in ../shared/data when it is present.
 #include "lfcam/io/grid_import.h"
+#include "lfcam/io/parallel_import.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>

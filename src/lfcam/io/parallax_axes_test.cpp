@@ -19,6 +19,7 @@
 #include "lfcam/cli/cli_test_support.h"
 #include "lfcam/core/error.h"
 #include "lfcam/io/grid_import.h"
+#include "lfcam/io/parallel_import.h"
 #include "lfcam/io/rectified_import.h"
 
 namespace lfcam::parallax_axes_test {

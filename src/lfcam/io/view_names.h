@@ -1,0 +1,29 @@
+#pragma once
+// How the research community names a grid's views (docs/format.md, "Importing"): the Stanford
+// light field archive's NAME_RR_CC_Y_X_.png, the Blender camera grid's NAME_RR_CC_Y_X_F_W.jpg,
+// the HCI benchmark's input_CamNNN.png, a plain grid of indices (NAME_RR_CC.png: plenoptic
+// sub-aperture views), one numbered sequence (NAMENNN.png), or a description (lfcam-views.json);
+// one file's name parsed each way (io/grid_import.h reads a whole folder).
+#include <optional>
+#include <string>
+
+namespace lfcam {
+
+enum class GridNaming { kStanford, kBlender, kDescription, kHci, kUnitGrid, kSequence };
+std::string ToString(GridNaming naming);
+GridNaming GridNamingFromString(const std::string& name);  // throws lfcam::Error
+
+// One file's name, parsed the way `naming` names views: NAME_RR_CC_Y_X_F_W (Blender),
+// NAME_RR_CC_Y_X[_] (Stanford), input_CamNNN (HCI: rr = NNN), [NAME_]RR_CC (unit grid; with '-'
+// in place of '_' where the name has no '_'), NAMENNN (sequence: rr = NNN, up to 6 digits), NAME
+// anything; the grid indices and the position numbers as named. Nullopt when it does not parse
+// that way (kDescription never parses).
+struct NamedView {
+  std::string file;
+  int rr = 0, cc = 0;
+  double first = 0, second = 0;  // as named: -y and x (docs/format.md)
+  std::optional<double> focal_mm, sensor_width_mm;
+};
+std::optional<NamedView> ParseViewName(const std::string& file, GridNaming naming);
+
+}  // namespace lfcam
