@@ -155,7 +155,8 @@ void AddDepthCommand(CLI::App& app) {
   command
       ->add_option("--reach", f->reach,
                    "Views compared: those up to N grid steps away in rows and columns (default: "
-                   "4 for one view, 1 with --all)")
+                   "4 for one view; with --all 1, or 2 where neighbouring views see the scene at "
+                   "most 8 samples apart: a plenoptic camera, a dense grid)")
       ->check(CLI::Range(1, 64));
   command->add_option(
       "--disparity-pfm", f->disparity_pfm,

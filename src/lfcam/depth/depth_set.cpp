@@ -67,7 +67,13 @@ void EstimateDepthSet(const LightField& lf, DepthSet& set,
     o.range = set.count() > 0 ? set.range()
                               : EstimateDepthRange(lf, (d.rows - 1) / 2, (d.cols - 1) / 2, o);
   }
-  if (o.reach <= 0) o.reach = 1;
+  // Each view's neighbours alone (8 views), unless they see the scene so narrowly apart that
+  // disparities of a fraction of a sample need the views two steps away to resolve (docs/depth.md,
+  // "The set's reach at narrow baselines").
+  if (o.reach <= 0)
+    o.reach = SeesTheSceneNarrowly(lf, (d.rows - 1) / 2, (d.cols - 1) / 2, *o.range)
+                  ? kNarrowSetReach
+                  : 1;
   std::mutex mutex;
   std::atomic<int> done{0};
   tbb::parallel_for(std::size_t(0), todo.size(), [&](std::size_t i) {

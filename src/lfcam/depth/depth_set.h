@@ -37,9 +37,14 @@ class DepthSet {
   std::vector<std::optional<DepthMap>> maps_;
 };
 
+// The reach of a depth set's maps where the views see the scene narrowly apart
+// (SeesTheSceneNarrowly); elsewhere 1.
+inline constexpr int kNarrowSetReach = 2;
+
 // Fills in the views for which `needed(row, col)` is true and that have no map yet, by the
 // plane sweep (depth/plane_sweep.h) over one range (estimated once, from the central view,
-// when `range` is empty), in parallel. `progress` is told each view as it is done.
+// when `range` is empty), in parallel, each map at `options.reach` or, where that is 0, at 1 or
+// kNarrowSetReach. `progress` is told each view as it is done.
 struct PlaneSweepOptions;
 void EstimateDepthSet(const LightField& lf, DepthSet& set,
                       const std::function<bool(int row, int col)>& needed,

@@ -326,6 +326,13 @@ void LessConfidentNearDepthEdges(const cv::Mat& label, double jump_labels, cv::M
 
 }  // namespace
 
+bool SeesTheSceneNarrowly(const LightField& lf, int row, int col, const DepthRange& range) {
+  const double scene_q = 1.0 / range.scene_near_mm() - 1.0 / range.scene_far_mm();
+  CostVolumeOptions one_step;
+  one_step.reach = 1;  // the nearest view is a neighbour at any reach
+  return scene_q * GeometryOf(lf, row, col, one_step).nearest_shift_per_q() <= kEqualiseRange;
+}
+
 DepthMap EstimateDepth(const LightField& lf, int row, int col, const PlaneSweepOptions& options) {
   const auto& d = lf.dims();
   if (row < 0 || row >= d.rows || col < 0 || col >= d.cols)
@@ -346,8 +353,7 @@ DepthMap EstimateDepth(const LightField& lf, int row, int col, const PlaneSweepO
   // neighbouring views see the scene decides how the views are matched (below).
   const double scene_q = 1.0 / range.scene_near_mm() - 1.0 / range.scene_far_mm();
   // Views narrowly apart see the same things: their brightness is made the reference's.
-  const bool narrow =
-      scene_q * GeometryOf(lf, row, col, volume_options).nearest_shift_per_q() <= kEqualiseRange;
+  const bool narrow = SeesTheSceneNarrowly(lf, row, col, range);
   volume_options.equalise_brightness = narrow;
   const SweepViews views(lf, row, col, volume_options);
   const std::vector<double> q =

@@ -62,6 +62,12 @@ struct PlaneSweepOptions {
 // or the range is invalid.
 DepthMap EstimateDepth(const LightField& lf, int row, int col, const PlaneSweepOptions& options);
 
+// Whether neighbouring views of (row, col) see the range's scene (its found part, without the
+// margin) at most 8 samples apart from its nearest to its farthest: a plenoptic camera, a dense
+// grid. There the views' brightness is made alike, and a depth set reaches two views each way
+// (docs/depth.md, "An eighth round", "The set's reach at narrow baselines").
+bool SeesTheSceneNarrowly(const LightField& lf, int row, int col, const DepthRange& range);
+
 // The depth range worth sweeping, from a coarse sweep of view (row, col) at a quarter of its
 // resolution over 0.5 to 20 times the st-plane's distance: the 1st to 99th percentile of its
 // confident depths, and any depth that 2% of its samples choose with a unique (if shallow)
