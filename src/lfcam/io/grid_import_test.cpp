@@ -2,7 +2,6 @@
 // known (a textured plane photographed by ideal cameras at named positions), bad folders, and
 // the real Blender data set in ../shared/data when it is present.
 #include "lfcam/io/grid_import.h"
-#include "lfcam/io/parallel_import.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -18,6 +17,7 @@
 #include "lfcam/core/error.h"
 #include "lfcam/core/image_metrics.h"
 #include "lfcam/core/lightfield_file.h"
+#include "lfcam/io/parallel_import.h"
 
 namespace lfcam {
 namespace {
