@@ -50,7 +50,8 @@ nlohmann::json Summary(const DepthMap& map) {
           {"noise_levels", map.noise_levels},
           {"near_nyquist_share", map.near_nyquist_share},
           {"read_sigma", map.read_sigma},
-          {"views_too_dark", map.views_too_dark}};
+          {"views_too_dark", map.views_too_dark},
+          {"reach", map.reach}};
 }
 
 // Says which views a map left out as too dark to match its reference.
@@ -246,6 +247,13 @@ void AddDepthCommand(CLI::App& app) {
                  f->out, set.range().near_mm, set.range().far_mm, WorldLengthUnit(lf.metadata()),
                  seconds());
       PrintGaussianReads(report["central"]);
+      const int reach = set.at((d.rows - 1) / 2, (d.cols - 1) / 2).reach;
+      if (f->reach == 0 && reach > 1)
+        fmt::print(
+            "  each view compared with the views up to {} steps away: neighbouring views see the "
+            "scene at most 8 samples apart, too little to tell its depths apart alone (--reach 1 "
+            "is quicker; docs/depth.md, \"The set's reach at narrow baselines\")\n",
+            reach);
       int darkened = 0;
       for (int r = 0; r < d.rows; ++r)
         for (int c = 0; c < d.cols; ++c) darkened += !set.at(r, c).views_too_dark.empty();

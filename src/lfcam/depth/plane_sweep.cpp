@@ -432,6 +432,7 @@ DepthMap EstimateDepth(const LightField& lf, int row, int col, const PlaneSweepO
   map.near_nyquist_share = views.near_nyquist_share();
   map.read_sigma = views.read_sigma();
   map.views_too_dark = views.too_dark();
+  map.reach = volume_options.reach;
   map.confidence = choice.confidence.clone();
   LessConfidentNearDepthEdges(choice.label, kEdgeJumpPixels / per_plane, map.confidence);
   map.depth.create(choice.label.size(), CV_32FC1);
