@@ -390,5 +390,42 @@ TEST(DepthOnABenchmarkLikeScene, FillsFewPocketsOfAFaintWall) {
   EXPECT_LT(s.badpix, before.badpix - 1.5);
 }
 
+// Twelve marble balls 44 to 92 mm across, 3.4 to 3.5 m from the cameras, before a grey wall at
+// 5 m, lit from the cameras' side with little ambient light: each ball's shading falls to its
+// limb, whose outermost samples are darker than the wall behind them (as a statue's are on
+// `hci-antinous`). The sweep alone keeps the limbs on the balls and fattens them onto the wall;
+// the visibility step and the clean-up take the fattening back, and now take the darkest limb
+// samples with it (docs/depth.md, "Dark limbs"). Measured 0.87% and MSE x 100 1.07, of it 1.02
+// on the balls' side of their silhouettes; without the two steps 1.89% and 2.35, all of it on
+// the wall's side.
+Scene LimbsScene() {
+  Scene scene = testing::WallScene("limbs");
+  scene.objects.front().texture =
+      Texture{Pattern::kNoise, {0.12, 0.12, 0.11}, {0.3, 0.28, 0.25}, 20, 3};
+  scene.light_direction = Vec3::UnitZ();
+  scene.ambient = 0.05;
+  const Texture marble{Pattern::kNoise, {0.55, 0.55, 0.5}, {0.9, 0.9, 0.85}, 8, 31};
+  int i = 0;
+  for (const double x : {110.0, 250.0, 390.0, 500.0})
+    for (const double y : {130.0, 300.0, 440.0}) {
+      const double radius = 22.0 + 6.0 * ((i * 7) % 5);
+      scene.Add(fmt::format("ball {}", i),
+                std::make_shared<SphereShape>(Vec3(x, y, 100.0 + 40.0 * (i % 3)), radius), marble);
+      ++i;
+    }
+  return scene;
+}
+
+TEST(DepthOnABenchmarkLikeScene, KeepsMostOfDarkLimbs) {
+  const SimulatedScore s = ScoreSimulatedRig(LimbsScene(), 5.0);
+  EXPECT_LE(s.badpix, 1.2);
+  EXPECT_LE(s.mse100, 1.4);
+  PlaneSweepOptions without;
+  without.refine_edges = false;
+  without.silhouette_visibility = false;
+  const SimulatedScore raw = ScoreSimulatedRig(LimbsScene(), 5.0, 0.0, 0.0, without);
+  EXPECT_LT(s.mse100, 0.6 * raw.mse100);
+}
+
 }  // namespace
 }  // namespace lfcam::benchmark_depth_test
