@@ -18,17 +18,19 @@ namespace {
 void PrintImport(const nlohmann::json& s) {
   const bool rectified = s["rig"] == "rectified";
   if (rectified) {
+    // "mm", or "units" of the cameras' spacing where nothing metric is known.
+    const std::string unit = s.value("length_unit", "mm");
     fmt::print(
-        "imported {}x{} views of {}x{} ({} naming, rectified rig), pitch {:.4g}, focal length "
+        "imported {}x{} views of {}x{} ({} naming, rectified rig), pitch {:.4g} {}, focal length "
         "{:.1f} px\n",
         s["rows"].get<int>(), s["cols"].get<int>(), s["view_width"].get<int>(),
         s["view_height"].get<int>(), s["naming"].get<std::string>(), s["pitch_mm"].get<double>(),
-        s["focal_px"].get<double>());
+        unit, s["focal_px"].get<double>());
     fmt::print(
-        "  st-plane on the zero-disparity plane, {:.4g} from the cameras; each view's "
+        "  st-plane on the zero-disparity plane, {:.4g} {} from the cameras; each view's "
         "{}x{} pixels stored as they are, in {:.2f} s\n",
-        s["zero_disparity_distance_mm"].get<double>(), s["n_s"].get<int>(), s["n_t"].get<int>(),
-        s["seconds"].get<double>());
+        s["zero_disparity_distance_mm"].get<double>(), unit, s["n_s"].get<int>(),
+        s["n_t"].get<int>(), s["seconds"].get<double>());
     for (const auto& assumed : s["assumed"])
       fmt::print("  assumed: {}\n", assumed.get<std::string>());
   } else {

@@ -67,6 +67,7 @@ ImportedLightField ImportRectified(const std::string& dir, const ImportedGrid& g
                    {"focal_px", geometry.focal_px},
                    {"st_distance_mm", geometry.zero_disparity_mm},
                    {"zero_disparity_distance_mm", geometry.zero_disparity_mm},
+                   {"length_unit", geometry.metric ? "mm" : "units"},
                    {"st_distance_estimated", false},
                    {"assumed", geometry.assumed},
                    {"notes", geometry.notes}});

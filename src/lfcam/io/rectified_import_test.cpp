@@ -665,6 +665,9 @@ TEST(RectifiedImport, RealRectifiedViewsComeBackAsTheirPhotographs) {
       const auto run = testing::Lfcam("import " + (data / set).string() + " --out " + lf);
       ASSERT_EQ(run.status, 0) << run.output;
       EXPECT_NE(run.output.find("assumed: "), std::string::npos) << run.output;
+      // No scale is known: the lengths printed say they are units of the cameras' spacing.
+      EXPECT_NE(run.output.find("pitch 1 units"), std::string::npos) << run.output;
+      EXPECT_NE(run.output.find(" units from the cameras"), std::string::npos) << run.output;
     }
     const std::string out = (dir / "as.png").string();
     const auto run =
@@ -673,6 +676,12 @@ TEST(RectifiedImport, RealRectifiedViewsComeBackAsTheirPhotographs) {
     const cv::Mat a = cv::imread(out), b = cv::imread((data / set / photo).string());
     EXPECT_EQ(cv::norm(a, b, cv::NORM_INF), 0) << set << " " << photo;
   }
+  // With the cameras' spacing given, the lengths are millimetres, and say so.
+  const auto metric = testing::Lfcam("import " + (data / "lytro-2067").string() + " --out " +
+                                     (dir / "metric.lf").string() + " --pitch-mm 0.2 --quiet");
+  ASSERT_EQ(metric.status, 0) << metric.output;
+  EXPECT_NE(metric.output.find("pitch 0.2 mm"), std::string::npos) << metric.output;
+  EXPECT_NE(metric.output.find(" mm from the cameras"), std::string::npos) << metric.output;
   // Exported as PNG views, the imported views are the input files, pixel for pixel.
   const auto run = testing::Lfcam("export " + (dir / "lytro-2067.lf").string() +
                                   " --format png-views --out " + (dir / "views").string());
