@@ -127,7 +127,8 @@ def main():
             run([args.lfcam, "render", lf, "--as-camera", at, "--out", image, "--quiet"] + flags)
             renders[label] = cv2.imread(image)[:, :, ::-1]
         mean = srgb8(np.mean([linear(load(k)) for k in nearest], axis=0))
-        row = {"camera": [r, c], "neighbours": len(nearest),
+        row = {"camera": [r, c], "file": files[(r, c)], "neighbours": len(nearest),
+               "nearest_files": [files[k] for k in nearest],
                "nearest": psnr(load(nearest[0]), truth), "mean": psnr(mean, truth),
                "paper": psnr(renders["paper"], truth), "depth": psnr(renders["depth"], truth)}
         results.append(row)

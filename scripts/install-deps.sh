@@ -25,9 +25,10 @@ packages=(
   # Video files (`render --video`, quilt videos): H.264 in MP4 through FFmpeg's libraries.
   libavcodec-dev libavformat-dev libavutil-dev libswscale-dev
   libgtest-dev libgmock-dev
-  # bench/hci_score.py (the depth benchmark's metrics), run by a test; and `import lfcam` (the
-  # Python module: pybind11 over Debian's python3, its tests under pytest).
-  python3-numpy python3-dev pybind11-dev python3-pytest
+  # bench/hci_score.py (the depth benchmark's metrics) and bench/heldout_regions.py (OpenCV's
+  # Python module reads the images), run by tests; and `import lfcam` (the Python module:
+  # pybind11 over Debian's python3, its tests under pytest).
+  python3-numpy python3-opencv python3-dev pybind11-dev python3-pytest
   # The web page `export --format web` writes: its logic's unit tests (node's test runner) and
   # the page itself rendered in headless Chromium.
   nodejs chromium
