@@ -77,6 +77,8 @@ def main():
         sys.exit(f"{summary}: written by an older bench/heldout.py (no file names); run it again")
 
     band = args.band
+    if band < 1:
+        sys.exit(f"--band {band}: must be at least 1 sample")
     distances = [(lo, min(hi, band)) for lo, hi in [(0, 1), (1, 2), (2, 4), (4, 8), (8, 16),
                                                     (16, 32), (32, 64), (64, 128)] if lo < band]
     psnrs, excess, counts = {}, {}, {}
@@ -113,8 +115,11 @@ def main():
         counts[kind] = counts.get(kind, 0) + 1
         grey = truth.sum(axis=2)
         mx, my = w // 10, h // 10
-        edge_rows.setdefault(r, []).append(grey[-1, mx:-mx].mean() / grey[-2, mx:-mx].mean())
-        edge_cols.setdefault(c, []).append(grey[my:-my, -1].mean() / grey[my:-my, -2].mean())
+        inner_row, inner_col = grey[-2, mx:w - mx].mean(), grey[my:h - my, -2].mean()
+        if inner_row > 0:  # a black edge says nothing
+            edge_rows.setdefault(r, []).append(grey[-1, mx:w - mx].mean() / inner_row)
+        if inner_col > 0:
+            edge_cols.setdefault(c, []).append(grey[my:h - my, -1].mean() / inner_col)
 
     if args.json:
         out = {"views": len(views), "band": band, "directions": {},
