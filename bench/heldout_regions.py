@@ -27,16 +27,8 @@ import sys
 import cv2
 import numpy as np
 
-
-def linear(img):
-    x = img / 255.0
-    return np.where(x <= 0.04045, x / 12.92, ((x + 0.055) / 1.055) ** 2.4)
-
-
-def srgb8(lin):
-    lin = np.clip(lin, 0.0, 1.0)
-    x = np.where(lin <= 0.0031308, lin * 12.92, 1.055 * lin ** (1 / 2.4) - 0.055)
-    return np.round(x * 255.0)
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from heldout import linear, srgb8  # noqa: E402 (the same light and encoding as the runs)
 
 
 def psnr(mse):
@@ -91,7 +83,7 @@ def main():
             sys.exit(f"r_{r}_{c}_depth.png: {render.shape[1]}x{render.shape[0]}, its photograph "
                      f"{truth.shape[1]}x{truth.shape[0]}")
         mean = srgb8(np.mean([linear(read(os.path.join(args.data, n)))
-                              for n in v["nearest_files"]], axis=0))
+                              for n in v["nearest_files"]], axis=0)).astype(np.float64)
         h, w = truth.shape[:2]
         if h <= 2 * band or w <= 2 * band:
             sys.exit(f"--band {band} leaves nothing of a {w}x{h} frame")
