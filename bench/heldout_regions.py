@@ -27,6 +27,7 @@ import sys
 import cv2
 import numpy as np
 
+sys.dont_write_bytecode = True  # no __pycache__ left in bench/
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from heldout import linear, srgb8  # noqa: E402 (the same light and encoding as the runs)
 
