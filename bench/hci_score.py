@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Scores a disparity map the way the HCI 4D Light Field Benchmark's evaluation toolkit does.
 
-    bench/hci_score.py ESTIMATE.pfm GT.pfm [--border 15] [--json]
+    bench/hci_score.py ESTIMATE.pfm GT.pfm [--border 15] [--silhouettes] [--json]
     bench/hci_score.py --registration-cost GT.pfm [--border 15] [--json]
 
 Both are PFM files of the centre view's disparity (float32, one channel, rows stored from the
@@ -10,6 +10,14 @@ Over the view less a border of 15 pixels (the toolkit's), it prints BadPix(0.07)
 BadPix(0.01) (the percentage of pixels whose |estimate - truth| exceeds the threshold) and
 MSE x 100 (the mean squared error times 100). A file that is not such a PFM, or maps of
 different sizes, are refused with the reason; the PFM is read here, not by lfcam.
+
+--silhouettes also splits the error by where it lies against the truth's depth edges (a jump of
+more than 0.3 px between a pixel and one of its 8 neighbours): on the near side of an edge (the
+pixel is the nearer of the two), on its far side, and elsewhere; for each, its pixels, its share
+of MSE x 100 (the three add up to the whole) and its big errors (over 0.3 px), counting those
+that make the near side smaller than the truth has it (thinned: the estimate farther there) and
+the far side's that make it larger (fattened: the estimate nearer). Most of a good map's MSE lies
+in the first two (docs/depth.md, "Where `hci-antinous`' silhouette error is now").
 
 --registration-cost scores the truth against itself moved by one whole row and by one whole
 column: what a map registered to a pixel grid one sample away from the truth's would lose, all of
@@ -64,6 +72,38 @@ def score(estimate, truth, border=15):
     return out
 
 
+def neighbourhood(values, reduce):
+    """The min or max (`reduce`) of each pixel's 3 x 3 neighbourhood, the edge repeated."""
+    h, w = values.shape
+    padded = np.pad(values, 1, mode="edge")
+    shifts = [padded[dy:dy + h, dx:dx + w] for dy in range(3) for dx in range(3)]
+    return reduce(np.stack(shifts), axis=0)
+
+
+def silhouettes(estimate, truth, border=15, jump=0.3, big=0.3):
+    """The error split by the side of the truth's depth edges (positive disparity is nearer)."""
+    near = truth - neighbourhood(truth, np.min) > jump
+    far = (neighbourhood(truth, np.max) - truth > jump) & ~near
+    inner = (slice(border, -border), slice(border, -border)) if border > 0 else np.s_[:, :]
+    error = (estimate - truth)[inner]
+    error = np.where(np.isfinite(error), error, np.inf)
+    total = error.size
+
+    def region(mask):
+        e = error[mask[inner]]
+        squared = float(np.sum(e[np.isfinite(e)] ** 2)) if np.isfinite(e).all() else float("inf")
+        return {"pixels": int(e.size), "mse_x100": 100.0 * squared / total,
+                "big": int(np.sum(np.abs(e) > big))}, e
+
+    out = {"jump_px": jump, "big_px": big}
+    out["near_side"], e = region(near)
+    out["near_side"]["thinned"] = int(np.sum(e < -big))
+    out["far_side"], e = region(far)
+    out["far_side"]["fattened"] = int(np.sum(e > big))
+    out["elsewhere"], _ = region(~near & ~far)
+    return out
+
+
 def moved(truth, rows, cols):
     """The map moved by whole rows (down) and columns (right), its edge repeated."""
     h, w = truth.shape
@@ -77,12 +117,25 @@ def line(result):
             f"BadPix0.01 {result['badpix_0.01']:.2f}%  MSEx100 {result['mse_x100']:.3f}")
 
 
+def silhouette_lines(s):
+    n, f, o = s["near_side"], s["far_side"], s["elsewhere"]
+    return [f"  near side of the truth's depth edges: {n['pixels']} pixels, MSEx100 "
+            f"{n['mse_x100']:.3f}, {n['big']} big errors ({n['thinned']} thinned: the estimate "
+            "farther)",
+            f"  far side: {f['pixels']} pixels, MSEx100 {f['mse_x100']:.3f}, {f['big']} big "
+            f"errors ({f['fattened']} fattened: the estimate nearer)",
+            f"  elsewhere: {o['pixels']} pixels, MSEx100 {o['mse_x100']:.3f}, {o['big']} big "
+            "errors"]
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("maps", nargs="+", metavar="PFM",
                         help="ESTIMATE.pfm GT.pfm, or GT.pfm with --registration-cost")
     parser.add_argument("--registration-cost", action="store_true",
                         help="score the truth against itself moved one row and one column")
+    parser.add_argument("--silhouettes", action="store_true",
+                        help="also split the error by the side of the truth's depth edges")
     parser.add_argument("--border", type=int, default=15)
     parser.add_argument("--json", action="store_true")
     args = parser.parse_args()
@@ -90,13 +143,18 @@ def main():
     if len(args.maps) != wanted:
         parser.error(f"expected {'GT.pfm' if wanted == 1 else 'ESTIMATE.pfm GT.pfm'}, "
                      f"got {len(args.maps)} files")
+    if args.silhouettes and args.registration_cost:
+        parser.error("--silhouettes scores an estimate: not with --registration-cost")
     try:
         if args.registration_cost:
             truth = read_pfm(args.maps[0])
             result = {"one_row": score(moved(truth, 1, 0), truth, args.border),
                       "one_column": score(moved(truth, 0, 1), truth, args.border)}
         else:
-            result = score(read_pfm(args.maps[0]), read_pfm(args.maps[1]), args.border)
+            estimate, truth = read_pfm(args.maps[0]), read_pfm(args.maps[1])
+            result = score(estimate, truth, args.border)
+            if args.silhouettes:
+                result["silhouettes"] = silhouettes(estimate, truth, args.border)
     except (OSError, ValueError) as e:
         print(f"hci_score: {e}", file=sys.stderr)
         return 1
@@ -107,6 +165,8 @@ def main():
             print(f"{label} {line(result[name])}")
     else:
         print(f"{line(result)}  ({result['pixels']} pixels, {args.border}-pixel border left out)")
+        if args.silhouettes:
+            print("\n".join(silhouette_lines(result["silhouettes"])))
     return 0
 
 

@@ -151,6 +151,60 @@ TEST(DisparityMap, TheScoringScriptCountsAsTheBenchmarkDoes) {
   fs::remove_all(t.parent_path());
 }
 
+// --silhouettes: a near block (rows 40-59, columns 50-79, 1 px nearer than the wall) with a ledge
+// halfway between along its left side (column 49: nearer than the wall, farther than the block,
+// so on the near side of one edge and the far side of another; it counts as near), whose left
+// column the estimate puts on the wall (thinned) and whose right neighbours it puts on the block
+// (fattened), and one pixel elsewhere half a pixel off.
+TEST(DisparityMap, TheScoringScriptSaysOnWhichSideOfTheSilhouettesTheErrorLies) {
+  const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+  if (testing::RunOnce(python + " -c 'import numpy' 2>&1").status != 0)
+    GTEST_SKIP() << python << " with numpy is not here (scripts/install-deps.sh installs it)";
+  cv::Mat truth(100, 120, CV_32FC1, cv::Scalar(0.5f));
+  truth(cv::Rect(50, 40, 30, 20)) = 1.5f;
+  truth(cv::Rect(49, 40, 1, 20)) = 1.0f;
+  cv::Mat estimate = truth.clone();
+  estimate(cv::Rect(50, 40, 1, 20)) = 0.5f;
+  estimate(cv::Rect(80, 40, 1, 20)) = 1.5f;
+  estimate.at<float>(20, 20) += 0.5f;
+  const fs::path t = Scratch("block.pfm"), e = Scratch("block_estimate.pfm");
+  WriteDisparityPfm(t, truth);
+  WriteDisparityPfm(e, estimate);
+  const std::string script = (fs::path(LFCAM_SOURCE_DIR) / "bench/hci_score.py").string();
+  auto run = testing::RunOnce(python + " " + script + " " + e.string() + " " + t.string() +
+                              " --silhouettes --json 2>&1");
+  ASSERT_EQ(run.status, 0) << run.output;
+  const auto j = nlohmann::json::parse(run.output);
+  const auto& s = j["silhouettes"];
+  // Near: the block's outermost ring (2 x 20 + 2 x 30 - 4) and the ledge (20). Far: the ring
+  // around the block (22 x 32 - 20 x 30) less the ledge, and the column left of the ledge (22).
+  EXPECT_EQ(s["near_side"]["pixels"], 116);
+  EXPECT_EQ(s["far_side"]["pixels"], 106);
+  EXPECT_EQ(s["elsewhere"]["pixels"], 6300 - 116 - 106);
+  EXPECT_EQ(s["near_side"]["big"], 20);
+  EXPECT_EQ(s["near_side"]["thinned"], 20);
+  EXPECT_EQ(s["far_side"]["big"], 20);
+  EXPECT_EQ(s["far_side"]["fattened"], 20);
+  EXPECT_EQ(s["elsewhere"]["big"], 1);
+  EXPECT_NEAR(s["near_side"]["mse_x100"].get<double>(), 100.0 * 20 / 6300, 1e-6);
+  EXPECT_NEAR(s["far_side"]["mse_x100"].get<double>(), 100.0 * 20 / 6300, 1e-6);
+  EXPECT_NEAR(s["elsewhere"]["mse_x100"].get<double>(), 100.0 * 0.25 / 6300, 1e-6);
+  EXPECT_NEAR(j["mse_x100"].get<double>(), 100.0 * 40.25 / 6300, 1e-6);
+  // The text says the same.
+  run = testing::RunOnce(python + " " + script + " " + e.string() + " " + t.string() +
+                         " --silhouettes 2>&1");
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("116 pixels, MSEx100 0.317, 20 big errors (20 thinned"),
+            std::string::npos)
+      << run.output;
+  // It scores an estimate: not with --registration-cost.
+  run = testing::RunOnce(python + " " + script + " --registration-cost " + t.string() +
+                         " --silhouettes 2>&1");
+  EXPECT_NE(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("not with --registration-cost"), std::string::npos) << run.output;
+  fs::remove_all(t.parent_path());
+}
+
 // --registration-cost: the truth moved one row and one column against itself. A vertical step of
 // 1 px (columns 60 and on) costs nothing moved down a row and one column of 70 pixels (of the 90 x
 // 70 inside the border) moved right.
