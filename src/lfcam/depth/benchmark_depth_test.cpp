@@ -18,6 +18,7 @@
 #include <map>
 #include <numbers>
 #include <opencv2/imgcodecs.hpp>
+#include <set>
 
 #include "lfcam/depth/depth_map.h"
 #include "lfcam/depth/depth_set.h"
@@ -140,13 +141,22 @@ SimulatedScore ScoreSimulatedRig(const Scene& scene, double pitch_mm, double fal
   const DepthMap estimate = estimator ? estimator(lf) : EstimateDepth(lf, 4, 4, options);
   const cv::Mat t = DisparityOf(lf, truth.map), d = DisparityOf(lf, estimate);
   if (const char* dir = std::getenv("LFCAM_FIDELITY_OUT")) {  // the maps, to look at
-    std::string name = fmt::format("benchmark_like_{}_{}mm", scene.name, pitch_mm);
+    // One set of files a rig and its views' falloff and noise: the first map the process makes of
+    // them (run in the suite's order, the estimate as shipped; the tests' variants come after).
+    static std::set<std::string> written;
+    std::string name = fmt::format("benchmark_like_{}_{}mm_falloff{}_noise{}", scene.name, pitch_mm,
+                                   falloff, noise);
     for (char& c : name)
       if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-    WriteDepthFiles(fs::path(dir) / (name + "_estimate.png"), estimate);
-    DepthMap same_range = truth.map;
-    same_range.range = estimate.range;
-    WriteDepthFiles(fs::path(dir) / (name + "_truth.png"), same_range);
+    if (written.insert(name).second) {
+      WriteDepthFiles(fs::path(dir) / (name + "_estimate.png"), estimate);
+      DepthMap same_range = truth.map;
+      same_range.range = estimate.range;
+      WriteDepthFiles(fs::path(dir) / (name + "_truth.png"), same_range);
+      // And both disparities as the benchmark's PFMs, for bench/hci_score.py (--silhouettes).
+      WriteDisparityPfm(fs::path(dir) / (name + "_estimate.pfm"), d);
+      WriteDisparityPfm(fs::path(dir) / (name + "_truth.pfm"), t);
+    }
   }
   const int border = 15, edge_reach = 3;
   // [0]: away from depth edges; [1]: within 3 samples of another object (the silhouettes).
