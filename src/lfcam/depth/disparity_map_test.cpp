@@ -30,6 +30,13 @@ fs::path Scratch(const std::string& name) {
   return dir / name;
 }
 
+// Debian's Python, which bench/hci_score.py runs under (scripts/install-deps.sh installs
+// python3-numpy for it); empty where it has no numpy.
+std::string PythonWithNumpy() {
+  const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+  return testing::RunOnce(python + " -c 'import numpy' 2>&1").status == 0 ? python : "";
+}
+
 // A 3 x 3 array 10 mm apart, 2000 mm in front of an st-plane sampled 2 mm apart.
 LightField Rig() {
   Slab slab;
@@ -108,10 +115,9 @@ TEST(DisparityMap, TheHciSceneGivesBackItsTrueDisparity) {
 
 // bench/hci_score.py against errors whose metrics are known.
 TEST(DisparityMap, TheScoringScriptCountsAsTheBenchmarkDoes) {
-  // Debian's Python (scripts/install-deps.sh installs python3-numpy for it).
-  const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
-  if (testing::RunOnce(python + " -c 'import numpy' 2>&1").status != 0)
-    GTEST_SKIP() << python << " with numpy is not here (scripts/install-deps.sh installs it)";
+  const std::string python = PythonWithNumpy();
+  if (python.empty())
+    GTEST_SKIP() << "python3 with numpy is not here (scripts/install-deps.sh installs it)";
   cv::Mat truth(100, 120, CV_32FC1), estimate;
   cv::randu(truth, -2.0, 2.0);
   estimate = truth.clone();
@@ -157,9 +163,9 @@ TEST(DisparityMap, TheScoringScriptCountsAsTheBenchmarkDoes) {
 // column the estimate puts on the wall (thinned) and whose right neighbours it puts on the block
 // (fattened), and one pixel elsewhere half a pixel off.
 TEST(DisparityMap, TheScoringScriptSaysOnWhichSideOfTheSilhouettesTheErrorLies) {
-  const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
-  if (testing::RunOnce(python + " -c 'import numpy' 2>&1").status != 0)
-    GTEST_SKIP() << python << " with numpy is not here (scripts/install-deps.sh installs it)";
+  const std::string python = PythonWithNumpy();
+  if (python.empty())
+    GTEST_SKIP() << "python3 with numpy is not here (scripts/install-deps.sh installs it)";
   cv::Mat truth(100, 120, CV_32FC1, cv::Scalar(0.5f));
   truth(cv::Rect(50, 40, 30, 20)) = 1.5f;
   truth(cv::Rect(49, 40, 1, 20)) = 1.0f;
@@ -209,9 +215,9 @@ TEST(DisparityMap, TheScoringScriptSaysOnWhichSideOfTheSilhouettesTheErrorLies) 
 // 1 px (columns 60 and on) costs nothing moved down a row and one column of 70 pixels (of the 90 x
 // 70 inside the border) moved right.
 TEST(DisparityMap, TheScoringScriptSaysWhatOneSampleOfRegistrationCosts) {
-  const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
-  if (testing::RunOnce(python + " -c 'import numpy' 2>&1").status != 0)
-    GTEST_SKIP() << python << " with numpy is not here (scripts/install-deps.sh installs it)";
+  const std::string python = PythonWithNumpy();
+  if (python.empty())
+    GTEST_SKIP() << "python3 with numpy is not here (scripts/install-deps.sh installs it)";
   cv::Mat truth(100, 120, CV_32FC1, cv::Scalar(0.5f));
   truth(cv::Rect(60, 0, 60, 100)) = 1.5f;
   const fs::path t = Scratch("step.pfm");
