@@ -37,6 +37,18 @@ std::string PythonWithNumpy() {
   return testing::RunOnce(python + " -c 'import numpy' 2>&1").status == 0 ? python : "";
 }
 
+// bench/hci_score.py run by `python` on `estimate` against `truth` (bottom-up rows, as
+// WriteDisparityPfm takes them), written to scratch PFMs named `name`_*.pfm, with `flags`.
+auto RunScoringScript(const std::string& python, const std::string& name, const cv::Mat& estimate,
+                      const cv::Mat& truth, const std::string& flags) {
+  const fs::path t = Scratch(name + "_truth.pfm"), e = Scratch(name + "_estimate.pfm");
+  WriteDisparityPfm(t, truth);
+  WriteDisparityPfm(e, estimate);
+  const std::string script = (fs::path(LFCAM_SOURCE_DIR) / "bench/hci_score.py").string();
+  return testing::RunOnce(python + " " + script + " " + e.string() + " " + t.string() + " " +
+                          flags + " 2>&1");
+}
+
 // A 3 x 3 array 10 mm apart, 2000 mm in front of an st-plane sampled 2 mm apart.
 LightField Rig() {
   Slab slab;
@@ -173,12 +185,7 @@ TEST(DisparityMap, TheScoringScriptSaysOnWhichSideOfTheSilhouettesTheErrorLies) 
   estimate(cv::Rect(50, 40, 1, 20)) = 0.5f;
   estimate(cv::Rect(80, 40, 1, 20)) = 1.5f;
   estimate.at<float>(20, 20) += 0.5f;
-  const fs::path t = Scratch("block.pfm"), e = Scratch("block_estimate.pfm");
-  WriteDisparityPfm(t, truth);
-  WriteDisparityPfm(e, estimate);
-  const std::string script = (fs::path(LFCAM_SOURCE_DIR) / "bench/hci_score.py").string();
-  auto run = testing::RunOnce(python + " " + script + " " + e.string() + " " + t.string() +
-                              " --silhouettes --json 2>&1");
+  auto run = RunScoringScript(python, "block", estimate, truth, "--silhouettes --json");
   ASSERT_EQ(run.status, 0) << run.output;
   const auto j = nlohmann::json::parse(run.output);
   const auto& s = j["silhouettes"];
@@ -197,13 +204,14 @@ TEST(DisparityMap, TheScoringScriptSaysOnWhichSideOfTheSilhouettesTheErrorLies) 
   EXPECT_NEAR(s["elsewhere"]["mse_x100"].get<double>(), 100.0 * 0.25 / 6300, 1e-6);
   EXPECT_NEAR(j["mse_x100"].get<double>(), 100.0 * 40.25 / 6300, 1e-6);
   // The text says the same.
-  run = testing::RunOnce(python + " " + script + " " + e.string() + " " + t.string() +
-                         " --silhouettes 2>&1");
+  run = RunScoringScript(python, "block", estimate, truth, "--silhouettes");
   ASSERT_EQ(run.status, 0) << run.output;
   EXPECT_NE(run.output.find("116 pixels, MSEx100 0.317, 20 big errors (20 thinned"),
             std::string::npos)
       << run.output;
   // It scores an estimate: not with --registration-cost.
+  const std::string script = (fs::path(LFCAM_SOURCE_DIR) / "bench/hci_score.py").string();
+  const fs::path t = Scratch("block_truth.pfm");
   run = testing::RunOnce(python + " " + script + " --registration-cost " + t.string() +
                          " --silhouettes 2>&1");
   EXPECT_NE(run.status, 0) << run.output;
