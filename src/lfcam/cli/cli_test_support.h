@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdio>
+#include <filesystem>
 #include <string>
 
 namespace lfcam::testing {
@@ -36,6 +37,15 @@ inline CommandResult Lfcam(const std::string& args) {
   if (run.output.find("LeakSanitizer has encountered a fatal error") != std::string::npos)
     run = RunOnce(command);
   return run;
+}
+
+// Debian's Python, which the scripts in bench/ run under (scripts/install-deps.sh installs NumPy
+// and OpenCV's module for it), where it imports `modules` (e.g. "numpy" or "cv2, numpy"); empty
+// where it does not, for the test to skip saying so.
+inline std::string PythonWith(const std::string& modules) {
+  const std::string python =
+      std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+  return RunOnce(python + " -c 'import " + modules + "' 2>&1").status == 0 ? python : "";
 }
 
 }  // namespace lfcam::testing

@@ -30,13 +30,6 @@ fs::path Scratch(const std::string& name) {
   return dir / name;
 }
 
-// Debian's Python, which bench/hci_score.py runs under (scripts/install-deps.sh installs
-// python3-numpy for it); empty where it has no numpy.
-std::string PythonWithNumpy() {
-  const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
-  return testing::RunOnce(python + " -c 'import numpy' 2>&1").status == 0 ? python : "";
-}
-
 // bench/hci_score.py run by `python` on `estimate` against `truth` (bottom-up rows, as
 // WriteDisparityPfm takes them), written to scratch PFMs named `name`_*.pfm, with `flags`.
 auto RunScoringScript(const std::string& python, const std::string& name, const cv::Mat& estimate,
@@ -127,7 +120,7 @@ TEST(DisparityMap, TheHciSceneGivesBackItsTrueDisparity) {
 
 // bench/hci_score.py against errors whose metrics are known.
 TEST(DisparityMap, TheScoringScriptCountsAsTheBenchmarkDoes) {
-  const std::string python = PythonWithNumpy();
+  const std::string python = testing::PythonWith("numpy");
   if (python.empty())
     GTEST_SKIP() << "python3 with numpy is not here (scripts/install-deps.sh installs it)";
   cv::Mat truth(100, 120, CV_32FC1), estimate;
@@ -175,7 +168,7 @@ TEST(DisparityMap, TheScoringScriptCountsAsTheBenchmarkDoes) {
 // column the estimate puts on the wall (thinned) and whose right neighbours it puts on the block
 // (fattened), and one pixel elsewhere half a pixel off.
 TEST(DisparityMap, TheScoringScriptSaysOnWhichSideOfTheSilhouettesTheErrorLies) {
-  const std::string python = PythonWithNumpy();
+  const std::string python = testing::PythonWith("numpy");
   if (python.empty())
     GTEST_SKIP() << "python3 with numpy is not here (scripts/install-deps.sh installs it)";
   cv::Mat truth(100, 120, CV_32FC1, cv::Scalar(0.5f));
@@ -223,7 +216,7 @@ TEST(DisparityMap, TheScoringScriptSaysOnWhichSideOfTheSilhouettesTheErrorLies) 
 // 1 px (columns 60 and on) costs nothing moved down a row and one column of 70 pixels (of the 90 x
 // 70 inside the border) moved right.
 TEST(DisparityMap, TheScoringScriptSaysWhatOneSampleOfRegistrationCosts) {
-  const std::string python = PythonWithNumpy();
+  const std::string python = testing::PythonWith("numpy");
   if (python.empty())
     GTEST_SKIP() << "python3 with numpy is not here (scripts/install-deps.sh installs it)";
   cv::Mat truth(100, 120, CV_32FC1, cv::Scalar(0.5f));

@@ -206,10 +206,9 @@ TEST(DepthHeldOut, TheShopRectifiedAndNamedAsAGantryBeatsTheMeanOfItsNeighbours)
 // between two kept rows whose render lost that row's pattern, one between two kept columns whose
 // render is off at one sample in the middle of the frame alone.
 TEST(DepthHeldOut, TheRegionScriptSaysWhereARenderLosesToTheMean) {
-  const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
-  if (testing::RunOnce(python + " -c 'import cv2, numpy' 2>&1").status != 0)
-    GTEST_SKIP() << python
-                 << " with cv2 and numpy is not here (scripts/install-deps.sh installs them)";
+  const std::string python = testing::PythonWith("cv2, numpy");
+  if (python.empty())
+    GTEST_SKIP() << "python3 with cv2 and numpy is not here (scripts/install-deps.sh installs them)";
   const fs::path dir = fs::temp_directory_path() / ("lfcam_regions_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir / "data");
