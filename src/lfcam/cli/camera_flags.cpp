@@ -56,7 +56,8 @@ void CameraFlags::AddTo(CLI::App& c, bool rig_cameras, bool sweeps) {
         "R,C: render what the rig's camera at grid row R, column C (row 0 at the bottom, as "
         "`lfcam info` lists them) recorded: its position, orientation, image size, focal length "
         "and principal point; fractional R, C for a camera between them. --aperture, "
-        "--focus-distance (default: the st-plane) and --lens-rate still apply");
+        "--focus-distance (default: the st-plane) and --lens-rate still apply, and --size renders "
+        "its field of view at another size");
   options_["--camera"] = c.add_option(
       "--camera", view_file,
       "A saved view (FILE.json, as the viewer writes beside a screenshot): its camera, "
@@ -187,7 +188,7 @@ void CameraFlags::Validate() const {
         fmt::format("--focal-length: {} must be a positive number of mm", focal_length_mm));
   if (!as_camera.empty()) {
     for (const char* flag :
-         {"--camera", "--size", "--eye", "--look-at", "--up", "--focal-length", "--no-breathing"})
+         {"--camera", "--eye", "--look-at", "--up", "--focal-length", "--no-breathing"})
       if (given(flag))
         throw UsageError(
             fmt::format("{} does not go with --as-camera (the rig's camera sets it)", flag));
@@ -297,13 +298,13 @@ VirtualCamera CameraFlags::MakeCamera(const LightField& lf) const {
   VirtualCameraParams p;
   if (rig_centre) {
     p = RigCameraParams(lf, 0.5 * (d.rows - 1), 0.5 * (d.cols - 1));
-    if (given("--size")) {
-      const auto [width, height] = ParseSize("--size", size, kMaxImageSide);
-      p = WithFrameSize(p, width, height);
-    }
   } else {
     const std::vector<double> at = ParseNumbers("--as-camera", as_camera, 2);
     p = FlagValue("--as-camera", [&] { return RigCameraParams(lf, at[0], at[1]); });
+  }
+  if (given("--size")) {  // another frame for the same field of view across
+    const auto [width, height] = ParseSize("--size", size, kMaxImageSide);
+    p = WithFrameSize(p, width, height);
   }
   if (given("--focus-distance")) p.focus_distance_mm = focus_distance_mm;
   p.aperture_mm = aperture_mm;
