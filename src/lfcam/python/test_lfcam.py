@@ -160,8 +160,8 @@ def test_mistakes_are_python_exceptions_with_lfcams_messages(lf, tmp_path):
         lfcam.render(lf, camera=str(tmp_path / "missing.json"))
     with pytest.raises(lfcam.UsageError, match="threads"):
         lfcam.render(lf, threads=10**30)
-    with pytest.raises(lfcam.UsageError, match="size does not go with as_camera"):
-        lfcam.render(lf, size=64, as_camera=(1, 2))
+    with pytest.raises(lfcam.UsageError, match="focal_length does not go with as_camera"):
+        lfcam.render(lf, focal_length=50, as_camera=(1, 2))
     with pytest.raises(lfcam.UsageError, match="as_camera: the light field records no camera"):
         lfcam.render(lf, as_camera=(1, 2))
     with pytest.raises(lfcam.Error, match="no such file"):
