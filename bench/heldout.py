@@ -72,7 +72,14 @@ def main():
     centre = {(c["row"], c["col"]): c["center_mm"] for c in info["cameras"]}
     files = {(v["row"], v["col"]): v["file"] for v in full["views"]}
     kept = [(r, c) for r in range(0, rows, 2) for c in range(0, cols, 2)]
-    out = [(r, c) for r in range(rows) for c in range(cols) if (r % 2, c % 2) != (0, 0)]
+    # Only the cameras between kept ones: in a grid of an even number of rows (or columns) the
+    # last row lies beyond the last kept one, and a render there would be an extrapolation.
+    last_row, last_col = kept[-1]
+    out = [(r, c) for r in range(last_row + 1) for c in range(last_col + 1)
+           if (r % 2, c % 2) != (0, 0)]
+    beyond = rows * cols - len(kept) - len(out)
+    if not out:
+        sys.exit(f"{data}: a {rows}x{cols} grid has no camera between every other one to leave out")
     if args.limit:
         out = out[: args.limit]
 
@@ -104,6 +111,9 @@ def main():
     print(f"{data}: {rows}x{cols} views ({full['naming']}, {full['rig']} rig); {len(kept)} kept, "
           f"{len(out)} left out; kept imported and their depth estimated in "
           f"{time.time() - t0:.0f} s", flush=True)
+    if beyond:
+        print(f"  {beyond} cameras of the last row or column, beyond the last kept ones, not "
+              "measured (a render there would extrapolate)")
     for assumed in full.get("assumed", []):
         print(f"  assumed: {assumed}")
 

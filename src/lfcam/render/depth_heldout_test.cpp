@@ -15,13 +15,18 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <regex>
+#include <sstream>
 #include <vector>
 
 #include "lfcam/cli/cli_test_support.h"
 #include "lfcam/core/image_io.h"
 #include "lfcam/core/image_metrics.h"
 #include "lfcam/core/lightfield_file.h"
+#include "lfcam/core/test_support.h"
 #include "lfcam/depth/plane_sweep.h"
+#include "lfcam/io/lightfield_export.h"
+#include "lfcam/sim/scene.h"
+#include "lfcam/sim/simulate_lightfield.h"
 
 namespace lfcam {
 namespace {
@@ -264,6 +269,51 @@ TEST(DepthHeldOut, TheRegionScriptSaysWhereARenderLosesToTheMean) {
   EXPECT_NE(run.output.find("r_0_1_depth.png: 40x64, its photograph 80x64"), std::string::npos)
       << run.output;
   fs::remove_all(dir);
+}
+
+// bench/heldout.py on a grid of an even number of rows and columns (4 x 4 views of the `paper`
+// scene, 96 x 88 samples, named by indices): the kept cameras are rows and columns 0 and 2, and
+// the cameras of row and column 3 lie beyond them, where a render would extrapolate. The five
+// cameras between kept ones are measured; the seven beyond are said and left out.
+TEST(DepthHeldOut, TheScriptMeasuresAnEvenGridBetweenItsKeptCameras) {
+  const std::string python = testing::PythonWith("cv2, numpy");
+  if (python.empty())
+    GTEST_SKIP() << "python3 with cv2 and numpy is not here (scripts/install-deps.sh installs them)";
+  SimulateLightFieldOptions o;
+  o.rows = o.cols = 4;
+  o.n_s = 96;
+  o.n_t = 88;
+  const LightField lf = SimulateLightField(MakePaperScene(), o);
+  const fs::path dir = testing::MakeScratchDir("lfcam_heldout_even");
+  fs::create_directories(dir / "data");
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) {  // NAME_RR_CC: row 1 at the top
+      cv::Mat bgr;
+      cv::cvtColor(ViewImage(lf, r, c), bgr, cv::COLOR_RGB2BGR);
+      cv::imwrite((dir / "data" / fmt::format("paper_{:02d}_{:02d}.png", 4 - r, c + 1)).string(),
+                  bgr);
+    }
+  const std::string script = (fs::path(LFCAM_SOURCE_DIR) / "bench/heldout.py").string();
+  const auto run = testing::RunOnce(fmt::format("{} {} {} {} --lfcam {} 2>&1", python, script,
+                                                (dir / "data").string(), (dir / "work").string(),
+                                                LFCAM_CLI_PATH));
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("4 kept, 5 left out"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("7 cameras of the last row or column, beyond the last kept ones"),
+            std::string::npos)
+      << run.output;
+  int rows = 0;
+  std::istringstream lines(run.output);
+  for (std::string line; std::getline(lines, line);)
+    if (line.starts_with("{\"camera\"")) {
+      const auto row = nlohmann::json::parse(line);
+      EXPECT_LE(row["camera"][0].get<int>(), 2) << line;
+      EXPECT_LE(row["camera"][1].get<int>(), 2) << line;
+      // A render halfway between kept cameras beats the nearest kept photograph.
+      EXPECT_GT(row["depth"].get<double>(), row["nearest"].get<double>()) << line;
+      ++rows;
+    }
+  EXPECT_EQ(rows, 5) << run.output;
 }
 
 }  // namespace
