@@ -82,9 +82,14 @@ void ImportFlags::AddTo(CLI::App& command) {
                   "(NAME_RR_CC_Y_X_F_W), hci (input_CamNNN.png + parameters.cfg), unit-grid "
                   "([NAME_]RR_CC: indices only, row 1 at the top; or tagged, r05_c07, x07_y05, "
                   "v5_u7; auto also reads NAMERRCC with gaps as one) or sequence (NAMENNN: one "
-                  "square grid's views numbered row by row from the top left, tried only where "
-                  "no other naming fits); auto refuses names that parse several ways")
+                  "square grid's views, or --grid's, numbered row by row from the top left, "
+                  "tried only where no other naming fits); auto refuses names that parse "
+                  "several ways")
       ->capture_default_str();
+  command.add_option("--grid", grid_shape,
+                     "ROWSxCOLS: the grid's shape, for views whose names do not give it (a "
+                     "numbered sequence, NAMENNN, row by row from the top left; HCI views "
+                     "without parameters.cfg): 1x101 for a row of 101 cameras");
   command
       .add_option("--rig", rig,
                   "auto, parallel (centred sensors: zero disparity at infinity) or rectified "
@@ -246,7 +251,12 @@ ImportedLightField ImportFlags::Run(bool quiet) const {
   b.chroma = FlagValue("--chroma", [&] { return ChromaUpsamplingFromString(chroma); });
   b.allow_missing = allow_missing;
 
-  ImportedGrid grid = ScanGridFolder(dir, allow_missing, grid_naming);
+  std::optional<GridShape> shape;
+  if (!grid_shape.empty()) {
+    const auto [rows, cols] = ParseSize("--grid", grid_shape, kMaxViewsPerSide);
+    shape = GridShape{rows, cols};
+  }
+  ImportedGrid grid = ScanGridFolder(dir, allow_missing, grid_naming, shape);
   if (o.rig) grid.rig = *o.rig;
   const nlohmann::json axes = CheckAxes(grid);
   if (grid.rig == RigModel::kRectified) {

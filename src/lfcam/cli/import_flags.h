@@ -27,7 +27,7 @@ struct ImportedLightField {
 struct ImportFlags {
   std::string dir;
   std::string st_res, st_domain, resampling = "linear", chroma = "guided", naming = "auto",
-                                 rig = "auto", st_windows = "views";
+                                 rig = "auto", st_windows = "views", grid_shape;
   double st_distance = 0, focal_px = 0, focal_mm = 0, sensor_width_mm = 0, pitch_mm = 0;
   bool allow_missing = false;
   bool flip_rows = false;  // the rows taken in reverse (row index or y counting the other way)

@@ -216,6 +216,7 @@ std::optional<ImportedGrid> GridFromPositions(const fs::path& dir, GridNaming na
 // parameters' baseline. Nullopt with `why` set when they do not form one.
 std::optional<ImportedGrid> GridFromIndices(GridNaming naming, const std::vector<NamedView>& named,
                                             const std::optional<HciParameters>& hci,
+                                            const std::optional<GridShape>& shape,
                                             std::string* why) {
   ImportedGrid g;
   g.naming = naming;
@@ -223,7 +224,14 @@ std::optional<ImportedGrid> GridFromIndices(GridNaming naming, const std::vector
   std::vector<std::pair<int, int>> top_left;  // (row from the top, col from the left)
   if (naming == GridNaming::kHci || naming == GridNaming::kSequence) {
     int cols = 0, rows = 0;
-    if (hci && hci->cams_x) {
+    if (shape) {
+      rows = shape->rows, cols = shape->cols;
+      if (hci && hci->cams_x && (*hci->cams_x != cols || *hci->cams_y != rows)) {
+        *why = fmt::format("a {}x{} grid disagrees with {}'s {}x{} (num_cams_y x num_cams_x)",
+                           rows, cols, kHciParametersName, *hci->cams_y, *hci->cams_x);
+        return std::nullopt;
+      }
+    } else if (hci && hci->cams_x) {
       cols = *hci->cams_x, rows = *hci->cams_y;
     } else {
       cols = rows = int(std::lround(std::sqrt(double(named.size()))));
@@ -231,10 +239,12 @@ std::optional<ImportedGrid> GridFromIndices(GridNaming naming, const std::vector
         *why = naming == GridNaming::kSequence
                    ? fmt::format(
                          "{} views are not a square grid, and numbered names say nothing "
-                         "of its shape",
+                         "of its shape (--grid ROWSxCOLS says it)",
                          named.size())
                    : fmt::format(
-                         "{} views are not a square grid, and {} to say its shape", named.size(),
+                         "{} views are not a square grid, and {} to say its shape (--grid "
+                         "ROWSxCOLS says it)",
+                         named.size(),
                          hci ? fmt::format("{} gives no num_cams_x, num_cams_y", kHciParametersName)
                              : fmt::format("there is no {}", kHciParametersName));
         return std::nullopt;
@@ -357,7 +367,8 @@ std::optional<HciParameters> ReadHciParameters(const fs::path& dir) {
                             path.string());
 }
 
-ImportedGrid GridFromNames(const fs::path& dir, std::optional<GridNaming> forced) {
+ImportedGrid GridFromNames(const fs::path& dir, std::optional<GridNaming> forced,
+                           const std::optional<GridShape>& shape) {
   std::vector<std::string> files;
   std::error_code ec;
   for (const auto& entry : fs::directory_iterator(dir, ec))
@@ -403,7 +414,7 @@ ImportedGrid GridFromNames(const fs::path& dir, std::optional<GridNaming> forced
       std::vector<NamedView> split = named;
       if (const int digits = SplitJoinedIndices(split)) {
         std::string unused;
-        grid = GridFromIndices(GridNaming::kUnitGrid, split, std::nullopt, &unused);
+        grid = GridFromIndices(GridNaming::kUnitGrid, split, std::nullopt, std::nullopt, &unused);
         if (grid) {
           grid->joined_digits = digits;
           why.clear();
@@ -414,7 +425,7 @@ ImportedGrid GridFromNames(const fs::path& dir, std::optional<GridNaming> forced
       grid = naming == GridNaming::kHci || naming == GridNaming::kUnitGrid ||
                      naming == GridNaming::kSequence
                  ? GridFromIndices(naming, named, naming == GridNaming::kHci ? hci : std::nullopt,
-                                   &why)
+                                   naming == GridNaming::kUnitGrid ? std::nullopt : shape, &why)
                  : GridFromPositions(dir, naming, named, &why);
     if (grid) {
       grid->ignored = std::move(ignored);
@@ -478,14 +489,21 @@ RigModel DefaultRig(GridNaming naming) {
 }
 
 ImportedGrid ScanGridFolder(const fs::path& dir, bool allow_missing,
-                            std::optional<GridNaming> naming) {
+                            std::optional<GridNaming> naming, std::optional<GridShape> shape) {
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) throw Error(fmt::format("{}: not a folder", dir.string()));
   const bool described = fs::is_regular_file(dir / kViewsDescriptionName, ec);
   if (described && naming)
     throw Error(fmt::format("{}: described in {}: --naming does not apply", dir.string(),
                             kViewsDescriptionName));
-  ImportedGrid g = described ? ReadDescription(dir) : GridFromNames(dir, naming);
+  if (described && shape)
+    throw Error(fmt::format("{}: described in {}: --grid does not apply", dir.string(),
+                            kViewsDescriptionName));
+  ImportedGrid g = described ? ReadDescription(dir) : GridFromNames(dir, naming, shape);
+  if (shape && (g.rows != shape->rows || g.cols != shape->cols))
+    throw Error(fmt::format("{}: the names ({}) give a {}x{} grid, not the {}x{} of --grid",
+                            dir.string(), ToString(g.naming), g.rows, g.cols, shape->rows,
+                            shape->cols));
   // Missing views: a file named but absent, or a grid position no file names.
   const GridView* first = nullptr;
   for (GridView& v : g.views) {

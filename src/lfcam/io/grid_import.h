@@ -71,13 +71,21 @@ struct ImportedGrid {
 // The grid an lfcam-views.json describes (files not checked); throws lfcam::Error naming `where`.
 ImportedGrid GridFromDescription(const nlohmann::json& j, const std::string& where);
 
+// The shape of a grid whose names do not give it (`lfcam import --grid`).
+struct GridShape {
+  int rows = 0, cols = 0;
+};
+
 // Reads the folder: detects the naming (a description file wins; else the one naming under
 // which every view's name parses into distinct grid positions: a folder that parses several
 // ways, or none, is refused with the reason), parses every name, checks that the views form a
-// complete grid (unless `allow_missing`) of one image size. `naming` forces one. Throws
-// lfcam::Error naming the file at fault.
+// complete grid (unless `allow_missing`) of one image size. `naming` forces one. `shape`, where
+// given, is the grid's: for a numbered sequence, or HCI views without a parameters.cfg, whose
+// names do not say it; names that give another shape are refused. Throws lfcam::Error naming
+// the file at fault.
 ImportedGrid ScanGridFolder(const std::filesystem::path& dir, bool allow_missing,
-                            std::optional<GridNaming> naming = std::nullopt);
+                            std::optional<GridNaming> naming = std::nullopt,
+                            std::optional<GridShape> shape = std::nullopt);
 
 // What the naming itself took for granted, for the import's `note:` lines and the file's
 // import.notes, whatever the rig: a numbered sequence's reading order.

@@ -300,7 +300,39 @@ TEST(ParallaxAxes, ViewsNamedByIndicesAloneOrInOneSequenceFormTheirGrid) {
       EXPECT_NE(std::string(e.what()).find("sequence: 20 views are not a square grid"),
                 std::string::npos)
           << e.what();
+      EXPECT_NE(std::string(e.what()).find("--grid ROWSxCOLS says it"), std::string::npos)
+          << e.what();
     }
+    // Given their shape (`import --grid 4x5`), they are the rig's top four rows, row by row.
+    const ImportedGrid four = ScanGridFolder(run, false, std::nullopt, GridShape{4, 5});
+    EXPECT_EQ(four.naming, GridNaming::kSequence);
+    ASSERT_EQ(four.rows, 4);
+    ASSERT_EQ(four.cols, 5);
+    for (int r = 0; r < 4; ++r)
+      for (int c = 0; c < kN; ++c)
+        EXPECT_EQ(four.view(r, c).file, fmt::format("{:02d}.png", (3 - r) * kN + c)) << r << c;
+    // A shape too small for the numbers, one the names already give otherwise, or a described
+    // folder: refused, saying why.
+    const auto refused = [](const fs::path& folder, GridShape shape, const std::string& why) {
+      try {
+        ScanGridFolder(folder, false, std::nullopt, shape);
+        ADD_FAILURE() << "accepted " << folder;
+      } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find(why), std::string::npos) << e.what();
+      }
+    };
+    refused(run, {3, 5}, "sequence: 15.png: camera 15 is outside the 3x5 grid");
+    refused(named, {1, 25}, "the names (unit-grid) give a 5x5 grid, not the 1x25 of --grid");
+    // Through the command.
+    const std::string lf = (run.parent_path() / (run.filename().string() + ".lf")).string();
+    auto cli = testing::Lfcam(fmt::format("import {} --grid 4x5 --out {} --quiet", run.string(), lf));
+    EXPECT_EQ(cli.status, 0) << cli.output;
+    EXPECT_NE(cli.output.find("imported 4x5 views"), std::string::npos) << cli.output;
+    fs::remove(lf);
+    cli = testing::Lfcam(fmt::format("import {} --grid 0x5 --out {} --quiet", run.string(), lf));
+    EXPECT_EQ(cli.status, 2) << cli.output;
+    EXPECT_NE(cli.output.find("--grid"), std::string::npos) << cli.output;
+    EXPECT_FALSE(fs::exists(lf));
   }
   const auto [rows, by_rows] = renamed("lfcam_axes_sequence_", [](int top, int c) {
     return fmt::format("view{:04d}.png", 100 + top * kN + c);
