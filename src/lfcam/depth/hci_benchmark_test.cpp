@@ -105,8 +105,8 @@ TEST(HciBenchmarkScript, RunsEverySceneAsASubmissionAndScoresThoseWithTruth) {
     double written = 0;
     std::ifstream(out / "runtimes" / fmt::format("{}.txt", name)) >> written;
     EXPECT_NEAR(written, seconds, 1e-3) << name;
-    const cv::Mat map =
-        cv::imread((out / "disp_maps" / fmt::format("{}.pfm", name)).string(), cv::IMREAD_UNCHANGED);
+    const cv::Mat map = cv::imread((out / "disp_maps" / fmt::format("{}.pfm", name)).string(),
+                                   cv::IMREAD_UNCHANGED);
     EXPECT_EQ(map.size(), cv::Size(128, 118)) << name;
   }
   EXPECT_FALSE(j["scenes"]["hidden"].contains("scores"));
@@ -116,19 +116,19 @@ TEST(HciBenchmarkScript, RunsEverySceneAsASubmissionAndScoresThoseWithTruth) {
   const double badpix = BadPix007(out / "disp_maps" / "paper.pfm", training / "gt_disp_lowres.pfm");
   EXPECT_NEAR(scores["badpix_0.07"].get<double>(), badpix, 1e-6);
   EXPECT_EQ(scores["pixels"], (128 - 30) * (118 - 30));
-  std::cout << fmt::format("[hci benchmark] simulated training scene: BadPix0.07 {:.2f}%, "
-                           "MSEx100 {:.3f}, {:.1f} s\n",
-                           badpix, scores["mse_x100"].get<double>(),
-                           j["scenes"]["paper"]["runtime_s"].get<double>());
+  std::cout << fmt::format(
+      "[hci benchmark] simulated training scene: BadPix0.07 {:.2f}%, "
+      "MSEx100 {:.3f}, {:.1f} s\n",
+      badpix, scores["mse_x100"].get<double>(), j["scenes"]["paper"]["runtime_s"].get<double>());
   // Floors a little above what was measured (8.65% and 1.35; 2026-12-04): a map misplaced by the
   // script (another scene's, its rows the other way) scores tens of per cent.
   EXPECT_LE(badpix, 10.0);
   EXPECT_LE(scores["mse_x100"].get<double>(), 1.6);
 
   // The table, and a scene asked for that is not there.
-  const auto table = testing::RunOnce(fmt::format("{} {} {} {} --lfcam {} --scenes paper 2>&1",
-                                                  python, script, benchmark.string(), out.string(),
-                                                  LFCAM_CLI_PATH));
+  const auto table =
+      testing::RunOnce(fmt::format("{} {} {} {} --lfcam {} --scenes paper 2>&1", python, script,
+                                   benchmark.string(), out.string(), LFCAM_CLI_PATH));
   EXPECT_EQ(table.status, 0) << table.output;
   EXPECT_NE(table.output.find(fmt::format("{:<16} {:>9.2f}%", "paper", badpix)), std::string::npos)
       << table.output;

@@ -227,8 +227,8 @@ std::optional<ImportedGrid> GridFromIndices(GridNaming naming, const std::vector
     if (shape) {
       rows = shape->rows, cols = shape->cols;
       if (hci && hci->cams_x && (*hci->cams_x != cols || *hci->cams_y != rows)) {
-        *why = fmt::format("a {}x{} grid disagrees with {}'s {}x{} (num_cams_y x num_cams_x)",
-                           rows, cols, kHciParametersName, *hci->cams_y, *hci->cams_x);
+        *why = fmt::format("a {}x{} grid disagrees with {}'s {}x{} (num_cams_y x num_cams_x)", rows,
+                           cols, kHciParametersName, *hci->cams_y, *hci->cams_x);
         return std::nullopt;
       }
     } else if (hci && hci->cams_x) {

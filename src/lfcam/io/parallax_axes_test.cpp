@@ -325,7 +325,8 @@ TEST(ParallaxAxes, ViewsNamedByIndicesAloneOrInOneSequenceFormTheirGrid) {
     refused(named, {1, 25}, "the names (unit-grid) give a 5x5 grid, not the 1x25 of --grid");
     // Through the command.
     const std::string lf = (run.parent_path() / (run.filename().string() + ".lf")).string();
-    auto cli = testing::Lfcam(fmt::format("import {} --grid 4x5 --out {} --quiet", run.string(), lf));
+    auto cli =
+        testing::Lfcam(fmt::format("import {} --grid 4x5 --out {} --quiet", run.string(), lf));
     EXPECT_EQ(cli.status, 0) << cli.output;
     EXPECT_NE(cli.output.find("imported 4x5 views"), std::string::npos) << cli.output;
     fs::remove(lf);

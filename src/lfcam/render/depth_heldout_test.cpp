@@ -213,7 +213,8 @@ TEST(DepthHeldOut, TheShopRectifiedAndNamedAsAGantryBeatsTheMeanOfItsNeighbours)
 TEST(DepthHeldOut, TheRegionScriptSaysWhereARenderLosesToTheMean) {
   const std::string python = testing::PythonWith("cv2, numpy");
   if (python.empty())
-    GTEST_SKIP() << "python3 with cv2 and numpy is not here (scripts/install-deps.sh installs them)";
+    GTEST_SKIP()
+        << "python3 with cv2 and numpy is not here (scripts/install-deps.sh installs them)";
   const fs::path dir = fs::temp_directory_path() / ("lfcam_regions_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir / "data");
@@ -278,7 +279,8 @@ TEST(DepthHeldOut, TheRegionScriptSaysWhereARenderLosesToTheMean) {
 TEST(DepthHeldOut, TheScriptMeasuresAnEvenGridBetweenItsKeptCameras) {
   const std::string python = testing::PythonWith("cv2, numpy");
   if (python.empty())
-    GTEST_SKIP() << "python3 with cv2 and numpy is not here (scripts/install-deps.sh installs them)";
+    GTEST_SKIP()
+        << "python3 with cv2 and numpy is not here (scripts/install-deps.sh installs them)";
   SimulateLightFieldOptions o;
   o.rows = o.cols = 4;
   o.n_s = 96;
