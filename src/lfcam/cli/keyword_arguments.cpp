@@ -100,6 +100,7 @@ const KeywordTable& ImportKeywordTable() {
   using K = KeywordKind;
   static const KeywordTable table{"import_views",
                                   {{"naming", K::kText},
+                                   {"grid", K::kSize},
                                    {"rig", K::kText},
                                    {"st_distance", K::kNumber},
                                    {"pitch_mm", K::kNumber},
