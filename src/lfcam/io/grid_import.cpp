@@ -231,6 +231,15 @@ std::optional<ImportedGrid> GridFromIndices(GridNaming naming, const std::vector
                            cols, kHciParametersName, *hci->cams_y, *hci->cams_x);
         return std::nullopt;
       }
+      // Holes are filled from their neighbours (--allow-missing), not made up: a grid at most
+      // half empty.
+      if (double(rows) * cols > 2.0 * double(named.size())) {
+        *why = fmt::format(
+            "a {}x{} grid holds {} cameras, and {} views are named: more than "
+            "half of it would be missing",
+            rows, cols, std::int64_t(rows) * cols, named.size());
+        return std::nullopt;
+      }
     } else if (hci && hci->cams_x) {
       cols = *hci->cams_x, rows = *hci->cams_y;
     } else {
@@ -450,8 +459,7 @@ ImportedGrid GridFromNames(const fs::path& dir, std::optional<GridNaming> forced
         "{}: the names do not form a grid named the Stanford way (NAME_RR_CC_Y_X_), the Blender "
         "camera-grid way (NAME_RR_CC_Y_X_F_W), the HCI benchmark's (input_CamNNN), by indices "
         "(NAME_RR_CC, NAMERRCC, or tagged: NAME_rRR_cCC, xCC_yRR, vRR_uCC) or as one numbered "
-        "sequence of a "
-        "square grid's views (NAMENNN): {}; "
+        "sequence of a grid's views (NAMENNN: square, or --grid's): {}; "
         "describe the folder in {} instead (docs/format.md)",
         dir.string(), fmt::join(reasons, "; "), kViewsDescriptionName));
   return std::move(fits.front());
@@ -528,12 +536,18 @@ ImportedGrid ScanGridFolder(const fs::path& dir, bool allow_missing,
     }
   }
   if (!first) throw Error(fmt::format("{}: none of the views is there", dir.string()));
-  if (!g.missing.empty() && !allow_missing)
+  if (!g.missing.empty() && !allow_missing) {
+    constexpr std::size_t kListed = 12;  // the rest counted, not listed
+    const std::size_t listed = std::min(g.missing.size(), kListed);
+    const std::string which =
+        fmt::format(
+            "{}", fmt::join(g.missing.begin(), g.missing.begin() + std::ptrdiff_t(listed), ", ")) +
+        (g.missing.size() > listed ? fmt::format(" and {} more", g.missing.size() - listed) : "");
     throw Error(
         fmt::format("{}: the {}x{} grid is incomplete: {} {} missing (--allow-missing "
                     "fills them from their neighbours)",
-                    dir.string(), g.rows, g.cols, fmt::join(g.missing, ", "),
-                    g.missing.size() == 1 ? "is" : "are"));
+                    dir.string(), g.rows, g.cols, which, g.missing.size() == 1 ? "is" : "are"));
+  }
   return g;
 }
 
