@@ -170,7 +170,9 @@ nlohmann::json ImportFlags::CheckAxes(ImportedGrid& grid) const {
         "the names' rows are taken as columns and their columns as rows (as --swap-axes would)");
     axes = MeasureParallaxAxes(dir, grid);
     j["largest_px_per_step"] = axes.largest_px_per_step;
-    if (axes.verdict == AxesVerdict::kSwapped || axes.verdict == AxesVerdict::kUndecided)
+    // (A single line of a rectified rig, taken the other way, has nothing to agree with.)
+    if (axes.verdict == AxesVerdict::kSwapped ||
+        (axes.verdict == AxesVerdict::kUndecided && !axes.single_line))
       throw Error(
           fmt::format("{}: {}; exchanged, they do not agree either ({}): describe the grid "
                       "in {} (docs/format.md), or give --keep-axes to import it as named",

@@ -46,6 +46,9 @@ struct ParallaxAxes {
   // The points' largest parallax (their 98th percentile) a grid step, either axis, px of the
   // views as read: for a rectified rig, how far from zero disparity the scene reaches.
   double largest_px_per_step = 0;
+  // A single row or column of views, checked along it alone: the centre view against the
+  // views two steps either side (no correlation: there is no second axis).
+  bool single_line = false;
   std::string views;  // which views were compared, for the messages
   std::string why;    // undecided: why
 };
@@ -54,8 +57,11 @@ struct ParallaxAxes {
 // rig's against each other) and the views up to two steps left and right of it in its row
 // and below and above it in its column (from `dir`), tracks corners of the centre view into
 // each (pyramidal Lucas-Kanade, kept where tracking back lands within 0.5 px), and compares.
-// Undecided where a view is missing, the grid is a single row or column, fewer than 40 points
-// track, or the scene's depth moves them by less than kMinSpreadPx. Throws lfcam::Error naming an
+// A single row or column of views is measured along it alone: its largest parallax, whether
+// its views move across it (swapped: a column named as a row), and for parallel cameras
+// whether its points move against the camera (otherwise undecided: a rectified rig's one axis
+// has nothing to agree with). Undecided where a view is missing, fewer than 40 points track, or
+// the scene's depth moves them by less than kMinSpreadPx. Throws lfcam::Error naming an
 // unreadable view.
 ParallaxAxes MeasureParallaxAxes(const std::filesystem::path& dir, const ImportedGrid& grid);
 

@@ -94,6 +94,28 @@ fs::path WriteRig(const std::string& name, Naming naming, bool with_card = true,
   return dir;
 }
 
+// The grid's centre row (`row`) or centre column alone, as a 1 x kN (kN x 1) grid. `across`:
+// the centre column's views laid out where the centre row's cameras stand (a column named as a
+// row), or the other way round.
+ImportedGrid Line(const ImportedGrid& g, bool row, bool across = false) {
+  ImportedGrid line = g;
+  const bool as_row = row != across;
+  line.rows = as_row ? 1 : kN;
+  line.cols = as_row ? kN : 1;
+  line.views.clear();
+  line.missing.clear();
+  for (int i = 0; i < kN; ++i) {
+    const GridView& place = as_row ? g.view(kN / 2, i) : g.view(i, kN / 2);
+    GridView v = row ? g.view(kN / 2, i) : g.view(i, kN / 2);
+    v.row = as_row ? 0 : i;
+    v.col = as_row ? i : 0;
+    v.x_mm = place.x_mm;
+    v.y_mm = place.y_mm;
+    line.views.push_back(v);
+  }
+  return line;
+}
+
 TEST(ParallaxAxes, TheViewsSayWhetherTheNamesRowsRunTheWayItsColumnsDo) {
   const fs::path right = WriteRig("lfcam_axes_right_", Naming::kRight);
   const ParallaxAxes agree = MeasureParallaxAxes(right, ScanGridFolder(right, false));
@@ -135,11 +157,25 @@ TEST(ParallaxAxes, TheViewsSayWhetherTheNamesRowsRunTheWayItsColumnsDo) {
   EXPECT_EQ(undecided.verdict, AxesVerdict::kUndecided);
   EXPECT_NE(Describe(undecided).find("depth moves its points by"), std::string::npos)
       << Describe(undecided);
-  // A single row, a missing view: not checked, and why.
-  ImportedGrid row = ScanGridFolder(right, false);
-  row.rows = 1;
-  row.views.resize(std::size_t(kN));
-  EXPECT_NE(Describe(MeasureParallaxAxes(right, row)).find("a single row"), std::string::npos);
+  // A single row or column of a rectified rig: nothing to check its one axis against, and said;
+  // its largest parallax is measured all the same (the card's 1.5 px a step). Its centre column
+  // named as a row moves across it: swapped.
+  const ImportedGrid grid = ScanGridFolder(right, false);
+  for (const bool is_row : {true, false}) {
+    const ParallaxAxes line = MeasureParallaxAxes(right, Line(grid, is_row));
+    EXPECT_EQ(line.verdict, AxesVerdict::kUndecided);
+    EXPECT_TRUE(line.single_line);
+    EXPECT_NE(Describe(line).find(is_row ? "a single row" : "a single column"), std::string::npos)
+        << Describe(line);
+    EXPECT_NEAR(line.largest_px_per_step, 1.5, 0.15) << Describe(line);
+    const ParallaxAxes crossed = MeasureParallaxAxes(right, Line(grid, is_row, true));
+    EXPECT_EQ(crossed.verdict, AxesVerdict::kSwapped) << Describe(crossed);
+    EXPECT_NE(Describe(crossed).find("move across it"), std::string::npos) << Describe(crossed);
+    // Swapped back, the line is one of the other kind.
+    EXPECT_EQ(MeasureParallaxAxes(right, WithAxesSwapped(Line(grid, is_row, true))).verdict,
+              AxesVerdict::kUndecided);
+  }
+  // A missing view: not checked, and why.
   ImportedGrid holed = ScanGridFolder(right, false);
   holed.views[std::size_t(2 * kN + 4)].file.clear();  // the centre row's right end
   EXPECT_NE(Describe(MeasureParallaxAxes(right, holed)).find("missing"), std::string::npos);
@@ -159,6 +195,17 @@ TEST(ParallaxAxes, ParallelCamerasTellEachAxisOnItsOwn) {
     grid.rig = RigModel::kParallel;
     const ParallaxAxes axes = MeasureParallaxAxes(dir, grid);
     EXPECT_EQ(axes.verdict, verdict) << int(naming) << ": " << Describe(axes);
+    // A single row (column) tells its own axis: reversed where the grid's columns (rows) are.
+    const bool rows_reversed =
+        verdict == AxesVerdict::kRowsReversed || verdict == AxesVerdict::kBothReversed;
+    const bool cols_reversed =
+        verdict == AxesVerdict::kColsReversed || verdict == AxesVerdict::kBothReversed;
+    const ParallaxAxes row = MeasureParallaxAxes(dir, Line(grid, true));
+    EXPECT_EQ(row.verdict, cols_reversed ? AxesVerdict::kColsReversed : AxesVerdict::kAgree)
+        << int(naming) << ": " << Describe(row);
+    const ParallaxAxes column = MeasureParallaxAxes(dir, Line(grid, false));
+    EXPECT_EQ(column.verdict, rows_reversed ? AxesVerdict::kRowsReversed : AxesVerdict::kAgree)
+        << int(naming) << ": " << Describe(column);
     // A rectified rig's views of the same tell only whether the two axes agree.
     grid.rig = RigModel::kRectified;
     EXPECT_EQ(MeasureParallaxAxes(dir, grid).verdict,
@@ -219,8 +266,33 @@ TEST(ParallaxAxes, ImportTakesTheAxesTheWayTheViewsSayAndSaysIt) {
       fmt::format("import {} --out {} --json --keep-axes", exchanged.string(), swapped));
   ASSERT_EQ(run.status, 0) << run.output;
   EXPECT_EQ(nlohmann::json::parse(run.output)["axes"]["swap_axes"], false);
-  fs::remove_all(up);
-  fs::remove_all(exchanged);
+
+  // A column of cameras named as a row (the centre column's views, top to bottom, as
+  // card_01_01 ... card_01_05): its views move across the row, so it is taken as a column, the
+  // first named at the top, and its parallax along it measured.
+  const fs::path right = WriteRig("lfcam_axes_import_right_", Naming::kRight);
+  const fs::path column =
+      fs::temp_directory_path() / ("lfcam_axes_import_column_" + std::to_string(::getpid()));
+  fs::remove_all(column);
+  fs::create_directories(column);
+  for (int top = 1; top <= kN; ++top)
+    fs::copy_file(right / fmt::format("card_{:02d}_{:02d}.png", top, kN / 2 + 1),
+                  column / fmt::format("card_01_{:02d}.png", top));
+  run = testing::Lfcam(
+      fmt::format("import {} --out {} --json", column.string(), (column / "out.lf").string()));
+  ASSERT_EQ(run.status, 0) << run.output;
+  const auto column_summary = nlohmann::json::parse(run.output);
+  EXPECT_EQ(column_summary["axes"]["verdict"], "swapped");
+  EXPECT_EQ(column_summary["axes"]["swap_axes"], true);
+  EXPECT_NEAR(column_summary["axes"]["largest_px_per_step"].get<double>(), 1.5, 0.15);
+  EXPECT_EQ(column_summary["rows"], kN);
+  EXPECT_EQ(column_summary["cols"], 1);
+  for (const auto& v : column_summary["views"]) {
+    if (v["row"] == kN - 1) {
+      EXPECT_EQ(v["file"], "card_01_01.png");  // the top camera
+    }
+  }
+  for (const fs::path& dir : {up, exchanged, right, column}) fs::remove_all(dir);
 }
 
 // Views named otherwise than NAME_RR_CC: indices alone (RR_CC), indices with dashes, and one
