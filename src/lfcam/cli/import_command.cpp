@@ -1,6 +1,7 @@
 // `lfcam import DIR --out FILE`: a light field from a folder of views someone else made
 // (cli/import_flags.h does the work; this writes it and says what it did).
 #include <fmt/core.h>
+#include <fmt/ranges.h>
 
 #include <memory>
 
@@ -61,6 +62,14 @@ void PrintImport(const nlohmann::json& s) {
     fmt::print("  {}{} ({:.1f} s)\n", s["occlusions"]["verdict"] == "as-named" ? "" : "note: ",
                s["occlusions"]["said"].get<std::string>(),
                s["occlusions"]["seconds"].get<double>());
+  if (s.contains("dark") && !s["dark"].empty()) {
+    const auto dark = s["dark"].get<std::vector<std::string>>();
+    fmt::print(
+        "  note: {} view{} black or nearly (darker than 1/16 of the median view: no photograph "
+        "of the scene), filled from {} neighbours as a missing view is: {}\n",
+        dark.size(), dark.size() == 1 ? "" : "s", dark.size() == 1 ? "its" : "their",
+        fmt::join(dark, ", "));
+  }
   for (const auto& filled : s["filled"])
     fmt::print(stderr, "lfcam: warning: filled {}\n", filled.get<std::string>());
 }

@@ -70,7 +70,8 @@ ImportedLightField ImportRectified(const std::string& dir, const ImportedGrid& g
                    {"length_unit", geometry.metric ? "mm" : "units"},
                    {"st_distance_estimated", false},
                    {"assumed", geometry.assumed},
-                   {"notes", geometry.notes}});
+                   {"notes", geometry.notes},
+                   {"dark", report.dark}});
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <climits>
+#include <cstdio>
 
 #include "lfcam/core/color.h"
 #include "lfcam/core/error.h"
@@ -67,6 +68,30 @@ std::string FilledViewLabel(int row, int col, const std::vector<std::pair<int, i
   std::vector<std::string> names;
   for (const auto& [r, c] : from) names.push_back(fmt::format("({}, {})", r, c));
   return fmt::format("camera ({}, {}) from {}", row, col, fmt::join(names, ", "));
+}
+
+std::vector<std::pair<int, int>> FilledViews(const LightField& lf) {
+  const nlohmann::json& m = lf.metadata();
+  const nlohmann::json* list = nullptr;
+  if (m.contains("filled_views"))
+    list = &m["filled_views"];
+  else if (m.contains("import") && m["import"].is_object() && m["import"].contains("filled_views"))
+    list = &m["import"]["filled_views"];
+  std::vector<std::pair<int, int>> filled;
+  if (!list || !list->is_array()) return filled;
+  for (const nlohmann::json& entry : *list) {
+    int row = -1, col = -1;
+    if (entry.is_object() && entry.contains("row") && entry["row"].is_number_integer() &&
+        entry.contains("col") && entry["col"].is_number_integer()) {
+      row = entry["row"].get<int>(), col = entry["col"].get<int>();
+    } else if (entry.is_string() &&
+               std::sscanf(entry.get<std::string>().c_str(), "camera (%d, %d)", &row, &col) != 2) {
+      continue;
+    }
+    if (row >= 0 && row < lf.dims().rows && col >= 0 && col < lf.dims().cols)
+      filled.emplace_back(row, col);
+  }
+  return filled;
 }
 
 }  // namespace lfcam

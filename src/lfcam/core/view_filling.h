@@ -22,4 +22,10 @@ void FillViewWithMean(LightField& lf, int row, int col,
 // "camera (r, c) from (r, c), (r, c)": what a report says of a filled view.
 std::string FilledViewLabel(int row, int col, const std::vector<std::pair<int, int>>& from);
 
+// The views `lf` records as filled rather than photographed (grid row, col): its metadata's
+// `filled_views` (build) or `import.filled_views` (import), whose entries are objects with `row`
+// and `col`, or, in files imported before 2026-12-04, FilledViewLabel's strings. Entries of
+// another shape, or outside the grid, are passed over.
+std::vector<std::pair<int, int>> FilledViews(const LightField& lf);
+
 }  // namespace lfcam

@@ -12,6 +12,7 @@
 
 #include "lfcam/core/color.h"
 #include "lfcam/core/error.h"
+#include "lfcam/core/view_filling.h"
 #include "lfcam/depth/cost_volume.h"
 #include "lfcam/depth/noise_level.h"
 #include "lfcam/depth/plane_sweep.h"
@@ -168,7 +169,14 @@ SweepViews::SweepViews(const LightField& lf, int row, int col, const CostVolumeO
     return v;
   };
   reference_ = load(row, col);
-  const auto around = ViewsAround(d, row, col, std::max(1, options.reach));
+  // Views the light field filled from their neighbours are no photographs: matched, a blend of
+  // their neighbours agrees with no depth. Left out, unless no other view is within reach.
+  auto around = ViewsAround(d, row, col, std::max(1, options.reach));
+  const auto filled = FilledViews(lf);
+  std::vector<std::pair<int, int>> photographed;
+  for (const auto& rc : around)
+    if (std::find(filled.begin(), filled.end(), rc) == filled.end()) photographed.push_back(rc);
+  if (!photographed.empty()) around = std::move(photographed);
   views_.resize(around.size());
   tbb::parallel_for(std::size_t(0), around.size(),
                     [&](std::size_t i) { views_[i] = load(around[i].first, around[i].second); });

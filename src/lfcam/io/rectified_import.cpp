@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstring>
 #include <mutex>
+#include <opencv2/core.hpp>
 
 #include "lfcam/core/error.h"
 #include "lfcam/core/image_io.h"
@@ -196,6 +197,37 @@ RectifiedGeometry ResolveRectifiedGeometry(const ImportedGrid& g, const ImportOp
   return r;
 }
 
+namespace {
+
+// The views of `g` (indices into g.views) read into `lf` whose brightness (the sum of their three
+// channels' means over the middle of the frame, sRGB) is under kDarkViewShare of the median
+// view's. None where the median view is itself black.
+std::vector<std::size_t> DarkViews(const LightField& lf, const ImportedGrid& g) {
+  const int w = lf.dims().n_s, h = lf.dims().n_t;
+  const cv::Rect middle(w / 8, h / 8, w - w / 4, h - h / 4);
+  std::vector<double> brightness(g.views.size(), -1);
+  tbb::parallel_for(std::size_t(0), g.views.size(), [&](std::size_t i) {
+    const GridView& v = g.views[i];
+    if (v.file.empty()) return;
+    const cv::Mat view(h, w, CV_8UC3, const_cast<std::uint8_t*>(lf.view_data(v.row, v.col)));
+    const cv::Scalar mean = cv::mean(view(middle));
+    brightness[i] = mean[0] + mean[1] + mean[2];
+  });
+  std::vector<double> read;
+  for (double b : brightness)
+    if (b >= 0) read.push_back(b);
+  if (read.empty()) return {};
+  std::nth_element(read.begin(), read.begin() + long(read.size() / 2), read.end());
+  const double median = read[read.size() / 2];
+  std::vector<std::size_t> dark;
+  if (!(median > 1.0)) return dark;  // black, all of it: nothing to tell the views apart by
+  for (std::size_t i = 0; i < brightness.size(); ++i)
+    if (brightness[i] >= 0 && brightness[i] < kDarkViewShare * median) dark.push_back(i);
+  return dark;
+}
+
+}  // namespace
+
 LightField ImportRectifiedViews(const fs::path& dir, const ImportedGrid& g,
                                 const RectifiedGeometry& geo,
                                 const std::function<void()>& view_done,
@@ -250,16 +282,27 @@ LightField ImportRectifiedViews(const fs::path& dir, const ImportedGrid& g,
     }
   });
 
-  // Missing views: the mean of the nearest present ones, in linear light.
+  // Missing views and views too dark to be photographs of the scene: the mean of the nearest
+  // present ones, in linear light.
   RectifiedImportReport r;
   std::vector<bool> present;
   for (const GridView& v : g.views) present.push_back(!v.file.empty());
-  for (const GridView& v : g.views) {
-    if (!v.file.empty()) continue;
+  nlohmann::json dark = nlohmann::json::array();
+  for (const std::size_t i : DarkViews(lf, g)) {
+    const GridView& v = g.views[i];
+    present[i] = false;
+    r.dark.push_back(fmt::format("{} ({}, {})", v.file, v.row, v.col));
+    dark.push_back({{"row", v.row}, {"col", v.col}, {"file", v.file}});
+  }
+  nlohmann::json filled = nlohmann::json::array();
+  for (std::size_t i = 0; i < g.views.size(); ++i) {
+    if (present[i]) continue;
+    const GridView& v = g.views[i];
     const auto from = NearestPresentViews(g.rows, g.cols, present, v.row, v.col);
     FillViewWithMean(lf, v.row, v.col, from);
     r.filled.push_back(FilledViewLabel(v.row, v.col, from));
-    if (view_done) view_done();
+    filled.push_back({{"row", v.row}, {"col", v.col}, {"from", from}});
+    if (view_done && v.file.empty()) view_done();  // a dark one was counted as read
   }
   lf.set_measured_poses(std::move(poses));
 
@@ -279,7 +322,8 @@ LightField ImportRectifiedViews(const fs::path& dir, const ImportedGrid& g,
                      {"notes", geo.notes},
                      {"stored", "sample for sample (each view's own pixels)"},
                      {"missing", g.missing},
-                     {"filled_views", r.filled},
+                     {"filled_views", filled},
+                     {"dark_views", dark},
                      {"ignored", g.ignored}}},
                    {"created", fmt::format("{:%Y-%m-%dT%H:%M:%SZ}", now)}};
   if (geo.scene_disparity_px)
