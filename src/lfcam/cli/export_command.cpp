@@ -3,10 +3,13 @@
 // maps (`lfcam depth --all`) for COLMAP and nerfstudio; a Looking Glass quilt of a still or a
 // video (docs/sharing.md).
 #include <fmt/core.h>
+#include <fmt/ranges.h>
 
 #include <array>
 #include <memory>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include "lfcam/cli/backend_flags.h"
 #include "lfcam/cli/camera_flags.h"
@@ -17,6 +20,7 @@
 #include "lfcam/core/lightfield_video_file.h"
 #include "lfcam/core/progress.h"
 #include "lfcam/io/lightfield_export.h"
+#include "lfcam/session/session.h"
 #include "lfcam/share/quilt_export.h"
 #include "lfcam/share/web_export.h"
 
@@ -188,6 +192,15 @@ void AddExportCommand(CLI::App& app) {
     const ExportReport report = ExportLightField(lf, format, f->out, depth ? &*depth : nullptr);
     fmt::print("wrote {} views and their cameras to {} ({})\n", report.views, f->out,
                report.main_file.string());
+    if (!report.filled_left_out.empty()) {
+      std::vector<std::string> left_out;
+      for (const auto& [r, c] : report.filled_left_out) left_out.push_back(CameraLabel(r, c));
+      fmt::print(
+          "  left out {} view{} the light field filled from {} neighbours (no photograph{}): "
+          "{}\n",
+          left_out.size(), left_out.size() == 1 ? "" : "s", left_out.size() == 1 ? "its" : "their",
+          left_out.size() == 1 ? "" : "s", fmt::join(left_out, ", "));
+    }
     if (depth && format == ExportFormat::kColmap)
       fmt::print("  {} points from the depth maps of {} views, seen {} times in all\n",
                  report.points, depth->count(), report.observations);

@@ -12,6 +12,8 @@
 #include <fstream>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <set>
+#include <sstream>
 
 #include "lfcam/cli/cli_test_support.h"
 #include "lfcam/core/lightfield_file.h"
@@ -46,18 +48,23 @@ void WriteRig(const fs::path& dir) {
 
 double MeanLevel(const std::string& png) { return cv::mean(cv::imread(png))[1]; }
 
-TEST(DarkViews, BlackViewsAreFilledFromTheirNeighboursSaidAndLeftOutOfDepth) {
-  const fs::path dir =
-      fs::temp_directory_path() / ("lfcam_dark_views_" + std::to_string(::getpid()));
-  WriteRig(dir);
-  // Three views black or nearly (two corners and one beside a corner), as 8-bit PNGs.
+// Three of the rig's views black or nearly (two corners and one beside a corner), as 8-bit PNGs,
+// in `dir`/dark beside `dir`/whole.
+const std::vector<std::string> kBlackened = {"grid_01_01.png", "grid_01_02.png", "grid_05_05.png"};
+void WriteBlackenedRig(const fs::path& dir) {
   fs::copy(dir / "whole", dir / "dark", fs::copy_options::recursive);
-  const std::vector<std::string> blackened = {"grid_01_01.png", "grid_01_02.png", "grid_05_05.png"};
-  for (const std::string& name : blackened) {
+  for (const std::string& name : kBlackened) {
     const cv::Mat view = cv::imread((dir / "dark" / name).string());
     cv::Mat black(view.size(), CV_8UC3, cv::Scalar(2, 3, 2));
     ASSERT_TRUE(cv::imwrite((dir / "dark" / name).string(), black));
   }
+}
+
+TEST(DarkViews, BlackViewsAreFilledFromTheirNeighboursSaidAndLeftOutOfDepth) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("lfcam_dark_views_" + std::to_string(::getpid()));
+  WriteRig(dir);
+  WriteBlackenedRig(dir);
   const auto import = [&](const std::string& folder) {
     const auto r =
         testing::Lfcam(fmt::format("import {} --out {} --json --quiet", (dir / folder).string(),
@@ -69,7 +76,7 @@ TEST(DarkViews, BlackViewsAreFilledFromTheirNeighboursSaidAndLeftOutOfDepth) {
   const nlohmann::json imported = import("dark");
   ASSERT_EQ(imported["dark"].size(), 3u) << imported["dark"];
   ASSERT_EQ(imported["filled"].size(), 3u);
-  for (const std::string& name : blackened)
+  for (const std::string& name : kBlackened)
     EXPECT_NE(imported["dark"].dump().find(name), std::string::npos) << imported["dark"];
   // Said, and recorded in the file where depth finds them (grid_01_01: lfcam's row 4, column 0).
   auto said = testing::Lfcam(
@@ -117,6 +124,73 @@ TEST(DarkViews, BlackViewsAreFilledFromTheirNeighboursSaidAndLeftOutOfDepth) {
       "render's mean level: whole %.2f, blackened %.2f; disparity more than 0.07 px apart: "
       "%.2f%%\n",
       whole, dark, 100 * off_share);
+  fs::remove_all(dir);
+}
+
+// Exported for other tools, a filled view is no photograph: the PNG grid keeps it, marked, and
+// COLMAP and NeRF are not given it (no image, no camera, no point seen in it), each view keeping
+// its id; the output says which were left out.
+TEST(DarkViews, FilledViewsAreNotExportedAsPhotographs) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("lfcam_dark_export_" + std::to_string(::getpid()));
+  WriteRig(dir);
+  WriteBlackenedRig(dir);
+  const std::string lf = (dir / "dark.lf").string(), maps = (dir / "maps").string();
+  auto r = testing::Lfcam(fmt::format("import {} --out {} --quiet", (dir / "dark").string(), lf));
+  ASSERT_EQ(r.status, 0) << r.output;
+  r = testing::Lfcam(fmt::format("depth {} --all --out {} --quiet", lf, maps));
+  ASSERT_EQ(r.status, 0) << r.output;
+  // Ids row * cols + col + 1 of lfcam's grid (row 0 at the bottom): grid_01_01 is (4, 0),
+  // grid_01_02 (4, 1), grid_05_05 (0, 4).
+  const std::set<int> filled_ids = {4 * kRows + 0 + 1, 4 * kRows + 1 + 1, 0 * kRows + 4 + 1};
+
+  r = testing::Lfcam(
+      fmt::format("export {} --format png-views --out {}", lf, (dir / "png").string()));
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("wrote 25 views"), std::string::npos) << r.output;
+  std::ifstream cameras_file(dir / "png" / "cameras.json");
+  const nlohmann::json cameras = nlohmann::json::parse(cameras_file);
+  std::set<int> marked;
+  for (const auto& v : cameras["views"])
+    if (v.value("filled", false))
+      marked.insert(v["row"].get<int>() * kRows + v["col"].get<int>() + 1);
+  EXPECT_EQ(marked, filled_ids);
+
+  r = testing::Lfcam(fmt::format("export {} --format colmap --depth {} --out {}", lf, maps,
+                                 (dir / "colmap").string()));
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("wrote 22 views"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("left out 3 views"), std::string::npos) << r.output;
+  std::ifstream images(dir / "colmap" / "sparse/0/images.txt");
+  std::set<int> image_ids;
+  int line_number = 0;
+  for (std::string line; std::getline(images, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    if (line_number++ % 2 == 0) image_ids.insert(std::stoi(line));  // the pose line
+  }
+  EXPECT_EQ(image_ids.size(), 22u);
+  for (const int id : filled_ids) EXPECT_EQ(image_ids.count(id), 0u) << id;
+  EXPECT_FALSE(fs::exists(dir / "colmap" / "images" / "view_04_00.png"));
+  std::ifstream points(dir / "colmap" / "sparse/0/points3D.txt");
+  int tracked = 0;
+  for (std::string line; std::getline(points, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream fields(line);
+    double skip;
+    for (int i = 0; i < 8; ++i) fields >> skip;  // id, X, Y, Z, R, G, B, error
+    for (int image, index; fields >> image >> index;) {
+      EXPECT_EQ(filled_ids.count(image), 0u) << line;
+      EXPECT_EQ(image_ids.count(image), 1u) << line;
+      ++tracked;
+    }
+  }
+  EXPECT_GT(tracked, 1000);
+
+  r = testing::Lfcam(
+      fmt::format("export {} --format nerf --out {} --quiet", lf, (dir / "nerf").string()));
+  ASSERT_EQ(r.status, 0) << r.output;
+  std::ifstream transforms_file(dir / "nerf" / "transforms.json");
+  EXPECT_EQ(nlohmann::json::parse(transforms_file)["frames"].size(), 22u);
   fs::remove_all(dir);
 }
 

@@ -3,15 +3,18 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
+#include <utility>
 
 #include "lfcam/core/error.h"
 #include "lfcam/core/image_io.h"
 #include "lfcam/core/json_input.h"
 #include "lfcam/core/staged_folder.h"
+#include "lfcam/core/view_filling.h"
 #include "lfcam/io/sparse_points.h"
 
 namespace lfcam {
@@ -148,10 +151,21 @@ ExportReport ExportLightField(const LightField& lf, ExportFormat format, const f
           std::max(reach_nerf, (lf.slab().st.point_at(s, t) - centroid).norm() * nerf_per_world);
 
   const SparsePoints points = depth ? PointsFromDepth(lf, *depth) : SparsePoints{};
+  // A view filled from its neighbours (a camera without an image, a black view) is no
+  // photograph: the grid of PNG views keeps it, marked, and COLMAP and NeRF, which would take it
+  // for one, are not given it. Each view keeps its id (row * cols + col + 1) either way.
+  const auto filled = FilledViews(lf);
   int id = 0;
   for (int r = 0; r < d.rows; ++r)
     for (int c = 0; c < d.cols; ++c) {
       ++id;
+      const bool is_filled =
+          std::find(filled.begin(), filled.end(), std::pair{r, c}) != filled.end();
+      if (is_filled && format != ExportFormat::kPngViews) {
+        report.filled_left_out.emplace_back(r, c);
+        continue;
+      }
+      ++report.views;
       const std::string name = ViewName(r, c);
       WriteImage(staging / image_folder / name, ViewImage(lf, r, c));
       const ViewCamera v = ViewAsCamera(lf, r, c);
@@ -168,6 +182,7 @@ ExportReport ExportLightField(const LightField& lf, ExportFormat format, const f
                        {"cx", v.cx},
                        {"cy", v.cy},
                        {"world_from_camera", MatrixToJson(rot, centre)}});
+      if (is_filled) views.back()["filled"] = true;
       // NeRF: camera-to-world with OpenGL's axes (x right, y up, z back), metres (or units).
       Mat3 gl = rot;
       gl.col(1) = -rot.col(1);
@@ -199,7 +214,6 @@ ExportReport ExportLightField(const LightField& lf, ExportFormat format, const f
       }
       images_txt += "\n";
     }
-  report.views = id;
 
   if (format == ExportFormat::kPngViews) {
     report.main_file = out / "cameras.json";
@@ -248,7 +262,7 @@ ExportReport ExportLightField(const LightField& lf, ExportFormat format, const f
     report.main_file = out / "sparse/0/images.txt";
     fs::create_directories(staging / "sparse/0", ec);
     WriteText(staging / "sparse/0/cameras.txt",
-              cameras_txt + fmt::format("# Number of cameras: {}\n", id));
+              cameras_txt + fmt::format("# Number of cameras: {}\n", report.views));
     WriteText(staging / "sparse/0/images.txt", images_txt);
     std::string points_txt = fmt::format(
         "# 3D point list with one line of data per point:\n"

@@ -36,7 +36,9 @@ ViewCamera ViewAsCamera(const LightField& lf, int row, int col);
 cv::Mat ViewImage(const LightField& lf, int row, int col);
 
 struct ExportReport {
-  int views = 0;
+  int views = 0;  // written as images (png-views: every view; nerf, colmap: the photographed)
+  // COLMAP and NeRF: the views left out as filled from their neighbours (grid row, col)
+  std::vector<std::pair<int, int>> filled_left_out;
   int points = 0;  // COLMAP's 3D points
   std::size_t observations = 0;
   std::filesystem::path main_file;  // cameras.json, transforms.json or sparse/0/images.txt

@@ -5,6 +5,7 @@
 #include <unordered_set>
 
 #include "lfcam/core/color.h"
+#include "lfcam/core/view_filling.h"
 #include "lfcam/depth/plane_sweep.h"
 #include "lfcam/io/lightfield_export.h"
 
@@ -32,12 +33,18 @@ SparsePoints PointsFromDepth(const LightField& lf, const DepthSet& depth,
           ? options.stride
           : std::max(1, int(std::lround(std::sqrt(double(d.samples_per_view()) / 5000.0))));
   std::vector<ViewCamera> cameras;
-  std::vector<int> with_map;
+  // The views a point may come from or be seen in: those with a map that were photographed
+  // (a view filled from its neighbours is no photograph, and is not exported as one).
+  std::vector<bool> seeing(d.view_count(), false);
   for (int r = 0; r < d.rows; ++r)
     for (int c = 0; c < d.cols; ++c) {
       cameras.push_back(ViewAsCamera(lf, r, c));
-      if (depth.has(r, c)) with_map.push_back(r * d.cols + c);
+      seeing[std::size_t(r * d.cols + c)] = depth.has(r, c);
     }
+  for (const auto& [r, c] : FilledViews(lf)) seeing[std::size_t(r * d.cols + c)] = false;
+  std::vector<int> with_map;
+  for (int view = 0; view < int(d.view_count()); ++view)
+    if (seeing[std::size_t(view)]) with_map.push_back(view);
   // Views nearest the grid's centre first: they see most of what the others see.
   const double mid_r = 0.5 * (d.rows - 1), mid_c = 0.5 * (d.cols - 1);
   std::stable_sort(with_map.begin(), with_map.end(), [&](int a, int b) {
@@ -85,7 +92,7 @@ SparsePoints PointsFromDepth(const LightField& lf, const DepthSet& depth,
         point.rgb = {LinearToSrgb8(rgb.x()), LinearToSrgb8(rgb.y()), LinearToSrgb8(rgb.z())};
         const int index = int(out.points.size());
         for (int other = 0; other < int(d.view_count()); ++other) {
-          if (!depth.has(other / d.cols, other % d.cols)) continue;
+          if (!seeing[std::size_t(other)]) continue;
           double u, w;
           if (!ProjectInto(cameras[std::size_t(other)], p, &u, &w)) continue;
           // The view it came from sees it by construction; another sees it where the four

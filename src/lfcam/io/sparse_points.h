@@ -38,7 +38,8 @@ struct SparsePointOptions {
 
 // Points from every map in `depth` (views nearest the centre first; a point already made from
 // another view, within a stride's cell and 1% in depth, is not made again), each with its track
-// over every view with a map.
+// over every view with a map. Views the light field records as filled from their neighbours
+// (core/view_filling.h) give no points and are in no track: they are no photographs.
 SparsePoints PointsFromDepth(const LightField& lf, const DepthSet& depth,
                              const SparsePointOptions& options = {});
 
