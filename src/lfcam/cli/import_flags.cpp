@@ -60,7 +60,7 @@ ImportedLightField ImportRectified(const std::string& dir, const ImportedGrid& g
       [&] {
         if (advance) advance(1);
       },
-      &report);
+      &report, o.fill_dark_views);
   progress.finish();
   return Imported(std::move(lf), grid, RigModel::kRectified, report.filled, report.seconds,
                   {{"pitch_mm", geometry.pitch_mm},
@@ -131,6 +131,9 @@ void ImportFlags::AddTo(CLI::App& command) {
       ->capture_default_str();
   command.add_flag("--allow-missing", allow_missing,
                    "Fill views missing from the grid from their nearest neighbours (recorded)");
+  command.add_flag("--keep-dark-views", keep_dark_views,
+                   "Rectified rig: keep views that recorded black, or nearly, as they are (by "
+                   "default they are filled from their neighbours, as missing views are)");
   command.add_flag("--flip-rows", flip_rows,
                    "Take the grid's rows in reverse: for names whose row index or y counts the "
                    "other way than lfcam reads it (docs/format.md)");
@@ -240,6 +243,7 @@ ImportedLightField ImportFlags::Run(bool quiet) const {
   o.focal_mm = positive("--focal-mm", focal_mm);
   o.sensor_width_mm = positive("--sensor-width-mm", sensor_width_mm);
   o.pitch_mm = positive("--pitch-mm", pitch_mm);
+  o.fill_dark_views = !keep_dark_views;
   std::optional<GridNaming> grid_naming;
   if (naming != "auto")
     grid_naming = FlagValue("--naming", [&] { return GridNamingFromString(naming); });

@@ -30,6 +30,7 @@ struct ImportFlags {
                                  rig = "auto", st_windows = "views", grid_shape;
   double st_distance = 0, focal_px = 0, focal_mm = 0, sensor_width_mm = 0, pitch_mm = 0;
   bool allow_missing = false;
+  bool keep_dark_views = false;
   bool flip_rows = false;  // the rows taken in reverse (row index or y counting the other way)
   bool flip_cols = false;  // the columns taken in reverse
   bool swap_axes = false;  // the names' rows taken as columns and columns as rows (first)

@@ -88,6 +88,13 @@ TEST(DarkViews, BlackViewsAreFilledFromTheirNeighboursSaidAndLeftOutOfDepth) {
   EXPECT_EQ(filled.size(), 3u);
   EXPECT_NE(std::find(filled.begin(), filled.end(), std::pair{kRows - 1, 0}), filled.end());
   EXPECT_EQ(lf.metadata()["import"]["dark_views"].size(), 3u);
+  // Told to, the import keeps them as they are.
+  const auto kept =
+      testing::Lfcam(fmt::format("import {} --out {} --keep-dark-views --json --quiet",
+                                 (dir / "dark").string(), (dir / "kept.lf").string()));
+  ASSERT_EQ(kept.status, 0) << kept.output;
+  EXPECT_TRUE(nlohmann::json::parse(kept.output)["dark"].empty());
+  EXPECT_TRUE(nlohmann::json::parse(kept.output)["filled"].empty());
 
   // A render whose aperture takes in every camera (the corners 2.8 grid steps from the centre):
   // the same brightness as the whole rig's. Unfilled, the three black views took its mean level

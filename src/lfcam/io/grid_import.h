@@ -107,6 +107,9 @@ struct ImportOptions {
   // (`lfcam import` measures it: MeasureParallaxAxes); what the depth sweep brackets
   // (RectifiedGeometry::scene_disparity_px).
   std::optional<double> scene_parallax_px;
+  // Rectified: views that recorded black, or nearly, filled from their neighbours (false: kept
+  // as they are, `--keep-dark-views`).
+  bool fill_dark_views = true;
 };
 
 }  // namespace lfcam

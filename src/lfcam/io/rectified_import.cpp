@@ -231,7 +231,7 @@ std::vector<std::size_t> DarkViews(const LightField& lf, const ImportedGrid& g) 
 LightField ImportRectifiedViews(const fs::path& dir, const ImportedGrid& g,
                                 const RectifiedGeometry& geo,
                                 const std::function<void()>& view_done,
-                                RectifiedImportReport* report) {
+                                RectifiedImportReport* report, bool fill_dark_views) {
   const auto start = std::chrono::steady_clock::now();
   const int W = g.width, H = g.height;
   const double z0 = geo.zero_disparity_mm, f = geo.focal_px, pitch = geo.pitch_mm;
@@ -288,7 +288,7 @@ LightField ImportRectifiedViews(const fs::path& dir, const ImportedGrid& g,
   std::vector<bool> present;
   for (const GridView& v : g.views) present.push_back(!v.file.empty());
   nlohmann::json dark = nlohmann::json::array();
-  for (const std::size_t i : DarkViews(lf, g)) {
+  for (const std::size_t i : fill_dark_views ? DarkViews(lf, g) : std::vector<std::size_t>{}) {
     const GridView& v = g.views[i];
     present[i] = false;
     r.dark.push_back(fmt::format("{} ({}, {})", v.file, v.row, v.col));

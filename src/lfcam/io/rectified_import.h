@@ -77,12 +77,13 @@ struct RectifiedImportReport {
 inline constexpr double kDarkViewShare = 1.0 / 16;
 
 // Reads every view into a light field of the views' own size, sample for sample. Missing views
-// (`grid.missing`, allowed by the scan) and views darker than kDarkViewShare of the median
-// view's brightness are filled with the mean, in linear light, of their nearest present
-// neighbours. Throws lfcam::Error naming the file that cannot be read.
+// (`grid.missing`, allowed by the scan) and, with `fill_dark_views`, views darker than
+// kDarkViewShare of the median view's brightness are filled with the mean, in linear light, of
+// their nearest present neighbours. Throws lfcam::Error naming the file that cannot be read.
 LightField ImportRectifiedViews(const std::filesystem::path& dir, const ImportedGrid& grid,
                                 const RectifiedGeometry& geometry,
                                 const std::function<void()>& view_done = {},
-                                RectifiedImportReport* report = nullptr);
+                                RectifiedImportReport* report = nullptr,
+                                bool fill_dark_views = true);
 
 }  // namespace lfcam
