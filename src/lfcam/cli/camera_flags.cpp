@@ -9,6 +9,7 @@
 #include "lfcam/cli/parse.h"
 #include "lfcam/core/error.h"
 #include "lfcam/core/limits.h"
+#include "lfcam/core/view_filling.h"
 #include "lfcam/render/lens_sampling.h"
 #include "lfcam/render/rig_camera.h"
 
@@ -283,6 +284,18 @@ std::string CameraFlags::RigCentreNote(const LightField& lf) {
       "lfcam: note: the view of the rig's central camera (--as-camera {},{}): this light field "
       "was imported and no --focal-length, --eye or --camera was given",
       0.5 * (d.rows - 1), 0.5 * (d.cols - 1));
+}
+
+std::string CameraFlags::FilledCameraNote(const LightField& lf) const {
+  if (as_camera.empty()) return {};
+  const std::vector<double> at = ParseNumbers("--as-camera", as_camera, 2);
+  for (const auto& [r, c] : FilledViews(lf))
+    if (at[0] == r && at[1] == c)
+      return fmt::format(
+          "lfcam: note: camera ({}, {}) was not photographed (or recorded black): the light field "
+          "filled its view from its neighbours, and this render shows their blend",
+          r, c);
+  return {};
 }
 
 VirtualCamera CameraFlags::MakeCamera(const LightField& lf) const {

@@ -54,6 +54,9 @@ struct CameraFlags {
   // Whether MakeCamera(lf) starts from the rig's central camera, and the line that says so.
   bool StartsAtRigCentre(const LightField& lf) const;
   static std::string RigCentreNote(const LightField& lf);
+  // With --as-camera at a camera the light field filled from its neighbours (core/
+  // view_filling.h): the line that says the render is their blend, not a photograph; else empty.
+  std::string FilledCameraNote(const LightField& lf) const;
 
  private:
   VirtualCameraParams Resolve(const ArrayPlane& array) const;

@@ -120,6 +120,8 @@ void AddRenderCommand(CLI::App& app) {
     const VirtualCamera camera = flags->camera.MakeCamera(lf);
     if (flags->camera.StartsAtRigCentre(lf))
       fmt::print(stderr, "{}\n", CameraFlags::RigCentreNote(lf));
+    if (const std::string note = flags->camera.FilledCameraNote(lf); !note.empty())
+      fmt::print(stderr, "{}\n", note);
     DepthSet depth;
     flags->render.CheckDepthFlags(options);
     if (options.interpolation == Interpolation::kDepth) {

@@ -107,6 +107,12 @@ TEST(DarkViews, BlackViewsAreFilledFromTheirNeighboursSaidAndLeftOutOfDepth) {
     return out;
   };
   const double whole = MeanLevel(render("whole")), dark = MeanLevel(render("dark"));
+  // A render as a filled camera says it shows a blend (grid_01_01: lfcam's camera (4, 0)).
+  const auto as_filled = testing::Lfcam(fmt::format(
+      "render {} --as-camera 4,0 --out {}", (dir / "dark.lf").string(), (dir / "c.png").string()));
+  EXPECT_EQ(as_filled.status, 0) << as_filled.output;
+  EXPECT_NE(as_filled.output.find("camera (4, 0) was not photographed"), std::string::npos)
+      << as_filled.output;
   EXPECT_NEAR(dark, whole, 0.005 * whole) << "the whole rig " << whole << ", blackened " << dark;
 
   // The central view's disparity: the blackened rig's is the whole rig's (the filled views are
