@@ -1,5 +1,6 @@
 // libFuzzer target: the light field reader (preamble, JSON header, view table, views; both
-// compressions; mapped and read). Any input must be read or refused with lfcam::Error.
+// compressions; mapped and read), and the filled views its metadata names. Any input must be
+// read or refused with lfcam::Error.
 #include <fcntl.h>
 #include <unistd.h>
 #include <xxhash.h>
@@ -13,6 +14,7 @@
 
 #include "lfcam/core/error.h"
 #include "lfcam/core/lightfield_file.h"
+#include "lfcam/core/view_filling.h"
 
 namespace {
 std::filesystem::path g_path;
@@ -56,6 +58,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       const lfcam::LightField lf = lfcam::ReadLightField(g_path, {!map, map});
       volatile std::uint8_t sink = 0;
       for (std::size_t i = 0; i < lf.total_bytes(); i += 4096) sink = sink + lf.data()[i];
+      // The views the metadata says were filled (read by depth, export and render): any
+      // metadata is read or passed over, and only views of the grid come back.
+      for (const auto& [r, c] : lfcam::FilledViews(lf))
+        if (r < 0 || r >= lf.dims().rows || c < 0 || c >= lf.dims().cols) std::abort();
     } catch (const lfcam::Error&) {
     }
   }
