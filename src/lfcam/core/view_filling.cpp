@@ -94,4 +94,11 @@ std::vector<std::pair<int, int>> FilledViews(const LightField& lf) {
   return filled;
 }
 
+std::vector<bool> PhotographedViews(const LightField& lf) {
+  std::vector<bool> photographed(lf.dims().view_count(), true);
+  for (const auto& [r, c] : FilledViews(lf))
+    photographed[std::size_t(r) * std::size_t(lf.dims().cols) + std::size_t(c)] = false;
+  return photographed;
+}
+
 }  // namespace lfcam

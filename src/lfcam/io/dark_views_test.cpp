@@ -207,5 +207,41 @@ TEST(DarkViews, FilledViewsAreNotExportedAsPhotographs) {
   fs::remove_all(dir);
 }
 
+// The depth lookup between cameras reads no filled view (on the CPU and in the GL shader alike):
+// its blend of neighbours would put their ghosts into the render. Between two photographed and
+// two filled cameras (grid rows 3-4, columns 0-1: the filled are (4, 0) and (4, 1)), the render
+// is measured against the whole rig's there: 15.4 dB when the filled views were read, 29.9 dB
+// now.
+TEST(DarkViews, TheDepthLookupReadsNoFilledView) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("lfcam_dark_lookup_" + std::to_string(::getpid()));
+  WriteRig(dir);
+  WriteBlackenedRig(dir);
+  const auto render = [&](const std::string& name, const std::string& flags) {
+    const std::string lf = (dir / (name + ".lf")).string(), out = (dir / (name + ".png")).string();
+    auto r = testing::Lfcam(fmt::format("import {} --out {} --quiet", (dir / name).string(), lf));
+    EXPECT_EQ(r.status, 0) << r.output;
+    r = testing::Lfcam(fmt::format(
+        "render {} --as-camera 3.5,0.5 --interpolation depth {} --out {} --quiet", lf, flags, out));
+    return std::pair{r, out};
+  };
+  const auto [whole_run, whole] = render("whole", "");
+  ASSERT_EQ(whole_run.status, 0) << whole_run.output;
+  const auto [dark_run, dark] = render("dark", "");
+  ASSERT_EQ(dark_run.status, 0) << dark_run.output;
+  const double psnr = cv::PSNR(cv::imread(dark), cv::imread(whole));
+  EXPECT_GT(psnr, 27.0);
+  std::printf("between two filled and two photographed cameras: %.2f dB of the whole rig's\n",
+              psnr);
+  const auto [gl_run, gl] = render("dark", "--backend gl");
+  if (gl_run.status == 1 && gl_run.output.find("--backend gl: no OpenGL") != std::string::npos) {
+    std::printf("the GL renderer not checked: %s\n", gl_run.output.c_str());
+  } else {
+    ASSERT_EQ(gl_run.status, 0) << gl_run.output;
+    EXPECT_GT(cv::PSNR(cv::imread(gl), cv::imread(dark)), 50.0);
+  }
+  fs::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace lfcam::dark_views_test

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "lfcam/core/error.h"
+#include "lfcam/core/view_filling.h"
 #include "lfcam/depth/plane_sweep.h"
 
 namespace lfcam {
@@ -20,12 +21,15 @@ DepthAwareSampler::DepthAwareSampler(const LightField& lf, const DepthSet& depth
       n_t_(lf.dims().n_t) {
   if (!(depth.dims() == lf.dims()))
     throw Error("the depth maps were made for another light field (grid or st resolution differ)");
+  // A view filled from its neighbours is no photograph: read as a camera that sees nothing (the
+  // others' weights renormalised), whatever map it has.
+  const std::vector<bool> photographed = PhotographedViews(lf);
   for (int r = 0; r < rows_; ++r)
     for (int c = 0; c < cols_; ++c) {
       Camera camera;
       camera.center = lf.camera_center(r, c);
       camera.window = lf.st_offset(r, c);
-      if (depth.has(r, c)) {
+      if (depth.has(r, c) && photographed[std::size_t(r * cols_ + c)]) {
         const cv::Mat& m = depth.at(r, c).depth;
         camera.depth = m.ptr<float>(0);
         camera.stride = m.step1();
@@ -262,6 +266,7 @@ bool DepthLookupReadsCubic(const VirtualCamera& camera, const LightFieldSampler&
 std::vector<bool> DepthViewsNeeded(const LightField& lf, const VirtualCamera& camera) {
   const auto& d = lf.dims();
   std::vector<bool> needed(d.view_count(), false);
+  const std::vector<bool> photographed = PhotographedViews(lf);  // a filled view is never read
   const Slab slab = lf.sampled_slab();
   const auto mark = [&](const Vec3& origin, const Vec3& direction) {
     const auto c = slab.intersect({origin, direction});
@@ -271,7 +276,8 @@ std::vector<bool> DepthViewsNeeded(const LightField& lf, const VirtualCamera& ca
     for (int r = row - 1; r <= row + 2; ++r)
       for (int k = col - 1; k <= col + 2; ++k)
         if (r >= 0 && r < d.rows && k >= 0 && k < d.cols)
-          needed[std::size_t(r) * d.cols + std::size_t(k)] = true;
+          needed[std::size_t(r) * d.cols + std::size_t(k)] =
+              photographed[std::size_t(r) * d.cols + std::size_t(k)];
   };
   std::vector<Vec3> lens;
   for (const Vec2& disk : camera.lens_samples()) lens.push_back(camera.lens_point(disk));
