@@ -18,6 +18,8 @@
 #include "lfcam/cli/cli_test_support.h"
 #include "lfcam/core/lightfield_file.h"
 #include "lfcam/core/view_filling.h"
+#include "lfcam/io/grid_import.h"
+#include "lfcam/io/rectified_import.h"
 
 namespace lfcam::dark_views_test {
 namespace {
@@ -58,6 +60,50 @@ void WriteBlackenedRig(const fs::path& dir) {
     cv::Mat black(view.size(), CV_8UC3, cv::Scalar(2, 3, 2));
     ASSERT_TRUE(cv::imwrite((dir / "dark" / name).string(), black));
   }
+}
+
+// The import itself on a tiny 3 x 3 rig of noise (fast enough for the sanitizers): one view black
+// is filled with the mean of its nearest neighbours and recorded; a dim one (a quarter of the
+// others' brightness) is kept as it is; told to, the import keeps the black one too.
+TEST(DarkViews, TheImportFillsABlackViewAndKeepsADimOne) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("lfcam_dark_tiny_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  cv::RNG rng(7);
+  for (int top = 1; top <= 3; ++top)
+    for (int col = 1; col <= 3; ++col) {
+      cv::Mat view(40, 48, CV_8UC3);
+      rng.fill(view, cv::RNG::UNIFORM, 60, 200);
+      if (top == 1 && col == 1) view.setTo(cv::Scalar(1, 2, 1));  // black, nearly
+      if (top == 3 && col == 3) view /= 4;                        // dim
+      ASSERT_TRUE(
+          cv::imwrite((dir / fmt::format("tiny_{:02d}_{:02d}.png", top, col)).string(), view));
+    }
+  const ImportedGrid grid = ScanGridFolder(dir, false);
+  const RectifiedGeometry geometry = ResolveRectifiedGeometry(grid, {});
+  RectifiedImportReport report;
+  const LightField lf = ImportRectifiedViews(dir, grid, geometry, {}, &report);
+  ASSERT_EQ(report.dark.size(), 1u);
+  EXPECT_EQ(report.dark[0], "tiny_01_01.png (2, 0)");  // the top-left view: lfcam's row 2
+  ASSERT_EQ(report.filled.size(), 1u);
+  EXPECT_EQ(FilledViews(lf), (std::vector<std::pair<int, int>>{{2, 0}}));
+  EXPECT_EQ(lf.metadata()["import"]["dark_views"][0]["file"], "tiny_01_01.png");
+  // Filled: as bright as its neighbours (the mean of (1, 0) and (2, 1)), not black.
+  const auto mean_of = [&](int r, int c) {
+    const cv::Mat view(40, 48, CV_8UC3, const_cast<std::uint8_t*>(lf.view_data(r, c)));
+    return cv::mean(view)[1];
+  };
+  EXPECT_GT(mean_of(2, 0), 0.8 * std::min(mean_of(1, 0), mean_of(2, 1)));
+  // The dim view is a photograph, kept sample for sample.
+  const cv::Mat dim = cv::imread((dir / "tiny_03_03.png").string());
+  EXPECT_NEAR(mean_of(0, 2), cv::mean(dim)[1], 1e-9);
+  // Told to keep them, nothing is filled.
+  RectifiedImportReport kept;
+  ImportRectifiedViews(dir, grid, geometry, {}, &kept, /*fill_dark_views=*/false);
+  EXPECT_TRUE(kept.dark.empty());
+  EXPECT_TRUE(kept.filled.empty());
+  fs::remove_all(dir);
 }
 
 TEST(DarkViews, BlackViewsAreFilledFromTheirNeighboursSaidAndLeftOutOfDepth) {

@@ -7,6 +7,7 @@
 #include <limits>
 #include <vector>
 
+#include "lfcam/core/view_filling.h"
 #include "lfcam/render/lightfield_sampler.h"
 
 namespace lfcam {
@@ -22,8 +23,9 @@ struct Cost {
 // The spread of the cameras' colours over the patch on the plane of focus at distance d: the
 // variance across cameras, summed over the patch's points and channels, per point. Cameras
 // whose lines to a point leave the sampled st domain (or their own window) are left out of that
-// point.
-Cost PatchCost(const LightField& lf, const LightFieldSampler& sampler, const VirtualCamera& camera,
+// point, and so are those not `photographed` (filled from their neighbours: core/view_filling.h).
+Cost PatchCost(const LightField& lf, const LightFieldSampler& sampler,
+               const std::vector<bool>& photographed, const VirtualCamera& camera,
                const Vec3& direction, double d, const FocusProbeOptions& o, double step_mm) {
   const int rows = lf.dims().rows, cols = lf.dims().cols;
   const Vec3 centre = camera.e_c() + d * direction;
@@ -37,6 +39,7 @@ Cost PatchCost(const LightField& lf, const LightFieldSampler& sampler, const Vir
       int n = 0;
       for (int r = 0; r < rows; ++r)
         for (int c = 0; c < cols; ++c) {
+          if (!photographed[std::size_t(r * cols + c)]) continue;
           const Vec3 origin = lf.camera_center(r, c);
           // The camera sees p only in front of it (toward the scene) and inside the domain.
           if (n_ca.dot(p - origin) >= 0 || !sampler.MeetsStDomain(origin, p - origin)) continue;
@@ -63,12 +66,12 @@ Cost PatchCost(const LightField& lf, const LightFieldSampler& sampler, const Vir
 
 // Costs at the given distances, in parallel.
 std::vector<Cost> Sweep(const LightField& lf, const LightFieldSampler& sampler,
-                        const VirtualCamera& camera, const Vec3& direction,
-                        const std::vector<double>& distances, const FocusProbeOptions& o,
-                        double step_mm) {
+                        const std::vector<bool>& photographed, const VirtualCamera& camera,
+                        const Vec3& direction, const std::vector<double>& distances,
+                        const FocusProbeOptions& o, double step_mm) {
   std::vector<Cost> costs(distances.size());
   tbb::parallel_for(std::size_t(0), distances.size(), [&](std::size_t i) {
-    costs[i] = PatchCost(lf, sampler, camera, direction, distances[i], o, step_mm);
+    costs[i] = PatchCost(lf, sampler, photographed, camera, direction, distances[i], o, step_mm);
   });
   return costs;
 }
@@ -92,6 +95,10 @@ FocusProbe ProbeFocusDistance(const LightField& lf, const VirtualCamera& camera,
                               const FocusProbeOptions& options) {
   FocusProbe probe;
   const LightFieldSampler sampler(lf);
+  // The photographed views, unless every view was filled.
+  std::vector<bool> photographed = PhotographedViews(lf);
+  if (std::find(photographed.begin(), photographed.end(), true) == photographed.end())
+    photographed.assign(photographed.size(), true);
   const Vec3 direction = camera.direction_through(x, y);
   const double near_mm =
       options.near_mm > 0 ? options.near_mm : 1.02 * camera.params().focal_length_mm;
@@ -105,13 +112,13 @@ FocusProbe ProbeFocusDistance(const LightField& lf, const VirtualCamera& camera,
 
   const std::vector<double> coarse = Geometric(near_mm, far_mm, 1.02);
   const std::vector<Cost> coarse_costs =
-      Sweep(lf, sampler, camera, direction, coarse, options, step_mm);
+      Sweep(lf, sampler, photographed, camera, direction, coarse, options, step_mm);
   const std::size_t best = Best(coarse_costs);
   if (!std::isfinite(coarse_costs[best].value)) return probe;
   const double lo = coarse[best] / (1.02 * 1.02), hi = coarse[best] * 1.02 * 1.02;
   const std::vector<double> fine = Geometric(std::max(lo, near_mm), std::min(hi, far_mm), 1.001);
   const std::vector<Cost> fine_costs =
-      Sweep(lf, sampler, camera, direction, fine, options, step_mm);
+      Sweep(lf, sampler, photographed, camera, direction, fine, options, step_mm);
   const std::size_t fine_best = Best(fine_costs);
   if (!std::isfinite(fine_costs[fine_best].value)) return probe;
 

@@ -5,9 +5,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <iostream>
 #include <string>
 
+#include "lfcam/core/view_filling.h"
 #include "lfcam/sim/scene.h"
 #include "lfcam/sim/simulate_lightfield.h"
 
@@ -73,6 +75,39 @@ TEST(FocusProbe, FindsTheDistanceOfWhatThePixelSees) {
                 << "%), confidence " << probe.confidence << "\n";
     }
   }
+}
+
+// Cameras the light field filled from their neighbours (a dead camera of the array, built with
+// --allow-missing) are no photographs: the probe compares the photographed cameras alone, and
+// still finds what the pixel sees.
+TEST(FocusProbe, ComparesThePhotographedCamerasAlone) {
+  const LightField& whole = FocusProbeLightField();
+  LightField lf(whole.dims(), whole.sample_type(), whole.slab());
+  std::memcpy(lf.mutable_view_data(0, 0), whole.data(), whole.total_bytes());
+  nlohmann::json filled = nlohmann::json::array();
+  std::vector<bool> present(lf.dims().view_count(), true);
+  for (int i = 0; i < 10; ++i) present[std::size_t((i % 5) * 2 * 10 + (3 * i) % 10)] = false;
+  for (int r = 0; r < 10; ++r)
+    for (int c = 0; c < 10; ++c) {
+      if (present[std::size_t(r * 10 + c)]) continue;
+      const auto from = NearestPresentViews(10, 10, present, r, c);
+      FillViewWithMean(lf, r, c, from);
+      filled.push_back({{"row", r}, {"col", c}, {"from", from}});
+    }
+  lf.metadata()["filled_views"] = filled;
+  ASSERT_EQ(FilledViews(lf).size(), 10u);
+  VirtualCameraParams p;
+  p.width = p.height = 256;
+  p.eye = lf.slab().uv.center();
+  p.look_at = Vec3(370, 165, -300 + 40);  // the globe
+  p.focal_length_mm = 300;
+  const VirtualCamera camera(p);
+  const double truth = TrueFocusDistance(camera, 128, 128);
+  const FocusProbe probe = ProbeFocusDistance(lf, camera, 128, 128);
+  ASSERT_TRUE(probe.found);
+  EXPECT_NEAR(probe.focus_distance_mm, truth, 0.02 * truth);
+  EXPECT_LE(probe.cameras, 90);  // the 10 filled are not compared
+  EXPECT_GT(probe.cameras, 40);
 }
 
 TEST(FocusProbe, SaysWhenNoCameraSeesThePixel) {
