@@ -1,10 +1,13 @@
 // `lfcam info` (what a light field file holds) and `lfcam compare` (PSNR and SSIM).
 #include <fmt/core.h>
+#include <fmt/ranges.h>
 
 #include <chrono>
 #include <cmath>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
 
 #include "lfcam/cli/commands.h"
 #include "lfcam/core/error.h"
@@ -15,6 +18,7 @@
 #include "lfcam/core/lightfield_file.h"
 #include "lfcam/core/lightfield_video_file.h"
 #include "lfcam/core/limits.h"
+#include "lfcam/core/view_filling.h"
 
 namespace lfcam::cli {
 namespace {
@@ -207,6 +211,16 @@ void AddInfoCommand(CLI::App& app) {
                                                      : "measured centres",
                  h.measured_poses.size(),
                  h.measured_poses.front().intrinsics ? " (render --as-camera R,C)" : "");
+    if (const auto filled = FilledViews(h.metadata, h.dims.rows, h.dims.cols); !filled.empty()) {
+      std::vector<std::string> labels;
+      for (const auto& [r, c] : filled) labels.push_back(fmt::format("({}, {})", r, c));
+      fmt::print(
+          "  filled        {} view{} filled from {} neighbours, no photograph{} (depth, the depth "
+          "lookup, click to focus and export leave {} out): {}\n",
+          filled.size(), filled.size() == 1 ? "" : "s", filled.size() == 1 ? "its" : "their",
+          filled.size() == 1 ? "" : "s", filled.size() == 1 ? "it" : "them",
+          fmt::join(labels, ", "));
+    }
     if (flags->verify)
       fmt::print("  verified      all views{} read and checked in {:.0f} ms\n",
                  video.is_video() ? " of every frame" : "", verify_ms);

@@ -71,7 +71,10 @@ std::string FilledViewLabel(int row, int col, const std::vector<std::pair<int, i
 }
 
 std::vector<std::pair<int, int>> FilledViews(const LightField& lf) {
-  const nlohmann::json& m = lf.metadata();
+  return FilledViews(lf.metadata(), lf.dims().rows, lf.dims().cols);
+}
+
+std::vector<std::pair<int, int>> FilledViews(const nlohmann::json& m, int rows, int cols) {
   const nlohmann::json* list = nullptr;
   if (m.contains("filled_views"))
     list = &m["filled_views"];
@@ -88,8 +91,7 @@ std::vector<std::pair<int, int>> FilledViews(const LightField& lf) {
                std::sscanf(entry.get<std::string>().c_str(), "camera (%d, %d)", &row, &col) != 2) {
       continue;
     }
-    if (row >= 0 && row < lf.dims().rows && col >= 0 && col < lf.dims().cols)
-      filled.emplace_back(row, col);
+    if (row >= 0 && row < rows && col >= 0 && col < cols) filled.emplace_back(row, col);
   }
   return filled;
 }

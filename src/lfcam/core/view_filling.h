@@ -27,6 +27,8 @@ std::string FilledViewLabel(int row, int col, const std::vector<std::pair<int, i
 // and `col`, or, in files imported before 2026-12-04, FilledViewLabel's strings. Entries of
 // another shape, or outside the grid, are passed over.
 std::vector<std::pair<int, int>> FilledViews(const LightField& lf);
+// The same from a light field's metadata and grid (a file's header, `lfcam info`).
+std::vector<std::pair<int, int>> FilledViews(const nlohmann::json& metadata, int rows, int cols);
 // Row-major, one a view: false where FilledViews names the view.
 std::vector<bool> PhotographedViews(const LightField& lf);
 

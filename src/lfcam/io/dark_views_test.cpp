@@ -134,6 +134,9 @@ TEST(DarkViews, BlackViewsAreFilledFromTheirNeighboursSaidAndLeftOutOfDepth) {
   EXPECT_EQ(filled.size(), 3u);
   EXPECT_NE(std::find(filled.begin(), filled.end(), std::pair{kRows - 1, 0}), filled.end());
   EXPECT_EQ(lf.metadata()["import"]["dark_views"].size(), 3u);
+  const auto info = testing::Lfcam("info " + (dir / "dark.lf").string());
+  EXPECT_NE(info.output.find("3 views filled from their neighbours"), std::string::npos)
+      << info.output;
   // Told to, the import keeps them as they are.
   const auto kept =
       testing::Lfcam(fmt::format("import {} --out {} --keep-dark-views --json --quiet",
