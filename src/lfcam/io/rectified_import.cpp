@@ -193,6 +193,19 @@ RectifiedGeometry ResolveRectifiedGeometry(const ImportedGrid& g, const ImportOp
   }
   if (!(r.zero_disparity_mm > 0) || !std::isfinite(r.zero_disparity_mm))
     throw Error("the zero-disparity plane's distance must be positive");
+  // A distance given or published that puts infinity nearer, in disparity, than the parallax the
+  // views show: what lies farther behind the zero-disparity plane than infinity cannot be swept,
+  // and if the scene does, its occlusions may then read the rig as turned half a turn.
+  const double infinity_px = r.focal_px * r.pitch_mm / r.zero_disparity_mm;
+  const bool distance_known =
+      o.st_distance_mm || g.zero_disparity_mm || g.st_distance_mm || principal_points;
+  if (distance_known && o.scene_parallax_px && *o.scene_parallax_px > infinity_px)
+    r.notes.push_back(fmt::format(
+        "the views show parallax of up to {:.1f} px between neighbours, and at this distance "
+        "infinity lies {:.1f} px behind the zero-disparity plane: nothing can lie farther behind "
+        "it than that. If the scene does (its depth wrong behind that plane, or the rig taken as "
+        "turned below), the distance is too large",
+        *o.scene_parallax_px, infinity_px));
   r.scene_disparity_px = SceneDisparityPx(g, o);
   return r;
 }

@@ -328,6 +328,36 @@ TEST(RectifiedImport, TheDepthRangeFoundIsTheSameInPixelsWhateverUnitsWereAssume
   fs::remove_all(dir);
 }
 
+// A distance given (or published) that puts infinity nearer, in disparity, than the parallax the
+// views show is said: nothing could lie farther behind the zero-disparity plane than infinity, so
+// if the scene does, the distance is too large (on a zoomed Stanford-named gantry given one that
+// put infinity 8 px behind while its world lay 15 px behind, the occlusions read the rig as
+// turned and none of its map was right). Not said where the distance was assumed (it is then put
+// behind the parallax), nor where the parallax fits.
+TEST(RectifiedImport, ADistanceThatPutsInfinityWithinTheViewsParallaxIsSaid) {
+  TrueRig rig;
+  const fs::path dir = WriteRectifiedRig("lfcam_rectified_infinity_", &rig);
+  const ImportedGrid grid = ScanGridFolder(dir, false);
+  const auto said = [&](std::optional<double> distance, double parallax) {
+    ImportOptions options;
+    options.focal_px = kFocalPx;
+    options.st_distance_mm = distance;
+    options.scene_parallax_px = parallax;
+    options.infinity_disparity_px = SceneBracketPx(parallax);
+    const RectifiedGeometry geo = ResolveRectifiedGeometry(grid, options);
+    for (const std::string& note : geo.notes)
+      if (note.find("the distance is too large") != std::string::npos) return note;
+    return std::string();
+  };
+  // Unit pitch: infinity lies f / Z0 px behind the zero-disparity plane.
+  const std::string note = said(kFocalPx / 8.0, 15.0);
+  EXPECT_NE(note.find("up to 15.0 px"), std::string::npos) << note;
+  EXPECT_NE(note.find("infinity lies 8.0 px behind"), std::string::npos) << note;
+  EXPECT_EQ(said(kFocalPx / 8.0, 5.0), "");
+  EXPECT_EQ(said(std::nullopt, 15.0), "");
+  fs::remove_all(dir);
+}
+
 TEST(RectifiedImport, ADescriptionGivesTheMetricGeometryOrThePrincipalPoints) {
   TrueRig rig;
   const fs::path dir = WriteRectifiedRig("lfcam_rectified_described_", &rig);
