@@ -172,11 +172,11 @@ SweepViews::SweepViews(const LightField& lf, int row, int col, const CostVolumeO
   // Views the light field filled from their neighbours are no photographs: matched, a blend of
   // their neighbours agrees with no depth. Left out, unless no other view is within reach.
   auto around = ViewsAround(d, row, col, std::max(1, options.reach));
-  const auto filled = FilledViews(lf);
-  std::vector<std::pair<int, int>> photographed;
-  for (const auto& rc : around)
-    if (std::find(filled.begin(), filled.end(), rc) == filled.end()) photographed.push_back(rc);
-  if (!photographed.empty()) around = std::move(photographed);
+  const std::vector<bool> photographed = PhotographedViews(lf);
+  std::vector<std::pair<int, int>> of_photographs;
+  for (const auto& [r, c] : around)
+    if (photographed[std::size_t(r * d.cols + c)]) of_photographs.emplace_back(r, c);
+  if (!of_photographs.empty()) around = std::move(of_photographs);
   views_.resize(around.size());
   tbb::parallel_for(std::size_t(0), around.size(),
                     [&](std::size_t i) { views_[i] = load(around[i].first, around[i].second); });

@@ -154,13 +154,12 @@ ExportReport ExportLightField(const LightField& lf, ExportFormat format, const f
   // A view filled from its neighbours (a camera without an image, a black view) is no
   // photograph: the grid of PNG views keeps it, marked, and COLMAP and NeRF, which would take it
   // for one, are not given it. Each view keeps its id (row * cols + col + 1) either way.
-  const auto filled = FilledViews(lf);
+  const std::vector<bool> photographed = PhotographedViews(lf);
   int id = 0;
   for (int r = 0; r < d.rows; ++r)
     for (int c = 0; c < d.cols; ++c) {
       ++id;
-      const bool is_filled =
-          std::find(filled.begin(), filled.end(), std::pair{r, c}) != filled.end();
+      const bool is_filled = !photographed[std::size_t(id - 1)];
       if (is_filled && format != ExportFormat::kPngViews) {
         report.filled_left_out.emplace_back(r, c);
         continue;

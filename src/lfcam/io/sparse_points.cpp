@@ -35,13 +35,12 @@ SparsePoints PointsFromDepth(const LightField& lf, const DepthSet& depth,
   std::vector<ViewCamera> cameras;
   // The views a point may come from or be seen in: those with a map that were photographed
   // (a view filled from its neighbours is no photograph, and is not exported as one).
-  std::vector<bool> seeing(d.view_count(), false);
+  std::vector<bool> seeing = PhotographedViews(lf);
   for (int r = 0; r < d.rows; ++r)
     for (int c = 0; c < d.cols; ++c) {
       cameras.push_back(ViewAsCamera(lf, r, c));
-      seeing[std::size_t(r * d.cols + c)] = depth.has(r, c);
+      if (!depth.has(r, c)) seeing[std::size_t(r * d.cols + c)] = false;
     }
-  for (const auto& [r, c] : FilledViews(lf)) seeing[std::size_t(r * d.cols + c)] = false;
   std::vector<int> with_map;
   for (int view = 0; view < int(d.view_count()); ++view)
     if (seeing[std::size_t(view)]) with_map.push_back(view);
