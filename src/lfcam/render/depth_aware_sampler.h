@@ -79,6 +79,11 @@ class DepthAwareSampler {
   double q_near() const { return q_near_; }
   double q_far() const { return q_far_; }
   double unit_q() const { return unit_q_; }
+  // Whether camera (row, col) is read at all: it has a map and was photographed, not filled from
+  // its neighbours (the GL renderer's per-view flags are these).
+  bool reads(int row, int col) const {
+    return cameras_[std::size_t(row * cols_ + col)].depth != nullptr;
+  }
 
  private:
   struct Camera {

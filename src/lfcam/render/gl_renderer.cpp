@@ -12,7 +12,6 @@
 #include <vector>
 
 #include "lfcam/core/error.h"
-#include "lfcam/core/view_filling.h"
 #include "lfcam/gpu/gl_program.h"
 #include "lfcam/render/camera_integrator.h"
 #include "lfcam/render/depth_aware_sampler.h"
@@ -518,14 +517,13 @@ double GlRenderer::RenderDepth(const LightField& lf, const VirtualCamera& camera
     }
   std::vector<float> centres, offsets;
   std::vector<std::int32_t> has;
-  const std::vector<bool> photographed = PhotographedViews(lf);  // as DepthAwareSampler reads
   for (int r = 0; r < d.rows; ++r)
     for (int c = 0; c < d.cols; ++c) {
       const Vec3 x = lf.camera_center(r, c) - origin;
       centres.insert(centres.end(), {float(x.x()), float(x.y()), float(x.z()), 0.0f});
       const StOffset o = lf.st_offset(r, c);
       offsets.insert(offsets.end(), {float(o.k), float(o.l)});
-      has.push_back(options.depth->has(r, c) && photographed[std::size_t(r * d.cols + c)] ? 1 : 0);
+      has.push_back(reference.reads(r, c) ? 1 : 0);
     }
   FillBuffer(buffers_[0], lens);
   FillBuffer(buffers_[1], centres);
