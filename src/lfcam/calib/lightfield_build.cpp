@@ -474,6 +474,17 @@ LightField BuildLightFieldFromImages(const CalibrationFile& cal,
   if (std::none_of(built.begin(), built.end(), [](bool b) { return b; }))
     throw Error(fmt::format("no camera's image {} could be read:\n  {}", where,
                             fmt::join(unreadable, "\n  ")));
+  // Views too dark to be photographs of the scene: filled like missing ones, at their own poses.
+  std::vector<bool> dark(image_of.size(), false);
+  nlohmann::json dark_views = nlohmann::json::array();
+  if (o.fill_dark_views)
+    for (const auto& [r, c] : DarkViews(lf, built)) {
+      const std::size_t i = std::size_t(r * cols + c);
+      built[i] = false;
+      dark[i] = true;
+      report.dark.emplace_back(r, c);
+      dark_views.push_back({{"row", r}, {"col", c}});
+    }
   report.unreadable = unreadable;
   report.decode_seconds = decode_seconds;
   report.reduction_max = reduction_max;
@@ -483,7 +494,7 @@ LightField BuildLightFieldFromImages(const CalibrationFile& cal,
   // Measured poses; missing views filled from their nearest built neighbours, in linear light.
   std::vector<ViewPose> poses(image_of.size());
   for (std::size_t i = 0; i < image_of.size(); ++i)
-    if (built[i]) {
+    if (built[i] || dark[i]) {
       // The camera as `render --as-camera` reproduces it: its pinhole, distortion undone.
       CameraIntrinsics pinhole = cal.cameras[i].intrinsics;
       pinhole.distortion = {};
@@ -498,7 +509,8 @@ LightField BuildLightFieldFromImages(const CalibrationFile& cal,
       const auto from = NearestPresentViews(rows, cols, built, r, c);
       FillViewWithMean(lf, r, c, from);
       const ViewPose& nearest = poses[std::size_t(from[0].first * cols + from[0].second)];
-      poses[i] = {slab.uv.camera_center(r, c), nearest.orientation, nearest.intrinsics};
+      if (!dark[i])
+        poses[i] = {slab.uv.camera_center(r, c), nearest.orientation, nearest.intrinsics};
       report.filled.push_back(FilledViewLabel(r, c, from));
       filled.push_back({{"row", r}, {"col", c}, {"from", from}});
     }
@@ -526,6 +538,7 @@ LightField BuildLightFieldFromImages(const CalibrationFile& cal,
                      {"mean_colour_spread_before", spread_json(report.before)},
                      {"mean_colour_spread_after", spread_json(report.after)}}},
                    {"filled_views", filled},
+                   {"dark_views", dark_views},
                    {"unreadable_images", unreadable},
                    {"created", fmt::format("{:%Y-%m-%dT%H:%M:%SZ}", now)}};
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

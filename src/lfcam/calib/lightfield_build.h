@@ -37,6 +37,9 @@ struct BuildOptions {
   // every camera saw. Otherwise every view samples the st domain itself.
   bool view_windows = false;
   bool allow_missing = false;  // fill cameras without an image or calibration from neighbours
+  // Fill, from their neighbours, views too dark to be photographs of the scene (DarkViews in
+  // core/view_filling.h: a covered lens, a failed exposure), whatever allow_missing says.
+  bool fill_dark_views = true;
   bool photometric_correction = true;  // when the calibration has it
   std::string shot = "scene";  // the shot to build (the world shot shows the board at the st-plane)
   std::function<void()> view_done;  // once per view (serialised)
@@ -53,6 +56,7 @@ struct ColourSpread {
 struct BuildReport {
   std::vector<std::string> filled;         // "camera (r, c) from (r, c), ..." for each filled view
   std::vector<std::string> unreadable;     // images that could not be read (filled, allow_missing)
+  std::vector<std::pair<int, int>> dark;   // (row, col) of each view too dark (filled)
   ColourSpread before, after;              // per-camera mean colour, without and with correction
   int reduction_max = 1;                   // the largest decode reduction used
   double seconds = 0, decode_seconds = 0;  // wall; decode summed over threads

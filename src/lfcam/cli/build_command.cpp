@@ -1,6 +1,7 @@
 // `lfcam build SESSION --calibration calibration.json --out FILE`: the light field of a
 // calibrated capture session.
 #include <fmt/core.h>
+#include <fmt/ranges.h>
 
 #include <cmath>
 #include <memory>
@@ -16,6 +17,7 @@
 #include "lfcam/core/lightfield_file.h"
 #include "lfcam/core/limits.h"
 #include "lfcam/core/progress.h"
+#include "lfcam/session/session.h"
 
 namespace lfcam::cli {
 
@@ -75,7 +77,8 @@ void AddBuildCommand(CLI::App& app) {
     std::string session, calibration, out, st_res = "1248x1152", st_domain, compression = "none",
                                            shot = "scene", resampling = "linear", chroma = "guided",
                                            st_windows = "shared", frames;
-    bool allow_missing = false, no_color = false, json = false, quiet = false;
+    bool allow_missing = false, keep_dark_views = false, no_color = false, json = false,
+         quiet = false;
   };
   auto flags = std::make_shared<Flags>();
   command->add_option("session", flags->session, "Capture session directory")->required();
@@ -115,6 +118,10 @@ void AddBuildCommand(CLI::App& app) {
   command->add_flag("--allow-missing", flags->allow_missing,
                     "Fill cameras without an image or calibration from their nearest neighbours "
                     "(recorded in the file's metadata)");
+  command->add_flag("--keep-dark-views", flags->keep_dark_views,
+                    "Keep views that recorded black, or nearly (darker than 1/16 of the median "
+                    "view: a covered lens, a failed exposure), as they are; by default they are "
+                    "filled from their neighbours, as missing cameras are (recorded)");
   command->add_flag("--no-color-correction", flags->no_color,
                     "Do not apply the calibration's per-module gain and vignetting correction");
   command->add_flag("--json", flags->json, "Print a summary as JSON on stdout");
@@ -126,6 +133,7 @@ void AddBuildCommand(CLI::App& app) {
     LightFieldWriteOptions w;
     w.compression = ParseCompression("--compress", flags->compression);
     o.allow_missing = flags->allow_missing;
+    o.fill_dark_views = !flags->keep_dark_views;
     o.shot = flags->shot;
     o.resampling =
         FlagValue("--resampling", [&] { return ResamplingFromString(flags->resampling); });
@@ -187,6 +195,16 @@ void AddBuildCommand(CLI::App& app) {
         "{:.2f}% of the median (RMS {:.2f}%), {:.2f}% before correction\n",
         100 * report.after.region_fraction, 100 * report.after.max_deviation,
         100 * report.after.rms_deviation, 100 * report.before.max_deviation);
+    if (!report.dark.empty()) {
+      std::vector<std::string> dark;
+      for (const auto& [row, col] : report.dark) dark.push_back(CameraLabel(row, col));
+      fmt::print(
+          "  note: {} view{} black or nearly (darker than 1/16 of the median view: no photograph "
+          "of the scene), filled from {} neighbours as a missing camera is: {} (--keep-dark-views "
+          "keeps them)\n",
+          dark.size(), dark.size() == 1 ? "" : "s", dark.size() == 1 ? "its" : "their",
+          fmt::join(dark, ", "));
+    }
     for (const auto& f : report.filled) fmt::print(stderr, "lfcam: warning: filled {}\n", f);
     fmt::print("wrote {}\n", flags->out);
   });

@@ -132,8 +132,8 @@ void ImportFlags::AddTo(CLI::App& command) {
   command.add_flag("--allow-missing", allow_missing,
                    "Fill views missing from the grid from their nearest neighbours (recorded)");
   command.add_flag("--keep-dark-views", keep_dark_views,
-                   "Rectified rig: keep views that recorded black, or nearly, as they are (by "
-                   "default they are filled from their neighbours, as missing views are)");
+                   "Keep views that recorded black, or nearly, as they are (by default they are "
+                   "filled from their neighbours, as missing views are)");
   command.add_flag("--flip-rows", flip_rows,
                    "Take the grid's rows in reverse: for names whose row index or y counts the "
                    "other way than lfcam reads it (docs/format.md)");
@@ -310,9 +310,14 @@ ImportedLightField ImportFlags::Run(bool quiet) const {
   ProgressBar progress("importing views", std::int64_t(grid.rows) * grid.cols,
                        ProgressWanted(quiet));
   if (const auto advance = progress.callback()) b.view_done = [advance] { advance(1); };
+  b.fill_dark_views = o.fill_dark_views;
   BuildReport report;
   LightField lf = BuildLightField(dir, session.manifest, session.calibration, b, &report);
   progress.finish();
+  std::vector<std::string> dark;
+  for (const auto& [row, col] : report.dark)
+    dark.push_back(
+        fmt::format("{} ({}, {})", grid.views[std::size_t(row * grid.cols + col)].file, row, col));
   return Imported(std::move(lf), grid, grid.rig, report.filled, report.seconds,
                   {{"axes", axes},
                    {"pitch_mm", grid.pitch_mm},
@@ -323,7 +328,8 @@ ImportedLightField ImportFlags::Run(bool quiet) const {
                     session.st_distance_unsnapped_mm.value_or(session.st_distance_mm)},
                    {"st_distance_snapped", session.st_distance_unsnapped_mm.has_value()},
                    {"notes", NamingNotes(grid)},
-                   {"samples_between_neighbours", session.samples_between_neighbours}});
+                   {"samples_between_neighbours", session.samples_between_neighbours},
+                   {"dark", dark}});
 }
 
 std::unique_ptr<ImportRequest> ParseImportKeywords(const std::string& dir,

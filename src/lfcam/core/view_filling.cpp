@@ -2,10 +2,12 @@
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <climits>
 #include <cstdio>
+#include <opencv2/core.hpp>
 
 #include "lfcam/core/color.h"
 #include "lfcam/core/error.h"
@@ -68,6 +70,34 @@ std::string FilledViewLabel(int row, int col, const std::vector<std::pair<int, i
   std::vector<std::string> names;
   for (const auto& [r, c] : from) names.push_back(fmt::format("({}, {})", r, c));
   return fmt::format("camera ({}, {}) from {}", row, col, fmt::join(names, ", "));
+}
+
+std::vector<std::pair<int, int>> DarkViews(const LightField& lf, const std::vector<bool>& read) {
+  const auto& d = lf.dims();
+  const int w = d.n_s, h = d.n_t, views = d.rows * d.cols;
+  if (lf.sample_type() != SampleType::kSrgb8 || int(read.size()) != views)
+    throw Error("DarkViews: an srgb8 light field and a flag for each of its views");
+  const cv::Rect middle(w / 8, h / 8, w - w / 4, h - h / 4);
+  std::vector<double> brightness(std::size_t(views), -1);
+  tbb::parallel_for(0, views, [&](int i) {
+    if (!read[std::size_t(i)]) return;
+    const cv::Mat view(h, w, CV_8UC3,
+                       const_cast<std::uint8_t*>(lf.view_data(i / d.cols, i % d.cols)));
+    const cv::Scalar mean = cv::mean(view(middle));
+    brightness[std::size_t(i)] = mean[0] + mean[1] + mean[2];
+  });
+  std::vector<double> measured;
+  for (double b : brightness)
+    if (b >= 0) measured.push_back(b);
+  std::vector<std::pair<int, int>> dark;
+  if (measured.empty()) return dark;
+  std::nth_element(measured.begin(), measured.begin() + long(measured.size() / 2), measured.end());
+  const double median = measured[measured.size() / 2];
+  if (!(median > 1.0)) return dark;  // black, all of it: nothing to tell the views apart by
+  for (int i = 0; i < views; ++i)
+    if (brightness[std::size_t(i)] >= 0 && brightness[std::size_t(i)] < kDarkViewShare * median)
+      dark.emplace_back(i / d.cols, i % d.cols);
+  return dark;
 }
 
 std::vector<std::pair<int, int>> FilledViews(const LightField& lf) {

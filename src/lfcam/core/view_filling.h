@@ -1,6 +1,7 @@
 #pragma once
-// Filling a view the grid lacks (`build` and `import --allow-missing`): from its nearest
-// neighbours on the camera grid, averaged in linear light.
+// Filling a view the grid lacks (`build` and `import --allow-missing`) or one too dark to be a
+// photograph of the scene: from its nearest neighbours on the camera grid, averaged in linear
+// light.
 #include <string>
 #include <utility>
 #include <vector>
@@ -14,6 +15,18 @@ namespace lfcam {
 std::vector<std::pair<int, int>> NearestPresentViews(int rows, int cols,
                                                      const std::vector<bool>& present, int row,
                                                      int col);
+
+// A view whose brightness (its three channels' means over the middle of the frame) is under
+// this share of the median view's recorded black, or nearly: a plenoptic camera's views beyond
+// its main lens's aperture (the corners of a 15 x 15 decode), a camera whose exposure failed or
+// whose lens was covered. Such a view is no photograph of the scene, and averaged into a render
+// it would darken it (docs/format.md).
+inline constexpr double kDarkViewShare = 1.0 / 16;
+
+// The views of an srgb8 light field among those `read` (row-major, one a view) whose brightness
+// (the sum of the three channels' means over the middle three quarters of the view each way) is
+// under kDarkViewShare of the median read view's. None where that median is itself black.
+std::vector<std::pair<int, int>> DarkViews(const LightField& lf, const std::vector<bool>& read);
 
 // View (row, col) of an srgb8 light field becomes the mean, in linear light, of the views `from`.
 void FillViewWithMean(LightField& lf, int row, int col,

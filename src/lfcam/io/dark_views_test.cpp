@@ -62,12 +62,9 @@ void WriteBlackenedRig(const fs::path& dir) {
   }
 }
 
-// The import itself on a tiny 3 x 3 rig of noise (fast enough for the sanitizers): one view black
-// is filled with the mean of its nearest neighbours and recorded; a dim one (a quarter of the
-// others' brightness) is kept as it is; told to, the import keeps the black one too.
-TEST(DarkViews, TheImportFillsABlackViewAndKeepsADimOne) {
-  const fs::path dir =
-      fs::temp_directory_path() / ("lfcam_dark_tiny_" + std::to_string(::getpid()));
+// A tiny 3 x 3 rig of noise in `dir`, named tiny_RR_CC (row 01 at the top): its top-left view
+// black, or nearly; its bottom-right one dim (a quarter of the others' brightness).
+void WriteTinyRig(const fs::path& dir) {
   fs::remove_all(dir);
   fs::create_directories(dir);
   cv::RNG rng(7);
@@ -80,6 +77,21 @@ TEST(DarkViews, TheImportFillsABlackViewAndKeepsADimOne) {
       ASSERT_TRUE(
           cv::imwrite((dir / fmt::format("tiny_{:02d}_{:02d}.png", top, col)).string(), view));
     }
+}
+
+// The green mean of view (row, col) of a light field of the tiny rig's size.
+double TinyViewMean(const LightField& lf, int row, int col) {
+  const cv::Mat view(40, 48, CV_8UC3, const_cast<std::uint8_t*>(lf.view_data(row, col)));
+  return cv::mean(view)[1];
+}
+
+// The import itself on the tiny rig (fast enough for the sanitizers): the black view is filled
+// with the mean of its nearest neighbours and recorded; the dim one is kept as it is; told to,
+// the import keeps the black one too.
+TEST(DarkViews, TheImportFillsABlackViewAndKeepsADimOne) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("lfcam_dark_tiny_" + std::to_string(::getpid()));
+  WriteTinyRig(dir);
   const ImportedGrid grid = ScanGridFolder(dir, false);
   const RectifiedGeometry geometry = ResolveRectifiedGeometry(grid, {});
   RectifiedImportReport report;
@@ -90,19 +102,47 @@ TEST(DarkViews, TheImportFillsABlackViewAndKeepsADimOne) {
   EXPECT_EQ(FilledViews(lf), (std::vector<std::pair<int, int>>{{2, 0}}));
   EXPECT_EQ(lf.metadata()["import"]["dark_views"][0]["file"], "tiny_01_01.png");
   // Filled: as bright as its neighbours (the mean of (1, 0) and (2, 1)), not black.
-  const auto mean_of = [&](int r, int c) {
-    const cv::Mat view(40, 48, CV_8UC3, const_cast<std::uint8_t*>(lf.view_data(r, c)));
-    return cv::mean(view)[1];
-  };
-  EXPECT_GT(mean_of(2, 0), 0.8 * std::min(mean_of(1, 0), mean_of(2, 1)));
+  EXPECT_GT(TinyViewMean(lf, 2, 0), 0.8 * std::min(TinyViewMean(lf, 1, 0), TinyViewMean(lf, 2, 1)));
   // The dim view is a photograph, kept sample for sample.
   const cv::Mat dim = cv::imread((dir / "tiny_03_03.png").string());
-  EXPECT_NEAR(mean_of(0, 2), cv::mean(dim)[1], 1e-9);
+  EXPECT_NEAR(TinyViewMean(lf, 0, 2), cv::mean(dim)[1], 1e-9);
   // Told to keep them, nothing is filled.
   RectifiedImportReport kept;
   ImportRectifiedViews(dir, grid, geometry, {}, &kept, /*fill_dark_views=*/false);
   EXPECT_TRUE(kept.dark.empty());
   EXPECT_TRUE(kept.filled.empty());
+  fs::remove_all(dir);
+}
+
+// The same rig imported as parallel cameras (resampled by the build, as a Blender grid is): the
+// build fills the black view from its neighbours, at its own pose, says so, records it, and keeps
+// the dim one; told to, it keeps the black one too. Before, a parallel rig's black view was
+// built as a photograph and darkened every render that took it in.
+TEST(DarkViews, AParallelRigsBlackViewIsFilledByTheBuild) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("lfcam_dark_parallel_" + std::to_string(::getpid()));
+  WriteTinyRig(dir / "rig");
+  const std::string flags = "--rig parallel --focal-px 50 --st-distance 1000";
+  auto run = testing::Lfcam(fmt::format("import {} {} --out {} --json --quiet",
+                                        (dir / "rig").string(), flags, (dir / "p.lf").string()));
+  ASSERT_EQ(run.status, 0) << run.output;
+  const nlohmann::json imported = nlohmann::json::parse(run.output);
+  ASSERT_EQ(imported["dark"].size(), 1u) << imported;
+  EXPECT_EQ(imported["dark"][0], "tiny_01_01.png (2, 0)");
+  const LightField lf = ReadLightField((dir / "p.lf").string());
+  EXPECT_EQ(FilledViews(lf), (std::vector<std::pair<int, int>>{{2, 0}}));
+  EXPECT_EQ(lf.metadata()["dark_views"].size(), 1u);
+  EXPECT_GT(TinyViewMean(lf, 2, 0), 0.8 * std::min(TinyViewMean(lf, 1, 0), TinyViewMean(lf, 2, 1)));
+  EXPECT_LT(TinyViewMean(lf, 0, 2), 0.5 * TinyViewMean(lf, 1, 1));  // the dim one, kept
+  // Said in the output; kept when told to.
+  run = testing::Lfcam(
+      fmt::format("import {} {} --out {}", (dir / "rig").string(), flags, (dir / "p.lf").string()));
+  EXPECT_NE(run.output.find("1 view black or nearly"), std::string::npos) << run.output;
+  run = testing::Lfcam(fmt::format("import {} {} --keep-dark-views --out {} --json --quiet",
+                                   (dir / "rig").string(), flags, (dir / "k.lf").string()));
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_TRUE(nlohmann::json::parse(run.output)["dark"].empty());
+  EXPECT_LT(TinyViewMean(ReadLightField((dir / "k.lf").string()), 2, 0), 5);
   fs::remove_all(dir);
 }
 

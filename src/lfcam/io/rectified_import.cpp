@@ -210,37 +210,6 @@ RectifiedGeometry ResolveRectifiedGeometry(const ImportedGrid& g, const ImportOp
   return r;
 }
 
-namespace {
-
-// The views of `g` (indices into g.views) read into `lf` whose brightness (the sum of their three
-// channels' means over the middle of the frame, sRGB) is under kDarkViewShare of the median
-// view's. None where the median view is itself black.
-std::vector<std::size_t> DarkViews(const LightField& lf, const ImportedGrid& g) {
-  const int w = lf.dims().n_s, h = lf.dims().n_t;
-  const cv::Rect middle(w / 8, h / 8, w - w / 4, h - h / 4);
-  std::vector<double> brightness(g.views.size(), -1);
-  tbb::parallel_for(std::size_t(0), g.views.size(), [&](std::size_t i) {
-    const GridView& v = g.views[i];
-    if (v.file.empty()) return;
-    const cv::Mat view(h, w, CV_8UC3, const_cast<std::uint8_t*>(lf.view_data(v.row, v.col)));
-    const cv::Scalar mean = cv::mean(view(middle));
-    brightness[i] = mean[0] + mean[1] + mean[2];
-  });
-  std::vector<double> read;
-  for (double b : brightness)
-    if (b >= 0) read.push_back(b);
-  if (read.empty()) return {};
-  std::nth_element(read.begin(), read.begin() + long(read.size() / 2), read.end());
-  const double median = read[read.size() / 2];
-  std::vector<std::size_t> dark;
-  if (!(median > 1.0)) return dark;  // black, all of it: nothing to tell the views apart by
-  for (std::size_t i = 0; i < brightness.size(); ++i)
-    if (brightness[i] >= 0 && brightness[i] < kDarkViewShare * median) dark.push_back(i);
-  return dark;
-}
-
-}  // namespace
-
 LightField ImportRectifiedViews(const fs::path& dir, const ImportedGrid& g,
                                 const RectifiedGeometry& geo,
                                 const std::function<void()>& view_done,
@@ -301,7 +270,9 @@ LightField ImportRectifiedViews(const fs::path& dir, const ImportedGrid& g,
   std::vector<bool> present;
   for (const GridView& v : g.views) present.push_back(!v.file.empty());
   nlohmann::json dark = nlohmann::json::array();
-  for (const std::size_t i : fill_dark_views ? DarkViews(lf, g) : std::vector<std::size_t>{}) {
+  for (const auto& [row, col] :
+       fill_dark_views ? DarkViews(lf, present) : std::vector<std::pair<int, int>>{}) {
+    const std::size_t i = std::size_t(row * g.cols + col);  // g.views is row-major
     const GridView& v = g.views[i];
     present[i] = false;
     r.dark.push_back(fmt::format("{} ({}, {})", v.file, v.row, v.col));

@@ -70,16 +70,11 @@ struct RectifiedImportReport {
   double seconds = 0;
 };
 
-// A view whose brightness (its three channels' means over the middle of the frame) is under
-// this share of the median view's recorded black, or nearly: a plenoptic camera's views beyond
-// its main lens's aperture (the corners of a 15 x 15 decode). Such a view is no photograph of
-// the scene, and averaged into a render it would darken it (docs/format.md).
-inline constexpr double kDarkViewShare = 1.0 / 16;
-
 // Reads every view into a light field of the views' own size, sample for sample. Missing views
 // (`grid.missing`, allowed by the scan) and, with `fill_dark_views`, views darker than
-// kDarkViewShare of the median view's brightness are filled with the mean, in linear light, of
-// their nearest present neighbours. Throws lfcam::Error naming the file that cannot be read.
+// kDarkViewShare of the median view's brightness (DarkViews) are filled with the mean, in linear
+// light, of their nearest present neighbours. Throws lfcam::Error naming the file that cannot be
+// read.
 LightField ImportRectifiedViews(const std::filesystem::path& dir, const ImportedGrid& grid,
                                 const RectifiedGeometry& geometry,
                                 const std::function<void()>& view_done = {},
