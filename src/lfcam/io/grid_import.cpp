@@ -468,18 +468,29 @@ ImportedGrid GridFromNames(const fs::path& dir, std::optional<GridNaming> forced
 }  // namespace
 
 std::vector<std::string> NamingNotes(const ImportedGrid& grid) {
+  std::vector<std::string> notes;
   if (grid.joined_digits > 0)
-    return {fmt::format(
+    notes.push_back(fmt::format(
         "the numbers in the files' names read as a row's index and a column's run together, {} "
         "digits each (0102: row 1, column 2), rows from the top; the views' own parallax checks "
         "that order (axes)",
-        grid.joined_digits)};
-  if (grid.naming != GridNaming::kSequence) return {};
-  return {fmt::format(
-      "the views taken in the order of their files' numbers, row by row from the top left of a "
-      "{}x{} grid (as the HCI benchmark numbers its cameras); the views' own parallax checks that "
-      "order (axes)",
-      grid.rows, grid.cols)};
+        grid.joined_digits));
+  else if (grid.naming == GridNaming::kSequence)
+    notes.push_back(fmt::format(
+        "the views taken in the order of their files' numbers, row by row from the top left of a "
+        "{}x{} grid (as the HCI benchmark numbers its cameras); the views' own parallax checks "
+        "that order (axes)",
+        grid.rows, grid.cols));
+  if (grid.sixteen_bit)
+    notes.push_back(
+        "the views have 16 bits a channel: stored as 8 (sRGB, rounded), as every lfcam light "
+        "field keeps its views; renders and exported views are 8-bit");
+  if (grid.alpha)
+    notes.push_back(
+        "the views have an alpha channel: left out, each sample's colour taken as it is (not "
+        "composited over any background)");
+  if (grid.grey) notes.push_back("the views are grey: stored as colour with three equal channels");
+  return notes;
 }
 
 std::string ToString(RigModel rig) { return rig == RigModel::kParallel ? "parallel" : "rectified"; }
@@ -525,6 +536,9 @@ ImportedGrid ScanGridFolder(const fs::path& dir, bool allow_missing,
       continue;
     }
     const ImageHeader h = HeaderOf(dir / v.file);
+    g.sixteen_bit = g.sixteen_bit || h.bits_per_channel > 8;
+    g.alpha = g.alpha || h.channels == 2 || h.channels == 4;
+    g.grey = (first == nullptr || g.grey) && h.channels <= 2;
     if (!first) {
       first = &v;
       g.width = h.width;

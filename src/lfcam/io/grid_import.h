@@ -64,6 +64,11 @@ struct ImportedGrid {
   std::vector<GridView> views;       // row-major, rows * cols
   std::vector<std::string> missing;  // "camera (r, c)" for each view not in the folder
   std::vector<std::string> ignored;  // images in the folder that are not views (HCI)
+  // How the views' files encode them (from their headers): whatever they are, a light field keeps
+  // 8 bits a channel of sRGB colour.
+  bool sixteen_bit = false;  // some view has 16 bits a channel
+  bool alpha = false;        // some view has an alpha channel (left out, not composited)
+  bool grey = false;         // every view is grey (stored as three equal channels)
 
   const GridView& view(int row, int col) const { return views[std::size_t(row * cols + col)]; }
 };
@@ -87,8 +92,9 @@ ImportedGrid ScanGridFolder(const std::filesystem::path& dir, bool allow_missing
                             std::optional<GridNaming> naming = std::nullopt,
                             std::optional<GridShape> shape = std::nullopt);
 
-// What the naming itself took for granted, for the import's `note:` lines and the file's
-// import.notes, whatever the rig: a numbered sequence's reading order.
+// What the scan took for granted, for the import's `note:` lines and the file's import.notes,
+// whatever the rig: a numbered sequence's reading order, and views of 16 bits a channel, with
+// alpha, or grey, stored as 8-bit sRGB colour.
 std::vector<std::string> NamingNotes(const ImportedGrid& grid);
 
 struct ImportOptions {

@@ -3,6 +3,7 @@
 // the real Blender data set in ../shared/data when it is present.
 #include "lfcam/io/grid_import.h"
 
+#include <fmt/core.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -287,6 +288,57 @@ TEST(GridImport, TheShopDataSetImportsAndRenders) {
                        " --focal-length 700 --aperture 60 --integrator cameras --quiet");
   EXPECT_EQ(run.status, 0) << run.output;
   fs::remove_all(dir);
+}
+
+// Views encoded otherwise than as 8-bit colour (a plenoptic decode's 16-bit PNGs, a render with
+// alpha, grey views) import as 8-bit sRGB colour, and the import says so rather than drop the
+// bits, the alpha or the grey silently; 8-bit colour views get no such note. The 16-bit views
+// come back as their values rounded to 8 bits.
+TEST(GridImport, ViewsOfOtherEncodingsAreSaidToBeStoredAs8BitColour) {
+  const fs::path root =
+      fs::temp_directory_path() / ("lfcam_encodings_" + std::to_string(::getpid()));
+  fs::remove_all(root);
+  cv::RNG rng(11);
+  cv::Mat base(24, 32, CV_8UC3);
+  rng.fill(base, cv::RNG::UNIFORM, 30, 230);
+  const auto write = [&](const std::string& kind) {
+    fs::create_directories(root / kind);
+    for (int top = 1; top <= 2; ++top)
+      for (int col = 1; col <= 2; ++col) {
+        cv::Mat v = base.clone(), out;
+        if (kind == "sixteen") v.convertTo(out, CV_16UC3, 257.0);
+        if (kind == "alpha") cv::cvtColor(v, out, cv::COLOR_BGR2BGRA);
+        if (kind == "grey") cv::cvtColor(v, out, cv::COLOR_BGR2GRAY);
+        if (kind == "colour") out = v;
+        ASSERT_TRUE(cv::imwrite(
+            (root / kind / fmt::format("v_{:02d}_{:02d}.png", top, col)).string(), out));
+      }
+  };
+  const auto notes = [&](const std::string& kind) {
+    write(kind);
+    std::string all;
+    for (const std::string& n : NamingNotes(ScanGridFolder(root / kind, false))) all += n + "\n";
+    return all;
+  };
+  EXPECT_EQ(notes("colour"), "");
+  EXPECT_NE(notes("sixteen").find("16 bits a channel: stored as 8"), std::string::npos);
+  EXPECT_NE(notes("alpha").find("alpha channel: left out"), std::string::npos);
+  const std::string grey = notes("grey");
+  EXPECT_NE(grey.find("grey"), std::string::npos);
+  EXPECT_EQ(grey.find("alpha"), std::string::npos);
+  // Through the command: said, and the 16-bit views stored as their 8-bit values.
+  const auto run = testing::Lfcam(fmt::format("import {} --out {}", (root / "sixteen").string(),
+                                              (root / "sixteen.lf").string()));
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("note: the views have 16 bits a channel"), std::string::npos)
+      << run.output;
+  const LightField lf = ReadLightField((root / "sixteen.lf").string());
+  const cv::Mat view(24, 32, CV_8UC3, const_cast<std::uint8_t*>(lf.view_data(0, 0)));
+  cv::Mat expected;
+  cv::cvtColor(base, expected, cv::COLOR_BGR2RGB);
+  cv::flip(expected, expected, 0);  // lfcam's rows count up
+  EXPECT_EQ(cv::norm(view, expected, cv::NORM_INF), 0.0);
+  fs::remove_all(root);
 }
 
 }  // namespace
