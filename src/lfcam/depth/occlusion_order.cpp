@@ -96,7 +96,12 @@ OcclusionOrder MeasureOcclusionOrder(const LightField& full) {
   std::optional<SweepViews> views_or;
   try {
     map = EstimateDepth(lf, row, col, sweep);
-    views_or.emplace(lf, row, col, CostVolumeOptions{});  // the views within reach 4
+    // The views within reach 4, each view's brightness made the reference's: a plenoptic
+    // camera's outer views, vignetted, are darker, and the brighter side of an edge would
+    // mismatch more in them whichever side is near.
+    CostVolumeOptions within_reach_4;
+    within_reach_4.equalise_brightness = true;
+    views_or.emplace(lf, row, col, within_reach_4);
   } catch (const Error& e) {
     out.why = e.what();
     return done();
