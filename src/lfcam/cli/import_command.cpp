@@ -80,14 +80,15 @@ void AddImportCommand(CLI::App& app) {
   auto* command = app.add_subcommand(
       "import",
       "Import a folder of views on a camera grid (Stanford, Blender grid, HCI benchmark, "
-      "plenoptic NAME_RR_CC views, described)");
+      "plenoptic NAME_RR_CC views or one lenslet image, described)");
   struct Flags {
     ImportFlags import;
     std::string out, compression = "none";
     bool json = false, quiet = false;
   };
   auto f = std::make_shared<Flags>();
-  command->add_option("dir", f->import.dir, "The folder of views")->required();
+  command->add_option("dir", f->import.dir, "The folder of views, or one lenslet image (ESLF)")
+      ->required();
   command->add_option("--out", f->out, "Light field file to write (.lf)")->required();
   f->import.AddTo(*command);
   command->add_option("--compress", f->compression, "none or zstd")->capture_default_str();

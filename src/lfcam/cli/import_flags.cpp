@@ -2,17 +2,25 @@
 
 #include <fmt/core.h>
 #include <fmt/ranges.h>
+#include <unistd.h>
 
+#include <atomic>
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
 #include <optional>
 
 #include "lfcam/calib/lightfield_build.h"
 #include "lfcam/cli/parse.h"
 #include "lfcam/core/error.h"
+#include "lfcam/core/image_header.h"
+#include "lfcam/core/image_io.h"
+#include "lfcam/core/input_file.h"
 #include "lfcam/core/limits.h"
 #include "lfcam/core/progress.h"
 #include "lfcam/depth/occlusion_order.h"
 #include "lfcam/io/grid_import.h"
+#include "lfcam/io/lenslet_image.h"
 #include "lfcam/io/parallax_axes.h"
 #include "lfcam/io/parallel_import.h"
 #include "lfcam/io/rectified_import.h"
@@ -87,6 +95,12 @@ void ImportFlags::AddTo(CLI::App& command) {
                   "tried only where no other naming fits); auto refuses names that parse "
                   "several ways")
       ->capture_default_str();
+  command
+      .add_option("--lenslet", lenslet,
+                  "N: the views a side of a lenslet image (one image, ESLF: each N x N block "
+                  "of pixels one microlens's samples of the aperture); default found from "
+                  "its pixels, and said")
+      ->check(CLI::Range(3, 64));
   command.add_option("--grid", grid_shape,
                      "ROWSxCOLS: the grid's shape, for views whose names do not give it (a "
                      "numbered sequence, NAMENNN, row by row from the top left; HCI views "
@@ -230,7 +244,87 @@ nlohmann::json ImportFlags::CheckOcclusionOrder(ImportedLightField& imported, Im
   return j;
 }
 
+ImportedLightField ImportFlags::RunLenslet(bool quiet) const {
+  if (naming != "auto" || !grid_shape.empty())
+    throw UsageError(
+        fmt::format("{}: a lenslet image's views are named and shaped by it (no "
+                    "--naming or --grid)",
+                    dir));
+  const ImageHeader header = [&] {
+    InputFile in(dir);
+    std::vector<std::uint8_t> bytes(std::size_t(std::min<std::uint64_t>(in.size(), 1 << 18)));
+    in.read_exactly(bytes.data(), bytes.size(), 0);
+    try {
+      return ProbeImageHeader(bytes);
+    } catch (const Error& e) {
+      throw Error(fmt::format("{}: not a folder, and not an image lfcam reads: {}", dir, e.what()));
+    }
+  }();
+  const cv::Mat image = ReadImageSrgb8(dir);
+  int n = lenslet;
+  nlohmann::json period = {{"views_per_side_given", lenslet > 0}};
+  if (n == 0) {
+    const LensletPeriod found = DetectLensletPeriod(image);
+    if (found.views_per_side == 0)
+      throw Error(fmt::format(
+          "{}: {}x{} pixels with no block of N x N (N from 3 to 32 dividing both sides) whose "
+          "positions differ in brightness as a lenslet image's do (the strongest {:.3f}, under "
+          "{}): not a lenslet image? --lenslet N says how many views a side it holds",
+          dir, image.cols, image.rows, found.strength, kLensletStrength));
+    n = found.views_per_side;
+    period["strength"] = found.strength;
+  } else if (image.cols % n != 0 || image.rows % n != 0) {
+    throw Error(fmt::format("{}: --lenslet {}: its {}x{} pixels are not blocks of {}x{}", dir, n,
+                            image.cols, image.rows, n, n));
+  }
+  period["views_per_side"] = n;
+  period["file"] = dir;
+  // The views, as a plenoptic camera's NAME_RR_CC.png (row 01 at the top), in a folder of their
+  // own that is removed whatever happens.
+  static std::atomic<int> serial{0};
+  struct Folder {
+    std::filesystem::path path;
+    ~Folder() {
+      std::error_code ec;
+      std::filesystem::remove_all(path, ec);
+    }
+  } views{std::filesystem::temp_directory_path() /
+          fmt::format("lfcam_lenslet_{}_{}", ::getpid(), serial++)};
+  std::filesystem::remove_all(views.path);
+  std::filesystem::create_directories(views.path);
+  WriteLensletViews(image, n, views.path);
+  ImportFlags folder = *this;
+  folder.dir = views.path.string();
+  folder.naming = "unit-grid";
+  ImportedLightField imported = folder.Run(quiet);
+  const std::string said = fmt::format(
+      "{} read as a lenslet image: {} x {} views of {}x{} (each {}x{} block of pixels one "
+      "microlens's){}{}",
+      dir, n, n, image.cols / n, image.rows / n, n, n,
+      lenslet > 0 ? "" : ", the block's size found from its pixels (--lenslet N sets it)",
+      header.bits_per_channel > 8 ? "; its 16 bits a channel stored as 8 (sRGB)" : "");
+  nlohmann::json& meta = imported.lightfield.metadata()["import"];
+  meta["folder"] = dir;
+  meta["lenslet"] = period;
+  if (!meta.contains("notes") || !meta["notes"].is_array()) meta["notes"] = nlohmann::json::array();
+  meta["notes"].insert(meta["notes"].begin(), said);
+  imported.summary["lenslet"] = period;
+  if (!imported.summary.contains("notes")) imported.summary["notes"] = nlohmann::json::array();
+  imported.summary["notes"].insert(imported.summary["notes"].begin(), said);
+  // The views' names are the split's, not the user's: say which pixels each came from.
+  for (auto& v : imported.summary["views"]) {
+    int a = 0, b = 0;
+    if (std::sscanf(v["file"].get<std::string>().c_str(), "view_%d_%d.png", &a, &b) == 2)
+      v["file"] = fmt::format("{} (pixel {}, {} of each block)", dir, a - 1, b - 1);
+  }
+  return imported;
+}
+
 ImportedLightField ImportFlags::Run(bool quiet) const {
+  {
+    std::error_code ec;
+    if (std::filesystem::is_regular_file(dir, ec)) return RunLenslet(quiet);
+  }
   ImportOptions o;
   auto positive = [](const char* flag, double value) -> std::optional<double> {
     if (value == 0) return std::nullopt;

@@ -29,6 +29,7 @@ struct ImportFlags {
   std::string st_res, st_domain, resampling = "linear", chroma = "guided", naming = "auto",
                                  rig = "auto", st_windows = "views", grid_shape;
   double st_distance = 0, focal_px = 0, focal_mm = 0, sensor_width_mm = 0, pitch_mm = 0;
+  int lenslet = 0;  // a lenslet image's views a side (0: found from its pixels)
   bool allow_missing = false;
   bool keep_dark_views = false;
   bool flip_rows = false;  // the rows taken in reverse (row index or y counting the other way)
@@ -39,10 +40,14 @@ struct ImportFlags {
   // Every flag but the folder, --out, --compress and the printing ones (the command's).
   void AddTo(CLI::App& command);
   // Checks the flags (UsageError naming the flag) and imports `dir`, with a progress bar unless
-  // `quiet`. Throws lfcam::Error naming the file for a folder it cannot read.
+  // `quiet`: a folder of views, or one lenslet image (io/lenslet_image.h). Throws lfcam::Error
+  // naming the file for a folder or an image it cannot read.
   ImportedLightField Run(bool quiet) const;
 
  private:
+  // `dir` a lenslet image: split into its views (in a temporary folder, removed after), which are
+  // imported as a plenoptic camera's views are; the summary and the file say where they came from.
+  ImportedLightField RunLenslet(bool quiet) const;
   // Checks the names' axes against the views' parallax (io/parallax_axes.h): exchanges the rows
   // and columns of `grid`, then reverses its rows or columns, where --swap-axes, --flip-rows or
   // --flip-cols say so; without them or --keep-axes, does what the views say (exchanged axes

@@ -113,6 +113,8 @@ const KeywordTable& ImportKeywordTable() {
                                    {"resampling", K::kText},
                                    {"chroma", K::kText},
                                    {"allow_missing", K::kSwitch},
+                                   {"keep_dark_views", K::kSwitch},
+                                   {"lenslet", K::kNumber},
                                    {"flip_rows", K::kSwitch},
                                    {"flip_cols", K::kSwitch},
                                    {"swap_axes", K::kSwitch},

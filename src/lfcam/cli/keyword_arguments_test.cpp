@@ -98,13 +98,17 @@ TEST(KeywordArguments, ImportTakesImportsFlags) {
                                     {"st_domain", std::vector<double>{-0.5, -0.5, 1.5, 1.5}},
                                     {"st_res", std::vector<double>{320, 240}},
                                     {"grid", std::vector<double>{1, 9}},
-                                    {"allow_missing", true}});
+                                    {"allow_missing", true},
+                                    {"keep_dark_views", true},
+                                    {"lenslet", 14.0}});
   EXPECT_EQ(request->flags.dir, "views");
   EXPECT_EQ(request->flags.rig, "parallel");
   EXPECT_EQ(request->flags.st_domain, "-0.5,-0.5,1.5,1.5");
   EXPECT_EQ(request->flags.st_res, "320x240");
   EXPECT_EQ(request->flags.grid_shape, "1x9");  // rows x columns
   EXPECT_TRUE(request->flags.allow_missing);
+  EXPECT_TRUE(request->flags.keep_dark_views);  // documented since stop 72, refused until 73
+  EXPECT_EQ(request->flags.lenslet, 14);
   try {
     ParseImportKeywords("views", {{"aperture", 1.0}});
     ADD_FAILURE() << "import took a render keyword";

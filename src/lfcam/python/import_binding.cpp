@@ -39,7 +39,8 @@ void BindImport(py::module_& m) {
 the HCI benchmark's, plenoptic NAME_RR_CC views, or any described in lfcam-views.json), as
 `lfcam import` does. Keywords are import's flags without the dashes: naming, rig, st_distance,
 pitch_mm, st_res ((W, H)), st_domain ((s0, t0, s1, t1)), st_windows, focal_px, focal_mm,
-sensor_width_mm, resampling, chroma, allow_missing, keep_dark_views.
+sensor_width_mm, resampling, chroma, allow_missing, keep_dark_views, lenslet (dir then one
+lenslet image), swap_axes, flip_rows, flip_cols, keep_axes.
 
 Returns (LightField, summary): the light field in memory (LightField.save writes it) and what
 `lfcam import --json` says of it: the rig, the geometry, what was assumed or filled.)");
