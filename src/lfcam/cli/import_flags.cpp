@@ -325,6 +325,8 @@ ImportedLightField ImportFlags::Run(bool quiet) const {
     std::error_code ec;
     if (std::filesystem::is_regular_file(dir, ec)) return RunLenslet(quiet);
   }
+  if (lenslet > 0)
+    throw UsageError(fmt::format("--lenslet: {} is not one image (a lenslet image's file)", dir));
   ImportOptions o;
   auto positive = [](const char* flag, double value) -> std::optional<double> {
     if (value == 0) return std::nullopt;

@@ -115,6 +115,12 @@ TEST(LensletImage, ImportsAsTheSameViewsInAFolderDo) {
   EXPECT_NE(run.output.find("--lenslet 3: its 200x160 pixels are not blocks of 3x3"),
             std::string::npos)
       << run.output;
+  run = testing::Lfcam(fmt::format("import {} --lenslet 5 --out {}", (dir / "views").string(),
+                                   (dir / "x.lf").string()));
+  EXPECT_EQ(run.status, 2);
+  EXPECT_NE(run.output.find("--lenslet: " + (dir / "views").string() + " is not one image"),
+            std::string::npos)
+      << run.output;
   ASSERT_TRUE(cv::imwrite((dir / "flat.png").string(), MakeLenslet(n, 40, 32, false).image));
   run = testing::Lfcam(
       fmt::format("import {} --out {}", (dir / "flat.png").string(), (dir / "x.lf").string()));
