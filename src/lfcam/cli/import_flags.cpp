@@ -13,9 +13,7 @@
 #include "lfcam/calib/lightfield_build.h"
 #include "lfcam/cli/parse.h"
 #include "lfcam/core/error.h"
-#include "lfcam/core/image_header.h"
 #include "lfcam/core/image_io.h"
-#include "lfcam/core/input_file.h"
 #include "lfcam/core/limits.h"
 #include "lfcam/core/progress.h"
 #include "lfcam/depth/occlusion_order.h"
@@ -251,13 +249,10 @@ ImportedLightField ImportFlags::RunLenslet(bool quiet) const {
                     "--naming or --grid)",
                     dir));
   const ImageHeader header = [&] {
-    InputFile in(dir);
-    std::vector<std::uint8_t> bytes(std::size_t(std::min<std::uint64_t>(in.size(), 1 << 18)));
-    in.read_exactly(bytes.data(), bytes.size(), 0);
     try {
-      return ProbeImageHeader(bytes);
+      return ProbeImageFile(dir);
     } catch (const Error& e) {
-      throw Error(fmt::format("{}: not a folder, and not an image lfcam reads: {}", dir, e.what()));
+      throw Error(fmt::format("not a folder, and not an image lfcam reads: {}", e.what()));
     }
   }();
   const cv::Mat image = ReadImageSrgb8(dir);

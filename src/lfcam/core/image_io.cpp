@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cstdlib>
 #include <memory>
@@ -96,6 +97,17 @@ cv::Mat DecodeImageBytes(std::span<const std::uint8_t> bytes, const std::string&
                             m.rows, header.width, header.height,
                             reduction > 1 ? fmt::format(" (at 1/{} size)", reduction) : ""));
   return m;
+}
+
+ImageHeader ProbeImageFile(const std::filesystem::path& path) {
+  InputFile in(path);
+  std::vector<std::uint8_t> bytes(std::size_t(std::min<std::uint64_t>(in.size(), 1 << 18)));
+  in.read_exactly(bytes.data(), bytes.size(), 0);
+  try {
+    return ProbeImageHeader(bytes);
+  } catch (const Error& e) {
+    throw Error(fmt::format("{}: {}", path.string(), e.what()));
+  }
 }
 
 cv::Mat ReadImageGray8(const std::filesystem::path& path) {

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "lfcam/core/image_codec.h"
+#include "lfcam/core/image_header.h"
 
 namespace lfcam {
 
@@ -21,6 +22,10 @@ inline constexpr std::uint64_t kMaxEncodedImageBytes = std::uint64_t(1) << 30;
 // `mode` and `reduction` (1, 2, 4 or 8) as core/image_codec.h takes them.
 cv::Mat DecodeImageBytes(std::span<const std::uint8_t> bytes, const std::string& name,
                          ImageDecodeMode mode = ImageDecodeMode::kUnchanged, int reduction = 1);
+
+// The size, channels and depth of the PNG or JPEG at `path`, from its header alone (its first
+// 256 KB read). Throws lfcam::Error naming the file.
+ImageHeader ProbeImageFile(const std::filesystem::path& path);
 
 // Reads an 8- or 16-bit PNG/JPEG as linear RGB float. Throws lfcam::Error naming the file.
 cv::Mat ReadImageLinear(const std::filesystem::path& path);

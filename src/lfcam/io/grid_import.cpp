@@ -9,6 +9,7 @@
 
 #include "lfcam/core/error.h"
 #include "lfcam/core/image_header.h"
+#include "lfcam/core/image_io.h"
 #include "lfcam/core/input_file.h"
 #include "lfcam/core/json_input.h"
 #include "lfcam/core/limits.h"
@@ -23,17 +24,6 @@ bool IsImageName(const fs::path& p) {
   std::string ext = p.extension().string();
   for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
   return ext == ".png" || ext == ".jpg" || ext == ".jpeg";
-}
-
-ImageHeader HeaderOf(const fs::path& path) {
-  InputFile in(path);
-  std::vector<std::uint8_t> bytes(std::size_t(std::min<std::uint64_t>(in.size(), 1 << 18)));
-  in.read_exactly(bytes.data(), bytes.size(), 0);
-  try {
-    return ProbeImageHeader(bytes);
-  } catch (const Error& e) {
-    throw Error(fmt::format("{}: {}", path.string(), e.what()));
-  }
 }
 
 // The description file: {"format": "lfcam-views", "version": 1, "rows", "cols", "pitch_mm",
@@ -535,7 +525,7 @@ ImportedGrid ScanGridFolder(const fs::path& dir, bool allow_missing,
       g.missing.push_back(CameraLabel(v.row, v.col));
       continue;
     }
-    const ImageHeader h = HeaderOf(dir / v.file);
+    const ImageHeader h = ProbeImageFile(dir / v.file);
     g.sixteen_bit = g.sixteen_bit || h.bits_per_channel > 8;
     g.alpha = g.alpha || h.channels == 2 || h.channels == 4;
     g.grey = (first == nullptr || g.grey) && h.channels <= 2;
