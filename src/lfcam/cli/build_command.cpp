@@ -17,6 +17,7 @@
 #include "lfcam/core/lightfield_file.h"
 #include "lfcam/core/limits.h"
 #include "lfcam/core/progress.h"
+#include "lfcam/core/view_filling.h"
 #include "lfcam/session/session.h"
 
 namespace lfcam::cli {
@@ -198,12 +199,7 @@ void AddBuildCommand(CLI::App& app) {
     if (!report.dark.empty()) {
       std::vector<std::string> dark;
       for (const auto& [row, col] : report.dark) dark.push_back(CameraLabel(row, col));
-      fmt::print(
-          "  note: {} view{} black or nearly (darker than 1/16 of the median view: no photograph "
-          "of the scene), filled from {} neighbours as a missing camera is: {} (--keep-dark-views "
-          "keeps them)\n",
-          dark.size(), dark.size() == 1 ? "" : "s", dark.size() == 1 ? "its" : "their",
-          fmt::join(dark, ", "));
+      fmt::print("  note: {}\n", DarkViewsNote(dark));
     }
     for (const auto& f : report.filled) fmt::print(stderr, "lfcam: warning: filled {}\n", f);
     fmt::print("wrote {}\n", flags->out);

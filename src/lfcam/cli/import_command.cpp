@@ -12,6 +12,7 @@
 #include "lfcam/core/error.h"
 #include "lfcam/core/json_input.h"
 #include "lfcam/core/lightfield_file.h"
+#include "lfcam/core/view_filling.h"
 
 namespace lfcam::cli {
 namespace {
@@ -62,14 +63,8 @@ void PrintImport(const nlohmann::json& s) {
     fmt::print("  {}{} ({:.1f} s)\n", s["occlusions"]["verdict"] == "as-named" ? "" : "note: ",
                s["occlusions"]["said"].get<std::string>(),
                s["occlusions"]["seconds"].get<double>());
-  if (s.contains("dark") && !s["dark"].empty()) {
-    const auto dark = s["dark"].get<std::vector<std::string>>();
-    fmt::print(
-        "  note: {} view{} black or nearly (darker than 1/16 of the median view: no photograph "
-        "of the scene), filled from {} neighbours as a missing view is: {}\n",
-        dark.size(), dark.size() == 1 ? "" : "s", dark.size() == 1 ? "its" : "their",
-        fmt::join(dark, ", "));
-  }
+  if (s.contains("dark") && !s["dark"].empty())
+    fmt::print("  note: {}\n", DarkViewsNote(s["dark"].get<std::vector<std::string>>()));
   for (const auto& filled : s["filled"])
     fmt::print(stderr, "lfcam: warning: filled {}\n", filled.get<std::string>());
 }

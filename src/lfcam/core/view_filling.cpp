@@ -100,6 +100,14 @@ std::vector<std::pair<int, int>> DarkViews(const LightField& lf, const std::vect
   return dark;
 }
 
+std::string DarkViewsNote(const std::vector<std::string>& labels) {
+  return fmt::format(
+      "{} view{} black or nearly (darker than 1/{:g} of the median view: no photograph of the "
+      "scene), filled from {} neighbours as a missing view is (--keep-dark-views keeps them): {}",
+      labels.size(), labels.size() == 1 ? "" : "s", 1 / kDarkViewShare,
+      labels.size() == 1 ? "its" : "their", fmt::join(labels, ", "));
+}
+
 std::vector<std::pair<int, int>> FilledViews(const LightField& lf) {
   return FilledViews(lf.metadata(), lf.dims().rows, lf.dims().cols);
 }

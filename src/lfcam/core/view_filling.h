@@ -28,6 +28,10 @@ inline constexpr double kDarkViewShare = 1.0 / 16;
 // under kDarkViewShare of the median read view's. None where that median is itself black.
 std::vector<std::pair<int, int>> DarkViews(const LightField& lf, const std::vector<bool>& read);
 
+// What `import` and `build` say of the views DarkViews found (`labels`: each view's name), in a
+// `note:`.
+std::string DarkViewsNote(const std::vector<std::string>& labels);
+
 // View (row, col) of an srgb8 light field becomes the mean, in linear light, of the views `from`.
 void FillViewWithMean(LightField& lf, int row, int col,
                       const std::vector<std::pair<int, int>>& from);
