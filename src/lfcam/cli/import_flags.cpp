@@ -80,6 +80,16 @@ ImportedLightField ImportRectified(const std::string& dir, const ImportedGrid& g
                    {"dark", report.dark}});
 }
 
+// `said` as the import's first note: in its summary (the `note:` lines) and in the file's
+// import.notes.
+void SayFirst(ImportedLightField& imported, const std::string& said) {
+  for (nlohmann::json* holder : {&imported.lightfield.metadata()["import"], &imported.summary}) {
+    nlohmann::json& notes = (*holder)["notes"];
+    if (!notes.is_array()) notes = nlohmann::json::array();
+    notes.insert(notes.begin(), said);
+  }
+}
+
 }  // namespace
 
 void ImportFlags::AddTo(CLI::App& command) {
@@ -298,14 +308,11 @@ ImportedLightField ImportFlags::RunLenslet(bool quiet) const {
       dir, n, n, image.cols / n, image.rows / n, n, n,
       lenslet > 0 ? "" : ", the block's size found from its pixels (--lenslet N sets it)",
       header.bits_per_channel > 8 ? "; its 16 bits a channel stored as 8 (sRGB)" : "");
+  SayFirst(imported, said);
   nlohmann::json& meta = imported.lightfield.metadata()["import"];
   meta["folder"] = dir;
   meta["lenslet"] = period;
-  if (!meta.contains("notes") || !meta["notes"].is_array()) meta["notes"] = nlohmann::json::array();
-  meta["notes"].insert(meta["notes"].begin(), said);
   imported.summary["lenslet"] = period;
-  if (!imported.summary.contains("notes")) imported.summary["notes"] = nlohmann::json::array();
-  imported.summary["notes"].insert(imported.summary["notes"].begin(), said);
   // The views' names are the split's, not the user's: say which pixels each came from.
   for (auto& v : imported.summary["views"]) {
     int a = 0, b = 0;
@@ -322,6 +329,14 @@ ImportedLightField ImportFlags::Run(bool quiet) const {
   }
   if (lenslet > 0)
     throw UsageError(fmt::format("--lenslet: {} is not one image (a lenslet image's file)", dir));
+  if (const auto within = ViewsSubfolder(dir)) {
+    ImportFlags folder = *this;
+    folder.dir = within->string();
+    ImportedLightField imported = folder.Run(quiet);
+    SayFirst(imported, fmt::format("{} holds no views of its own: the views of {} imported", dir,
+                                   folder.dir));
+    return imported;
+  }
   ImportOptions o;
   auto positive = [](const char* flag, double value) -> std::optional<double> {
     if (value == 0) return std::nullopt;

@@ -497,6 +497,55 @@ RigModel DefaultRig(GridNaming naming) {
              : RigModel::kRectified;
 }
 
+namespace {
+
+bool HoldsViews(const fs::path& dir) {
+  std::error_code ec;
+  if (fs::is_regular_file(dir / kViewsDescriptionName, ec)) return true;
+  int images = 0;
+  for (const auto& entry : fs::directory_iterator(dir, ec))
+    if (entry.is_regular_file(ec) && IsImageName(entry.path()) && ++images >= 2) return true;
+  return false;
+}
+
+// The folders under `dir`, `levels` deep at most, that hold views, in name order.
+void FoldersWithViews(const fs::path& dir, int levels, std::vector<fs::path>& found) {
+  std::error_code ec;
+  std::vector<fs::path> folders;
+  for (const auto& entry : fs::directory_iterator(dir, ec)) {
+    const std::string name = entry.path().filename().string();
+    if (entry.is_directory(ec) && !name.starts_with(".") && name != "__MACOSX")
+      folders.push_back(entry.path());
+  }
+  std::sort(folders.begin(), folders.end());
+  for (const fs::path& folder : folders) {
+    if (HoldsViews(folder))
+      found.push_back(folder);
+    else if (levels > 1)
+      FoldersWithViews(folder, levels - 1, found);
+  }
+}
+
+}  // namespace
+
+std::optional<fs::path> ViewsSubfolder(const fs::path& dir) {
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec) || HoldsViews(dir)) return std::nullopt;
+  std::vector<fs::path> found;
+  FoldersWithViews(dir, 2, found);
+  if (found.empty()) return std::nullopt;
+  if (found.size() == 1) return found.front();
+  constexpr std::size_t kListed = 8;  // the rest counted, not listed
+  std::vector<std::string> names;
+  for (std::size_t i = 0; i < std::min(found.size(), kListed); ++i)
+    names.push_back(fs::relative(found[i], dir, ec).string());
+  throw Error(fmt::format(
+      "{}: no views of its own, and {} folders in it hold views ({}{}): import one of them (a "
+      "whole HCI benchmark: bench/hci_benchmark.py)",
+      dir.string(), found.size(), fmt::join(names, ", "),
+      found.size() > kListed ? fmt::format(" and {} more", found.size() - kListed) : ""));
+}
+
 ImportedGrid ScanGridFolder(const fs::path& dir, bool allow_missing,
                             std::optional<GridNaming> naming, std::optional<GridShape> shape) {
   std::error_code ec;

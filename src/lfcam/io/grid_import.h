@@ -92,6 +92,14 @@ ImportedGrid ScanGridFolder(const std::filesystem::path& dir, bool allow_missing
                             std::optional<GridNaming> naming = std::nullopt,
                             std::optional<GridShape> shape = std::nullopt);
 
+// An archive unpacked as it comes often puts its views one or two folders down (the Stanford
+// archive's rectified/, a zip's own folder). Where `dir` holds neither views (two or more .png or
+// .jpg) nor a description itself, the one folder within two levels of it that does, skipping
+// hidden folders and __MACOSX; nullopt where `dir` holds views itself, or nothing under it does
+// (ScanGridFolder then says what is missing). Throws lfcam::Error naming them where several do:
+// nothing is guessed.
+std::optional<std::filesystem::path> ViewsSubfolder(const std::filesystem::path& dir);
+
 // What the scan took for granted, for the import's `note:` lines and the file's import.notes,
 // whatever the rig: a numbered sequence's reading order, and views of 16 bits a channel, with
 // alpha, or grey, stored as 8-bit sRGB colour.

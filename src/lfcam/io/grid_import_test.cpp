@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -338,6 +339,66 @@ TEST(GridImport, ViewsOfOtherEncodingsAreSaidToBeStoredAs8BitColour) {
   cv::cvtColor(base, expected, cv::COLOR_BGR2RGB);
   cv::flip(expected, expected, 0);  // lfcam's rows count up
   EXPECT_EQ(cv::norm(view, expected, cv::NORM_INF), 0.0);
+  fs::remove_all(root);
+}
+
+// An archive unpacked as it comes: its views one or two folders down (the Stanford archive's
+// rectified/). The one folder that holds them is imported, and said; several are refused, named.
+TEST(GridImport, ViewsOneOrTwoFoldersDownAreFoundAndSaid) {
+  const fs::path root = fs::temp_directory_path() / ("lfcam_nested_" + std::to_string(::getpid()));
+  fs::remove_all(root);
+  cv::RNG rng(5);
+  const auto write_views = [&](const fs::path& dir) {
+    fs::create_directories(dir);
+    for (int top = 1; top <= 3; ++top)
+      for (int col = 1; col <= 3; ++col) {
+        cv::Mat v(24, 32, CV_8UC3);
+        rng.fill(v, cv::RNG::UNIFORM, 30, 230);
+        ASSERT_TRUE(cv::imwrite((dir / fmt::format("v_{:02d}_{:02d}.png", top, col)).string(), v));
+      }
+  };
+  write_views(root / "scene" / "rectified");
+  // What unpacking on a Mac leaves beside it, and a hidden folder: not views to choose from.
+  write_views(root / "__MACOSX" / "scene");
+  write_views(root / ".cache");
+  fs::create_directories(root / "scene" / "notes");
+  EXPECT_EQ(ViewsSubfolder(root), root / "scene" / "rectified");
+  EXPECT_EQ(ViewsSubfolder(root / "scene"), root / "scene" / "rectified");
+  EXPECT_EQ(ViewsSubfolder(root / "scene" / "rectified"), std::nullopt);  // views of its own
+  EXPECT_EQ(ViewsSubfolder(root / "scene" / "notes"), std::nullopt);      // nothing under it
+
+  const auto run = testing::Lfcam(
+      fmt::format("import {} --out {}", root.string(), (root / "found.lf").string()));
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find(fmt::format("note: {} holds no views of its own: the views of {} "
+                                        "imported",
+                                        root.string(), (root / "scene" / "rectified").string())),
+            std::string::npos)
+      << run.output;
+  const auto direct =
+      testing::Lfcam(fmt::format("import {} --out {}", (root / "scene" / "rectified").string(),
+                                 (root / "direct.lf").string()));
+  ASSERT_EQ(direct.status, 0) << direct.output;
+  const LightField found = ReadLightField((root / "found.lf").string());
+  const LightField given = ReadLightField((root / "direct.lf").string());
+  ASSERT_EQ(found.total_bytes(), given.total_bytes());
+  EXPECT_EQ(std::memcmp(found.data(), given.data(), found.total_bytes()), 0);
+  EXPECT_EQ(found.metadata()["import"]["notes"][0].get<std::string>().find(root.string()), 0u);
+
+  // Two folders of views: neither is guessed; both are named.
+  write_views(root / "other");
+  try {
+    ViewsSubfolder(root);
+    ADD_FAILURE() << "two folders of views were not refused";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("2 folders in it hold views (other, scene/rectified)"),
+              std::string::npos)
+        << e.what();
+  }
+  const auto refused = testing::Lfcam(
+      fmt::format("import {} --out {}", root.string(), (root / "refused.lf").string()));
+  EXPECT_NE(refused.status, 0);
+  EXPECT_FALSE(fs::exists(root / "refused.lf"));
   fs::remove_all(root);
 }
 
