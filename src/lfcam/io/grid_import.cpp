@@ -20,10 +20,23 @@ namespace {
 
 namespace fs = std::filesystem;
 
-bool IsImageName(const fs::path& p) {
+std::string LowerCaseExtension(const fs::path& p) {
   std::string ext = p.extension().string();
   for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
+}
+
+bool IsImageName(const fs::path& p) {
+  const std::string ext = LowerCaseExtension(p);
   return ext == ".png" || ext == ".jpg" || ext == ".jpeg";
+}
+
+// Image files a folder of views may hold that lfcam does not read (said, not silently passed).
+bool IsUnreadImageName(const fs::path& p) {
+  const std::string ext = LowerCaseExtension(p);
+  for (const char* kind : {".tif", ".tiff", ".bmp", ".webp", ".ppm", ".pgm", ".exr", ".jp2"})
+    if (ext == kind) return true;
+  return false;
 }
 
 // The description file: {"format": "lfcam-views", "version": 1, "rows", "cols", "pitch_mm",
@@ -369,15 +382,27 @@ std::optional<HciParameters> ReadHciParameters(const fs::path& dir) {
 ImportedGrid GridFromNames(const fs::path& dir, std::optional<GridNaming> forced,
                            const std::optional<GridShape>& shape) {
   std::vector<std::string> files;
+  std::map<std::string, int> unread;  // images of kinds lfcam does not read, by extension
   std::error_code ec;
-  for (const auto& entry : fs::directory_iterator(dir, ec))
-    if (entry.is_regular_file() && IsImageName(entry.path()))
+  for (const auto& entry : fs::directory_iterator(dir, ec)) {
+    if (!entry.is_regular_file()) continue;
+    if (IsImageName(entry.path()))
       files.push_back(entry.path().filename().string());
+    else if (IsUnreadImageName(entry.path()))
+      ++unread[LowerCaseExtension(entry.path())];
+  }
   if (ec) throw Error(fmt::format("{}: cannot read the folder: {}", dir.string(), ec.message()));
   std::sort(files.begin(), files.end());
-  if (files.empty())
-    throw Error(
-        fmt::format("{}: no views (.png, .jpg) and no {}", dir.string(), kViewsDescriptionName));
+  if (files.empty()) {
+    std::vector<std::string> kinds;
+    for (const auto& [ext, count] : unread) kinds.push_back(fmt::format("{} {}", count, ext));
+    throw Error(fmt::format(
+        "{}: no views (.png, .jpg) and no {}{}", dir.string(), kViewsDescriptionName,
+        kinds.empty() ? ""
+                      : fmt::format(" (its images are {} files, which lfcam does not read: "
+                                    "convert them to PNG)",
+                                    fmt::join(kinds, ", "))));
+  }
   const std::optional<HciParameters> hci = ReadHciParameters(dir);
 
   // Every naming under which the names form a grid; the reason for each that does not.

@@ -343,7 +343,8 @@ TEST(GridImport, ViewsOfOtherEncodingsAreSaidToBeStoredAs8BitColour) {
 }
 
 // An archive unpacked as it comes: its views one or two folders down (the Stanford archive's
-// rectified/). The one folder that holds them is imported, and said; several are refused, named.
+// rectified/). The one folder that holds them is imported, and said; several are refused, named;
+// views of a kind lfcam does not read are named too.
 TEST(GridImport, ViewsOneOrTwoFoldersDownAreFoundAndSaid) {
   const fs::path root = fs::temp_directory_path() / ("lfcam_nested_" + std::to_string(::getpid()));
   fs::remove_all(root);
@@ -399,6 +400,21 @@ TEST(GridImport, ViewsOneOrTwoFoldersDownAreFoundAndSaid) {
       fmt::format("import {} --out {}", root.string(), (root / "refused.lf").string()));
   EXPECT_NE(refused.status, 0);
   EXPECT_FALSE(fs::exists(root / "refused.lf"));
+
+  // Views of a kind lfcam does not read are named, with the remedy, not passed over in silence.
+  fs::create_directories(root / "tiff");
+  for (int col = 1; col <= 3; ++col)
+    ASSERT_TRUE(cv::imwrite((root / "tiff" / fmt::format("v_01_{:02d}.tif", col)).string(),
+                            cv::Mat(8, 8, CV_8UC3, cv::Scalar(50, 90, 130))));
+  try {
+    ScanGridFolder(root / "tiff", false);
+    ADD_FAILURE() << "a folder of TIFF views was not refused";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("its images are 3 .tif files, which lfcam does not "
+                                         "read: convert them to PNG"),
+              std::string::npos)
+        << e.what();
+  }
   fs::remove_all(root);
 }
 
