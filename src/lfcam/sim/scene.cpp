@@ -52,17 +52,49 @@ Scene::Hit Scene::FirstHit(const Ray& ray) const {
   return first;
 }
 
-Vec3 Scene::Radiance(const Ray& ray) const {
+namespace {
+
+// The nearest of `objects` along `ray` among those `each` visits, and where it was hit.
+template <typename EachObject>
+const SceneObject* Nearest(const Ray& ray, EachObject each, SurfaceHit* best) {
   double nearest = std::numeric_limits<double>::infinity();
   const SceneObject* found = nullptr;
-  SurfaceHit best, hit;
-  for (const auto& object : objects) {
+  SurfaceHit hit;
+  each([&](const SceneObject& object) {
     if (object.shape->Intersect(ray, 1e-9, nearest, &hit)) {
       nearest = hit.t;
-      best = hit;
+      *best = hit;
       found = &object;
     }
-  }
+  });
+  return found;
+}
+
+}  // namespace
+
+Vec3 Scene::Radiance(const Ray& ray) const {
+  SurfaceHit best;
+  const SceneObject* found = Nearest(
+      ray,
+      [&](auto visit) {
+        for (const SceneObject& object : objects) visit(object);
+      },
+      &best);
+  return Shade(ray, found, best);
+}
+
+Vec3 Scene::Radiance(const Ray& ray, std::span<const int> candidates) const {
+  SurfaceHit best;
+  const SceneObject* found = Nearest(
+      ray,
+      [&](auto visit) {
+        for (const int i : candidates) visit(objects[std::size_t(i)]);
+      },
+      &best);
+  return Shade(ray, found, best);
+}
+
+Vec3 Scene::Shade(const Ray& ray, const SceneObject* found, const SurfaceHit& best) const {
   if (!found) return background;
   Vec3 n = best.normal;
   if (n.dot(ray.direction) > 0) n = -n;  // two-sided surfaces

@@ -3,6 +3,7 @@
 // plus the ideal camera array and world board that go with it.
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -64,6 +65,9 @@ class Scene {
   std::vector<BoundingSphere> MovingBounds(double t_seconds) const;
   // Linear RGB radiance arriving along `ray` (from its origin, t > 0).
   Vec3 Radiance(const Ray& ray) const;
+  // The same from the objects `candidates` names alone (indices into `objects`, ascending):
+  // equal to Radiance(ray), bit for bit, where no other object lies on the ray.
+  Vec3 Radiance(const Ray& ray, std::span<const int> candidates) const;
   // Distance t of the first surface along `ray`, or +inf.
   double FirstHitDistance(const Ray& ray) const;
   // The first surface along `ray`: its distance t (+inf when none) and the index of its object
@@ -76,6 +80,10 @@ class Scene {
 
   // The slab of the scene's ideal rig, with the given st domain.
   Slab IdealSlab(const StDomain& domain = {}) const { return {rig.array, rig.board, domain}; }
+
+ private:
+  // The shading of `best`, the surface of `found` a ray met first (the background without one).
+  Vec3 Shade(const Ray& ray, const SceneObject* found, const SurfaceHit& best) const;
 };
 
 // The built-in scenes, by name ("paper"); throws lfcam::Error for an unknown name.

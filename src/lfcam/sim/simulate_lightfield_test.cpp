@@ -2,7 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cstring>
+#include <memory>
+
 #include "lfcam/core/color.h"
+#include "lfcam/sim/shapes.h"
 
 namespace lfcam {
 namespace {
@@ -50,6 +54,54 @@ TEST(SimulateLightField, Srgb8IsTheEncodedAverageOverTheCell) {
     }
   const std::uint8_t* p = lf.view_data(r, c) + (l * 16 + k) * 3;
   for (int ch = 0; ch < 3; ++ch) EXPECT_EQ(p[ch], LinearToSrgb8(float(sum[ch] / 9)));
+}
+
+// Each ray is tested only against the objects whose projection from its camera can reach its
+// sample (the boxes SimulateLightField finds for each view): the light field is, sample for
+// sample, the one every ray tested against every object gives. Cameras off the board's axis, a
+// domain wider than the board, objects before and behind the st-plane, and one beside the
+// cameras themselves (not in front of them: every sample tests it).
+TEST(SimulateLightField, LeavingOutObjectsARayCannotMeetChangesNoSample) {
+  Scene scene = MakePaperScene();
+  const Vec3 array_centre = scene.rig.array.center();
+  Texture red;
+  red.color_a = Vec3(0.8, 0.1, 0.1);
+  scene.Add("ball before the board", std::make_shared<SphereShape>(Vec3(120, 420, 1800), 70), red);
+  scene.Add("ball beside the cameras",
+            std::make_shared<SphereShape>(array_centre + Vec3(160, 0, 0), 40), red);
+  SimulateLightFieldOptions o;
+  o.rows = 4;
+  o.cols = 5;
+  o.n_s = 72;
+  o.n_t = 60;
+  o.st_domain = {-0.3, -0.2, 1.2, 1.1};
+  o.supersampling = 2;
+  const LightField lf = SimulateLightField(scene, o);
+  LightField every(lf.dims(), lf.sample_type(), lf.slab());
+  const StSampling sampling = lf.st_sampling();
+  for (int r = 0; r < o.rows; ++r)
+    for (int c = 0; c < o.cols; ++c) {
+      const Vec3 centre = lf.camera_center(r, c);
+      for (int l = 0; l < o.n_t; ++l)
+        for (int k = 0; k < o.n_s; ++k) {
+          Vec3 sum = Vec3::Zero();
+          for (int a = 0; a < 2; ++a)
+            for (int b = 0; b < 2; ++b) {
+              const Vec3 at = sampling.Point(k - 0.5 + (b + 0.5) / 2, l - 0.5 + (a + 0.5) / 2);
+              sum += scene.Radiance({centre, at - centre});
+            }
+          every.set_linear_rgb(r, c, k, l, (sum * 0.25).cast<float>());
+        }
+    }
+  EXPECT_EQ(std::memcmp(lf.data(), every.data(), lf.total_bytes()), 0);
+  // The ball before the board is in the views, so leaving it out where it cannot be was tested.
+  int red_samples = 0;
+  for (int l = 0; l < o.n_t; ++l)
+    for (int k = 0; k < o.n_s; ++k) {
+      const Eigen::Vector3f v = lf.linear_rgb(2, 2, k, l);
+      red_samples += v[0] > 2 * v[1] + 0.05f;
+    }
+  EXPECT_GT(red_samples, 10);
 }
 
 }  // namespace
