@@ -44,14 +44,6 @@ std::vector<BoundingSphere> Scene::MovingBounds(double t_seconds) const {
   return out;
 }
 
-Scene::Hit Scene::FirstHit(const Ray& ray) const {
-  Hit first{std::numeric_limits<double>::infinity(), -1};
-  SurfaceHit hit;
-  for (std::size_t i = 0; i < objects.size(); ++i)
-    if (objects[i].shape->Intersect(ray, 1e-9, first.t, &hit)) first = {hit.t, int(i)};
-  return first;
-}
-
 namespace {
 
 // The nearest of `objects` along `ray` among those `each` visits, and where it was hit.
@@ -70,16 +62,25 @@ const SceneObject* Nearest(const Ray& ray, EachObject each, SurfaceHit* best) {
   return found;
 }
 
+// Every object of `objects`, in order, for Nearest.
+auto EveryObject(const std::vector<SceneObject>& objects) {
+  return [&objects](auto visit) {
+    for (const SceneObject& object : objects) visit(object);
+  };
+}
+
 }  // namespace
+
+Scene::Hit Scene::FirstHit(const Ray& ray) const {
+  SurfaceHit best;
+  const SceneObject* found = Nearest(ray, EveryObject(objects), &best);
+  if (!found) return {std::numeric_limits<double>::infinity(), -1};
+  return {best.t, int(found - objects.data())};
+}
 
 Vec3 Scene::Radiance(const Ray& ray) const {
   SurfaceHit best;
-  const SceneObject* found = Nearest(
-      ray,
-      [&](auto visit) {
-        for (const SceneObject& object : objects) visit(object);
-      },
-      &best);
+  const SceneObject* found = Nearest(ray, EveryObject(objects), &best);
   return Shade(ray, found, best);
 }
 
