@@ -51,18 +51,6 @@ bool DepthAwareSampler::Project(int c, const Vec3& p, double& k, double& l) cons
   return colour_.StSampleAt(cameras_[std::size_t(c)].center, p, k, l);
 }
 
-float DepthAwareSampler::DepthAt(int c, double k, double l) const {
-  const Camera& camera = cameras_[std::size_t(c)];
-  if (!camera.depth) return NAN;
-  k -= camera.window.k;  // the view's own samples
-  l -= camera.window.l;
-  if (!(k >= -0.5 && k < n_s_ - 0.5 && l >= -0.5 && l < n_t_ - 0.5)) return NAN;
-  // Nearest sample (k, l >= -0.5 here: rounding half up is lround's after the clamp).
-  const int ki = std::min(int(std::floor(k + 0.5)), n_s_ - 1);
-  const int li = std::min(int(std::floor(l + 0.5)), n_t_ - 1);
-  return camera.depth[std::size_t(li) * camera.stride + std::size_t(ki)];
-}
-
 bool DepthAwareSampler::Read(int c, const Vec3& p, double q, float w, float acc[3]) const {
   double k, l;
   if (!Project(c, p, k, l)) return false;

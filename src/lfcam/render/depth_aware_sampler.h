@@ -17,6 +17,8 @@
 // AccumulateAtCubic), are blended in linear light with their bilinear weights renormalised, and
 // by default mixed with the agreeing cameras within two steps (DepthBlend below). A ray no
 // camera finds a hit for falls back to the paper's lookup.
+#include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -96,7 +98,18 @@ class DepthAwareSampler {
   // parallel to the st-plane.
   bool Project(int c, const Vec3& p, double& k, double& l) const;
   // Camera c's depth (mm) at the nearest sample to (k, l); NaN outside the view or unknown.
-  float DepthAt(int c, double k, double l) const;
+  // (inline: the march's every step)
+  float DepthAt(int c, double k, double l) const {
+    const Camera& camera = cameras_[std::size_t(c)];
+    if (!camera.depth) return NAN;
+    k -= camera.window.k;  // the view's own samples
+    l -= camera.window.l;
+    if (!(k >= -0.5 && k < n_s_ - 0.5 && l >= -0.5 && l < n_t_ - 0.5)) return NAN;
+    // Nearest sample (k, l >= -0.5 here: rounding half up is lround's after the clamp).
+    const int ki = std::min(int(std::floor(k + 0.5)), n_s_ - 1);
+    const int li = std::min(int(std::floor(l + 0.5)), n_t_ - 1);
+    return camera.depth[std::size_t(li) * camera.stride + std::size_t(ki)];
+  }
   // Whether camera c sees point p (inverse depth q), not something in front of or behind it (the
   // depth of the sample nearest to p's projection). If so, and `acc` is given, acc += w times
   // the view read there (bilinearly, or with Keys' cubic when set_cubic_reads).

@@ -7,9 +7,10 @@
 namespace lfcam {
 namespace {
 
-std::uint32_t Hash(std::int64_t x, std::int64_t y, std::uint32_t seed) {
-  std::uint64_t h = std::uint64_t(x) * 0x9E3779B97F4A7C15ull ^
-                    std::uint64_t(y) * 0xC2B2AE3D27D4EB4Full ^ (std::uint64_t(seed) << 32);
+constexpr std::uint64_t kHashX = 0x9E3779B97F4A7C15ull, kHashY = 0xC2B2AE3D27D4EB4Full;
+
+// The hash's finaliser: every bit of the key moves every bit of the result.
+std::uint32_t Finalise(std::uint64_t h) {
   h ^= h >> 33;
   h *= 0xFF51AFD7ED558CCDull;
   h ^= h >> 33;
@@ -18,20 +19,35 @@ std::uint32_t Hash(std::int64_t x, std::int64_t y, std::uint32_t seed) {
   return std::uint32_t(h);
 }
 
-double Lattice(std::int64_t x, std::int64_t y, unsigned seed) {
+std::uint32_t Hash(std::int64_t x, std::int64_t y, std::uint32_t seed) {
+  return Finalise(std::uint64_t(x) * kHashX ^ std::uint64_t(y) * kHashY ^
+                  (std::uint64_t(seed) << 32));
+}
+
+double Lattice(std::uint32_t hash) {
   // A multiply, not a division (a quarter of the simulator's time went to the noise, much of it
   // to the divider): the same value to within one ulp.
   constexpr double kInverseMax = 1.0 / 4294967295.0;
-  return Hash(x, y, seed) * kInverseMax;
+  return hash * kInverseMax;
+}
+
+// floor(x) as an integer: std::floor is a call into libm on x86-64's baseline instruction set
+// (no rounding instruction), and the noise takes eight a sample. The same for every |x| < 2^63.
+std::int64_t FloorToInt(double x) {
+  const auto truncated = std::int64_t(x);
+  return truncated - (double(truncated) > x);
 }
 
 double ValueNoise(const Vec2& p, unsigned seed) {
-  const double fx = std::floor(p.x()), fy = std::floor(p.y());
-  const auto x = std::int64_t(fx), y = std::int64_t(fy);
+  const std::int64_t x = FloorToInt(p.x()), y = FloorToInt(p.y());
   auto smooth = [](double t) { return t * t * (3 - 2 * t); };
-  const double tx = smooth(p.x() - fx), ty = smooth(p.y() - fy);
-  const double a = Lattice(x, y, seed), b = Lattice(x + 1, y, seed);
-  const double c = Lattice(x, y + 1, seed), d = Lattice(x + 1, y + 1, seed);
+  const double tx = smooth(p.x() - double(x)), ty = smooth(p.y() - double(y));
+  // Hash() at the cell's four corners, its products shared: (x + 1) kHashX = x kHashX + kHashX.
+  const std::uint64_t x0 = std::uint64_t(x) * kHashX, x1 = x0 + kHashX;
+  const std::uint64_t y0 = std::uint64_t(y) * kHashY ^ (std::uint64_t(seed) << 32),
+                      y1 = (std::uint64_t(y) * kHashY + kHashY) ^ (std::uint64_t(seed) << 32);
+  const double a = Lattice(Finalise(x0 ^ y0)), b = Lattice(Finalise(x1 ^ y0));
+  const double c = Lattice(Finalise(x0 ^ y1)), d = Lattice(Finalise(x1 ^ y1));
   return (a + (b - a) * tx) * (1 - ty) + (c + (d - c) * tx) * ty;
 }
 
