@@ -11,6 +11,8 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
 #include <string>
 
 #include "lfcam/cli/cli_test_support.h"
@@ -113,6 +115,45 @@ TEST_F(Cli, RenderAndOracleAgreeAndCompareReportsIt) {
                   " --size 48 --focal-length 600 --focus-distance 550 --out " + Path("x.png"))
                 .status,
             2);
+}
+
+// An aperture wider than the rig: the rays that miss are left out of each pixel's mean (the
+// frame as bright as a pinhole's), and the command says why the share of rays that hit is low.
+TEST_F(Cli, AnApertureWiderThanTheRigSaysWhyRaysMissed) {
+  ASSERT_EQ(Lfcam("simulate lightfield --scene paper --grid 1x7 --st-res 96x88 --quiet --out " +
+                  Path("row.lf"))
+                .status,
+            0);
+  const std::string camera = " --size 48 --focus-distance 3900 ";
+  const CommandResult pinhole =
+      Lfcam("render " + Path("row.lf") + camera + "--out " + Path("p.png"));
+  ASSERT_EQ(pinhole.status, 0) << pinhole.output;
+  EXPECT_EQ(pinhole.output.find("note:"), std::string::npos) << pinhole.output;
+  const CommandResult wide =
+      Lfcam("render " + Path("row.lf") + camera + "--aperture 100 --out " + Path("w.png"));
+  ASSERT_EQ(wide.status, 0) << wide.output;
+  EXPECT_NE(wide.output.find("33.3% of rays hit the slab"), std::string::npos) << wide.output;
+  EXPECT_NE(wide.output.find("note: 66.7% of the aperture's rays missed the light field: the "
+                             "aperture (d_l 100 mm) is wider than a single row of cameras (28 mm "
+                             "tall)"),
+            std::string::npos)
+      << wide.output;
+  const double pinhole_mean = cv::mean(cv::imread(Path("p.png")))[1];
+  const double wide_mean = cv::mean(cv::imread(Path("w.png")))[1];
+  EXPECT_GT(pinhole_mean, 20.0);
+  EXPECT_NEAR(wide_mean, pinhole_mean, 0.1 * pinhole_mean);
+  // Within the 4 x 4 rig (112 mm) every ray of a 96 mm aperture hits: nothing to say.
+  const CommandResult within =
+      Lfcam("render " + Path("small.lf") + camera + "--aperture 96 --out " + Path("i.png"));
+  ASSERT_EQ(within.status, 0) << within.output;
+  EXPECT_NE(within.output.find("100.0% of rays hit"), std::string::npos) << within.output;
+  EXPECT_EQ(within.output.find("note:"), std::string::npos) << within.output;
+  // Beyond the 4 x 4 rig: the array named with its size.
+  const CommandResult beyond =
+      Lfcam("render " + Path("small.lf") + camera + "--aperture 200 --out " + Path("b.png"));
+  ASSERT_EQ(beyond.status, 0) << beyond.output;
+  EXPECT_NE(beyond.output.find("is wider than the camera array (112 x 112 mm)"), std::string::npos)
+      << beyond.output;
 }
 
 // The scene at a time (issue 24): its movers in, recorded in the file's metadata; the still

@@ -44,6 +44,36 @@ std::string DescribeCamera(const VirtualCamera& camera, const std::string& sampl
                      p.breathing ? "breathing" : "no breathing");
 }
 
+// Why some of an aperture's rays missed the slab, where they did: each pixel is the mean of the
+// rays that hit, so the frame is right, but a share under 100% reads like a fault. Empty for a
+// pinhole or where every ray hit.
+std::string MissedRaysNote(const LightField& lf, const VirtualCamera& camera, long long hit,
+                           long long rays) {
+  if (camera.is_pinhole() || rays <= 0 || hit >= rays || hit == 0) return {};
+  const ArrayPlane& uv = lf.slab().uv;
+  const std::string unit = WorldLengthUnit(lf.metadata());
+  const double aperture = camera.params().aperture_mm;
+  const std::string array =
+      uv.rows == 1 || uv.cols == 1
+          ? fmt::format("a single {} of cameras ({:.4g} {} {})", uv.rows == 1 ? "row" : "column",
+                        uv.rows == 1 ? uv.height_mm() : uv.width_mm(), unit,
+                        uv.rows == 1 ? "tall" : "wide")
+          : fmt::format("the camera array ({:.4g} x {:.4g} {})", uv.width_mm(), uv.height_mm(),
+                        unit);
+  const std::string why =
+      aperture > std::min(uv.width_mm(), uv.height_mm())
+          ? fmt::format("the aperture (d_l {:.4g} {}) is wider than {}", aperture, unit, array)
+          : fmt::format(
+                "the aperture (d_l {:.4g} {}) reaches beyond {} or beyond what the views "
+                "saw",
+                aperture, unit, array);
+  return fmt::format(
+      "lfcam: note: {:.1f}% of the aperture's rays missed the light field: {}. Each pixel is the "
+      "mean of the rays that hit it, not darkened by those that missed (--hit-mask marks the "
+      "pixels no ray reached)",
+      100.0 * double(rays - hit) / double(rays), why);
+}
+
 double SecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -174,6 +204,9 @@ void AddRenderCommand(CLI::App& app) {
             : std::string(),
         flags->repeat, result.path,
         100.0 * double(result.rays_hit) / double(std::max(1LL, result.rays)));
+    if (const std::string note = MissedRaysNote(lf, camera, result.rays_hit, result.rays);
+        !note.empty())
+      fmt::print(stderr, "{}\n", note);
   });
 }
 
