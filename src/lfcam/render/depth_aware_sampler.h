@@ -11,7 +11,8 @@
 // projection into that camera moves at most half a sample, and stops where the ray passes from
 // in front of the surface it sees to behind it without a jump in that surface's depth (a jump
 // means the ray passed behind an occluding edge). Each camera's hit is then put to the others:
-// the hit most of the cameras' weight agrees with wins (the nearest on a tie), and the cameras
+// the hit most of the cameras' weight agrees with wins (the nearest on a tie; the cameras march
+// heaviest first, and a hit all of them agree with ends the search), and the cameras
 // that agree, each read at the hit's projection (bilinearly, or with a cubic kernel for frames at
 // the views' resolution or finer: an 8-bit view's codes interpolated, LightFieldSampler::
 // AccumulateAtCubic), are blended in linear light with their bilinear weights renormalised, and

@@ -306,11 +306,23 @@ bool Sample(vec3 origin, vec3 direction, out vec3 rgb) {
         weight[count] = row_w[a] * col_w[b];
         ++count;
       }
+  // The heaviest camera marches first (DepthAwareSampler::Sample).
+  for (int i = 1; i < count; ++i)
+    for (int j = i; j > 0 && weight[j] > weight[j - 1]; --j) {
+      const int index_j = index[j];
+      const float weight_j = weight[j];
+      index[j] = index[j - 1];
+      weight[j] = weight[j - 1];
+      index[j - 1] = index_j;
+      weight[j - 1] = weight_j;
+    }
+  float all = 0.0;
+  for (int j = 0; j < count; ++j) all += weight[j];
   const float n_dir = dot(n_ca, direction), origin_depth = DepthOf(origin);
-  // Each camera's hit, put to all of them.
+  // Each camera's hit, put to all of them, until one that every camera agrees with.
   float best_q = -1.0, best_support = 0.0;
   vec3 unused;
-  for (int i = 0; i < count; ++i) {
+  for (int i = 0; i < count && !(best_support > all - 1e-6); ++i) {
     const float q = March(index[i], origin, direction);
     if (q <= 0.0) continue;
     const vec3 p = PointAt(origin, direction, origin_depth, n_dir, q);
