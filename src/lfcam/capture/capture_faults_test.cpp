@@ -186,7 +186,9 @@ TEST_F(CaptureFaults, AVerySlowNodeDoesNotHoldUpTheOthers) {
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   EXPECT_EQ(report.images_ok, 4);
-  EXPECT_TRUE(report.problems.empty());
+  for (const CameraProblem& problem : report.problems)  // none; where a loaded machine made one:
+    ADD_FAILURE() << "camera (" << problem.row << ", " << problem.col << "), " << problem.shot
+                  << ": " << problem.status << ": " << problem.reason;
   ExpectSessionConsistent();
   // About one slow download's time (0.4 MB at 0.3 MB/s) and the rest's, not a timeout (a read
   // times out after 10 s, and is retried). The rest (the trigger's margin, the checks of each
