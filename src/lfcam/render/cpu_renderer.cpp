@@ -231,23 +231,29 @@ RenderResult RenderReference(const LightField& lf, const VirtualCamera& camera,
 
   RenderResult result = NewResult(camera);
   tbb::combinable<long long> hits_per_thread(0);
+  // Through an aperture (not the cameras integrator, nor the antialiased depth lookup's own
+  // film points) a tile is rendered lens point by lens point.
   const bool lens_outer =
       !frame.cameras && !camera.is_pinhole() && !(frame.depth && frame.antialias);
   const auto render_tile = [&](const tbb::blocked_range2d<int>& tile) {
     long long hits_here = 0;
     std::vector<float> weights(std::size_t(frame.view_count));
-    if (lens_outer) hits_here = RenderTileLensOuter(frame, tile, result);
-    for (int j = tile.rows().begin(); j != tile.rows().end() && !lens_outer; ++j) {
-      const int row = camera.image_row(j);
-      auto* out = result.image.ptr<cv::Vec3f>(row);
-      auto* mask = result.hit_mask.ptr<std::uint8_t>(row);
-      auto* counts = result.counts.ptr<std::int32_t>(row);
-      for (int i = tile.cols().begin(); i != tile.cols().end(); ++i) {
-        const int hits = frame.cameras ? RenderPixelCameras(frame, i, j, weights.data(), out[i].val)
-                                       : RenderPixel(frame, i, j, out[i].val);
-        mask[i] = hits > 0 ? 255 : 0;
-        counts[i] = hits;
-        hits_here += hits;
+    if (lens_outer) {
+      hits_here = RenderTileLensOuter(frame, tile, result);
+    } else {
+      for (int j = tile.rows().begin(); j != tile.rows().end(); ++j) {
+        const int row = camera.image_row(j);
+        auto* out = result.image.ptr<cv::Vec3f>(row);
+        auto* mask = result.hit_mask.ptr<std::uint8_t>(row);
+        auto* counts = result.counts.ptr<std::int32_t>(row);
+        for (int i = tile.cols().begin(); i != tile.cols().end(); ++i) {
+          const int hits = frame.cameras
+                               ? RenderPixelCameras(frame, i, j, weights.data(), out[i].val)
+                               : RenderPixel(frame, i, j, out[i].val);
+          mask[i] = hits > 0 ? 255 : 0;
+          counts[i] = hits;
+          hits_here += hits;
+        }
       }
     }
     hits_per_thread.local() += hits_here;

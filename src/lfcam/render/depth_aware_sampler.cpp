@@ -208,7 +208,8 @@ bool DepthAwareSampler::Sample(const Vec3& origin, const Vec3& direction, float 
   };
   // Each camera's hit, put to all of them, the heaviest camera's first; a hit that every camera
   // agrees with is taken at once (the others' marches could only find a point as well supported,
-  // nearly always the same one: docs/benchmarks.md, "The depth lookup's march on the CPU").
+  // nearly always the same one: docs/benchmarks.md, "The depth lookup's search ended at a hit
+  // every camera agrees with").
   for (int i = 1; i < count; ++i)
     for (int j = i; j > 0 && around[j].weight > around[j - 1].weight; --j)
       std::swap(around[j], around[j - 1]);
