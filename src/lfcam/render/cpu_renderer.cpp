@@ -145,6 +145,27 @@ void RunWithThreads(int threads, const F& work) {
   }
 }
 
+// Each pixel of `tile`, row by row: pixel(i, j, rgb) writes pixel (i, j)'s colour and returns the
+// rays (or cameras) that hit it, which the hit mask and the counts take. Returns their sum.
+template <typename Pixel>
+long long FillTile(const VirtualCamera& camera, const tbb::blocked_range2d<int>& tile,
+                   RenderResult& result, Pixel&& pixel) {
+  long long hit = 0;
+  for (int j = tile.rows().begin(); j != tile.rows().end(); ++j) {
+    const int row = camera.image_row(j);
+    auto* out = result.image.ptr<cv::Vec3f>(row);
+    auto* mask = result.hit_mask.ptr<std::uint8_t>(row);
+    auto* counts = result.counts.ptr<std::int32_t>(row);
+    for (int i = tile.cols().begin(); i != tile.cols().end(); ++i) {
+      const int hits = pixel(i, j, out[i].val);
+      mask[i] = hits > 0 ? 255 : 0;
+      counts[i] = hits;
+      hit += hits;
+    }
+  }
+  return hit;
+}
+
 // A tile of pixels through an aperture, lens sample by lens sample: pixel by pixel, the tile's
 // rays for one lens point leave from the same point towards neighbouring points in focus, so
 // consecutive rays read the same cameras near the same samples (the views and the depth maps
@@ -172,23 +193,13 @@ long long RenderTileLensOuter(const Frame& frame, const tbb::blocked_range2d<int
       out[2] += rgb[2];
       ++hits[at];
     }
-  long long hit = 0;
-  for (int j = tile.rows().begin(); j != tile.rows().end(); ++j) {
-    const int row = camera.image_row(j);
-    auto* out = result.image.ptr<cv::Vec3f>(row);
-    auto* mask = result.hit_mask.ptr<std::uint8_t>(row);
-    auto* counts = result.counts.ptr<std::int32_t>(row);
-    for (int i = tile.cols().begin(); i != tile.cols().end(); ++i) {
-      const std::size_t at =
-          std::size_t((j - tile.rows().begin()) * width + (i - tile.cols().begin()));
-      const float inv = hits[at] > 0 ? 1.0f / float(hits[at]) : 0.0f;
-      for (int c = 0; c < 3; ++c) out[i][c] = sum[3 * at + c] * inv;
-      mask[i] = hits[at] > 0 ? 255 : 0;
-      counts[i] = hits[at];
-      hit += hits[at];
-    }
-  }
-  return hit;
+  return FillTile(camera, tile, result, [&](int i, int j, float rgb_out[3]) {
+    const std::size_t at =
+        std::size_t((j - tile.rows().begin()) * width + (i - tile.cols().begin()));
+    const float inv = hits[at] > 0 ? 1.0f / float(hits[at]) : 0.0f;
+    for (int c = 0; c < 3; ++c) rgb_out[c] = sum[3 * at + c] * inv;
+    return hits[at];
+  });
 }
 
 RenderResult NewResult(const VirtualCamera& camera) {
@@ -241,20 +252,10 @@ RenderResult RenderReference(const LightField& lf, const VirtualCamera& camera,
     if (lens_outer) {
       hits_here = RenderTileLensOuter(frame, tile, result);
     } else {
-      for (int j = tile.rows().begin(); j != tile.rows().end(); ++j) {
-        const int row = camera.image_row(j);
-        auto* out = result.image.ptr<cv::Vec3f>(row);
-        auto* mask = result.hit_mask.ptr<std::uint8_t>(row);
-        auto* counts = result.counts.ptr<std::int32_t>(row);
-        for (int i = tile.cols().begin(); i != tile.cols().end(); ++i) {
-          const int hits = frame.cameras
-                               ? RenderPixelCameras(frame, i, j, weights.data(), out[i].val)
-                               : RenderPixel(frame, i, j, out[i].val);
-          mask[i] = hits > 0 ? 255 : 0;
-          counts[i] = hits;
-          hits_here += hits;
-        }
-      }
+      hits_here = FillTile(camera, tile, result, [&](int i, int j, float rgb_out[3]) {
+        return frame.cameras ? RenderPixelCameras(frame, i, j, weights.data(), rgb_out)
+                             : RenderPixel(frame, i, j, rgb_out);
+      });
     }
     hits_per_thread.local() += hits_here;
     if (options.progress)
