@@ -7,7 +7,7 @@
 #include <atomic>
 #include <climits>
 #include <cstdlib>
-#include <cstring>
+#include <new>
 
 #include "lfcam/core/color.h"
 #include "lfcam/core/error.h"
@@ -45,6 +45,22 @@ SampleBuffer SampleBuffer::Allocate(std::size_t size) {
   return b;
 }
 
+SampleBuffer SampleBuffer::AllocateZeroed(std::size_t size) {
+  // calloc takes a large block straight from the kernel, whose pages read as zero until first
+  // written: no pass over the whole buffer, and pages nobody writes cost no memory.
+  void* memory = std::calloc(size + kReadableBefore, 1);
+  if (memory == nullptr) throw std::bad_alloc();
+  std::shared_ptr<std::uint8_t> owned(static_cast<std::uint8_t*>(memory),
+                                      [](std::uint8_t* p) { std::free(p); });
+  SampleBuffer b;
+  b.data_ = owned.get() + kReadableBefore;
+  b.keep_alive_ = std::move(owned);
+  b.size_ = size;
+  b.writable_ = true;
+  b.serial_ = NextSampleBufferSerial();
+  return b;
+}
+
 SampleBuffer SampleBuffer::Wrap(std::shared_ptr<void> keep_alive, std::uint8_t* data,
                                 std::size_t size, bool writable) {
   SampleBuffer b;
@@ -64,8 +80,7 @@ std::uint8_t* SampleBuffer::mutable_data() {
 LightField::LightField(const LightFieldDims& dims, SampleType type, const Slab& slab)
     : dims_(dims), type_(type), slab_(slab) {
   CheckShape();
-  samples_ = SampleBuffer::Allocate(total_bytes());
-  std::memset(samples_.mutable_data(), 0, total_bytes());
+  samples_ = SampleBuffer::AllocateZeroed(total_bytes());
 }
 
 LightField::LightField(const LightFieldDims& dims, SampleType type, const Slab& slab,

@@ -57,7 +57,8 @@ class SampleBuffer {
  public:
   static constexpr std::size_t kReadableBefore = 16;
   SampleBuffer() = default;
-  static SampleBuffer Allocate(std::size_t size);  // uninitialised
+  static SampleBuffer Allocate(std::size_t size);        // uninitialised
+  static SampleBuffer AllocateZeroed(std::size_t size);  // zeros, its pages mapped as written
   static SampleBuffer Wrap(std::shared_ptr<void> keep_alive, std::uint8_t* data, std::size_t size,
                            bool writable);
   const std::uint8_t* data() const { return data_; }

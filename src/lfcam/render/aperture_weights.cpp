@@ -84,17 +84,81 @@ double DiskCameraIntegral(double radius, double cx, double cy, int col, int row,
 
 std::vector<GridCameraWeight> DiskCameraWeights(double radius, double cx, double cy, int cols,
                                                 int rows) {
-  std::vector<GridCameraWeight> out;
   const double reach = std::max(0.0, radius) + 1.0;
   const int c0 = std::max(0, int(std::floor(cx - reach))),
             c1 = std::min(cols - 1, int(std::ceil(cx + reach)));
   const int r0 = std::max(0, int(std::floor(cy - reach))),
             r1 = std::min(rows - 1, int(std::ceil(cy + reach)));
+  if (c0 > c1 || r0 > r1) return {};
+  const int box_cols = c1 - c0 + 1;
+  std::vector<double> box(std::size_t(box_cols) * std::size_t(r1 - r0 + 1), 0.0);
+  if (radius > 0.0) {
+    // Every camera's DiskCameraIntegral in one sweep of the disk: the thetas are cut at every
+    // camera's kinks (the grid's lines, and the window's edges), so each piece is smooth for
+    // every camera, and each node's sine and cosine serve them all. A node's x meets at most two
+    // cameras' weights along x; its chord, the rows it spans.
+    std::vector<std::array<double, 7>> row_kinks;
+    for (int r = r0; r <= r1; ++r) row_kinks.push_back(AxisKinks(r, rows));
+    std::vector<double> cuts = {-0.5 * std::numbers::pi, 0.5 * std::numbers::pi};
+    const auto grid_lines = [](int n, const auto& add) {
+      add(-0.5);
+      add(n - 0.5);
+      for (int k = 0; k < n; ++k) add(double(k));
+    };
+    grid_lines(cols, [&](double k) {
+      if (std::abs(k - cx) < radius) cuts.push_back(std::asin((k - cx) / radius));
+    });
+    grid_lines(rows, [&](double k) {
+      if (std::abs(k - cy) < radius) {
+        const double theta = std::acos(std::abs(k - cy) / radius);
+        cuts.push_back(theta);
+        cuts.push_back(-theta);
+      }
+    });
+    std::sort(cuts.begin(), cuts.end());
+    const auto add_node = [&](double theta, double weight) {
+      const double x = cx + radius * std::sin(theta), h = radius * std::cos(theta);
+      const int x_floor = int(std::floor(x));
+      double wx[2];
+      int columns[2], n_columns = 0;
+      for (int c = std::max(c0, x_floor); c <= std::min(c1, x_floor + 1); ++c) {
+        const double w = AxisWeight(x, c, cols);
+        if (w != 0.0) {
+          wx[n_columns] = w;
+          columns[n_columns++] = c;
+        }
+      }
+      if (n_columns == 0) return;
+      const int lo = std::max(r0, int(std::floor(cy - h)) - 1),
+                hi = std::min(r1, int(std::ceil(cy + h)) + 1);
+      for (int r = lo; r <= hi; ++r) {
+        const auto& kinks = row_kinks[std::size_t(r - r0)];
+        const double wy =
+            AxisCumulative(cy + h, r, rows, kinks) - AxisCumulative(cy - h, r, rows, kinks);
+        if (wy == 0.0) continue;
+        double* at = box.data() + std::size_t(r - r0) * std::size_t(box_cols);
+        for (int n = 0; n < n_columns; ++n) at[columns[n] - c0] += weight * wx[n] * wy * h;
+      }
+    };
+    for (std::size_t p = 0; p + 1 < cuts.size(); ++p) {
+      const double mid = 0.5 * (cuts[p] + cuts[p + 1]), half = 0.5 * (cuts[p + 1] - cuts[p]);
+      if (half <= 0.0) continue;
+      for (std::size_t q = 0; q < kNodes.size(); ++q) {
+        add_node(mid - half * kNodes[q], half * kWeights[q]);
+        add_node(mid + half * kNodes[q], half * kWeights[q]);
+      }
+    }
+  } else {
+    for (int r = r0; r <= r1; ++r)
+      for (int c = c0; c <= c1; ++c)
+        box[std::size_t(r - r0) * std::size_t(box_cols) + std::size_t(c - c0)] =
+            AxisWeight(cx, c, cols) * AxisWeight(cy, r, rows);
+  }
+  std::vector<GridCameraWeight> out;
   double total = 0.0;
   for (int r = r0; r <= r1; ++r)
     for (int c = c0; c <= c1; ++c) {
-      const double w = radius > 0.0 ? DiskCameraIntegral(radius, cx, cy, c, r, cols, rows)
-                                    : AxisWeight(cx, c, cols) * AxisWeight(cy, r, rows);
+      const double w = box[std::size_t(r - r0) * std::size_t(box_cols) + std::size_t(c - c0)];
       if (w > 0.0) {
         out.push_back({c, r, w});
         total += w;

@@ -85,5 +85,40 @@ TEST(ApertureWeights, WeightsArePositiveSumToOneAndShrinkToBilinear) {
   EXPECT_TRUE(DiskCameraWeights(0.5, -2.0, 4.0, 10, 10).empty());
 }
 
+// The weights come from one sweep of the disk for all cameras: each must be its own camera's
+// integral (DiskCameraIntegral, checked against brute force above), normalised, on grids of one
+// camera a side up to the reference design's, the window's edges and corners included.
+TEST(ApertureWeights, EachWeightIsItsCamerasOwnIntegral) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int compared = 0;
+  for (const auto& [cols, rows] : {std::pair{10, 10}, {1, 1}, {1, 7}, {17, 3}, {2, 2}}) {
+    for (int trial = 0; trial < 60; ++trial) {
+      const double cx = -1.0 + (cols + 1.0) * unit(rng), cy = -1.0 + (rows + 1.0) * unit(rng);
+      const double radius = trial % 10 == 0 ? 1e-3 : 0.05 + 6.0 * unit(rng) * unit(rng);
+      SCOPED_TRACE(::testing::Message()
+                   << cols << "x" << rows << " disk " << radius << " at " << cx << ", " << cy);
+      std::vector<double> own(std::size_t(cols) * rows);
+      double total = 0.0;
+      for (int r = 0; r < rows; ++r)
+        for (int c = 0; c < cols; ++c)
+          total += own[std::size_t(r) * cols + c] =
+              DiskCameraIntegral(radius, cx, cy, c, r, cols, rows);
+      const auto weights = DiskCameraWeights(radius, cx, cy, cols, rows);
+      if (!(total > 1e-15)) {
+        EXPECT_TRUE(weights.empty());
+        continue;
+      }
+      std::vector<double> swept(own.size(), 0.0);
+      for (const GridCameraWeight& w : weights) swept[std::size_t(w.row) * cols + w.col] = w.weight;
+      for (std::size_t i = 0; i < own.size(); ++i) {
+        EXPECT_NEAR(swept[i], own[i] / total, 1e-9) << "camera " << i;
+        ++compared;
+      }
+    }
+  }
+  EXPECT_GT(compared, 5000);
+}
+
 }  // namespace
 }  // namespace lfcam

@@ -210,8 +210,11 @@ RenderResult NewResult(const VirtualCamera& camera) {
   return result;
 }
 
+// `prebuilt`, when given, is the cameras integrator's frame for this camera and the light
+// field's slab and grid (the quadrilinear limit's, made for its prefilter).
 RenderResult RenderReference(const LightField& lf, const VirtualCamera& camera,
-                             const CpuRenderOptions& options) {
+                             const CpuRenderOptions& options,
+                             const CameraIntegratorFrame* prebuilt = nullptr) {
   const LightFieldSampler sampler(lf);
   Frame frame{camera, sampler, {}, options.interpolation};
   for (const Vec2& disk : camera.lens_samples())
@@ -234,8 +237,7 @@ RenderResult RenderReference(const LightField& lf, const VirtualCamera& camera,
     // A pinhole's limit is the focal-plane lookup itself.
     frame.interpolation = Interpolation::kFocalPlane;
     if (!camera.is_pinhole()) {
-      cameras.emplace(lf, camera);
-      frame.cameras = &*cameras;
+      frame.cameras = prebuilt ? prebuilt : &cameras.emplace(lf, camera);
       frame.view_count = lf.dims().rows * lf.dims().cols;
     }
   }
@@ -367,17 +369,21 @@ RenderResult RenderSeparable(const LightField& lf, const VirtualCamera& camera,
   return result;
 }
 
+// `prebuilt` as for RenderReference.
 RenderResult RenderFast(const LightField& lf, const VirtualCamera& camera,
-                        const CpuRenderOptions& options) {
-  if (const auto separable = MakeSeparableFrame(lf, camera, options))
-    return RenderSeparable(lf, camera, *separable, options);
+                        const CpuRenderOptions& options, const CameraIntegratorFrame* prebuilt) {
   const bool lens_samples = options.integrator == Integrator::kLensSamples || camera.is_pinhole();
+  // The cameras integrator's weights, worked out once for whichever path renders the frame.
+  std::optional<CameraIntegratorFrame> own;
+  const CameraIntegratorFrame* cameras = prebuilt;
+  if (!lens_samples && cameras == nullptr) cameras = &own.emplace(lf, camera);
+  if (const auto separable = MakeSeparableFrame(lf, camera, options, cameras))
+    return RenderSeparable(lf, camera, *separable, options);
+  if (!FastKernelsSupport(lf)) return RenderReference(lf, camera, options, cameras);
   // A pinhole's limit under the cameras integrator is the focal-plane lookup itself.
   const bool focal_plane = options.integrator == Integrator::kCameras ||
                            options.interpolation == Interpolation::kFocalPlane;
   const RaySetup setup(lf, camera, lens_samples);
-  std::optional<CameraIntegratorFrame> cameras;
-  if (!lens_samples) cameras.emplace(lf, camera);
   const int views = lf.dims().rows * lf.dims().cols;
   const int width = camera.width(), padded = PaddedRowWidth(width);
 
@@ -421,6 +427,16 @@ RenderResult RenderFast(const LightField& lf, const VirtualCamera& camera,
   return result;
 }
 
+// The vectorised kernels where they can render the frame, else the reference; `prebuilt` as for
+// RenderReference.
+RenderResult RenderEither(const LightField& lf, const VirtualCamera& camera,
+                          const CpuRenderOptions& options,
+                          const CameraIntegratorFrame* prebuilt = nullptr) {
+  if (options.reference || !RowKernelsSupport(lf) || options.interpolation == Interpolation::kDepth)
+    return RenderReference(lf, camera, options, prebuilt);
+  return RenderFast(lf, camera, options, prebuilt);
+}
+
 }  // namespace
 
 RenderResult RenderLightFieldCpu(const LightField& lf, const VirtualCamera& camera,
@@ -436,20 +452,18 @@ RenderResult RenderLightFieldCpu(const LightField& lf, const VirtualCamera& came
     focal.interpolation = Interpolation::kFocalPlane;
     const StPrefilter prefilter = QuadrilinearLimitPrefilter(lf, camera);
     if (camera.is_pinhole() || (prefilter.h_s < 1e-3 && prefilter.h_t < 1e-3))
-      return RenderLightFieldCpu(lf, camera, focal);
-    // Only the views some pixel reads are filtered.
+      return RenderEither(lf, camera, focal);
+    // Only the views some pixel reads are filtered; the filtered copy has the same slab and
+    // grid, so the cameras' weights serve its render too.
     const CameraIntegratorFrame cameras(lf, camera);
     const LightField filtered =
         PrefilterViews(lf, prefilter, ViewRegionsRead(lf, camera, cameras.CamerasRead()));
-    RenderResult result = RenderLightFieldCpu(filtered, camera, focal);
+    RenderResult result = RenderEither(filtered, camera, focal, &cameras);
     result.path = fmt::format("{}, views prefiltered ({:.2f} x {:.2f} samples)", result.path,
                               prefilter.h_s, prefilter.h_t);
     return result;
   }
-  if (options.reference || !FastKernelsSupport(lf) ||
-      options.interpolation == Interpolation::kDepth)
-    return RenderReference(lf, camera, options);
-  return RenderFast(lf, camera, options);
+  return RenderEither(lf, camera, options);
 }
 
 }  // namespace lfcam

@@ -33,7 +33,7 @@ struct CpuRenderOptions {
   ProgressCallback progress;  // told the pixels done, tile by tile (may be empty)
   Integrator integrator = Integrator::kLensSamples;
   // The scalar reference instead of the vectorised kernels (which also stand back for it where
-  // they cannot read the light field: see FastKernelsSupport).
+  // they cannot read the light field: see RowKernelsSupport and FastKernelsSupport).
   bool reference = false;
   // The views' depth maps, for Interpolation::kDepth (which the scalar path renders, on every
   // core): a map for every camera the frame reads (DepthViewsNeeded).

@@ -14,8 +14,6 @@
 #include "lfcam/render/cpu_renderer.h"
 #include "lfcam/render/render_test_cases.h"
 #include "lfcam/render/simd_kernels.h"
-#include "lfcam/sim/scene.h"
-#include "lfcam/sim/simulate_lightfield.h"
 
 namespace lfcam {
 namespace {
@@ -74,19 +72,51 @@ TEST(FastRenderer, AgreesWithTheScalarReferenceOnEveryInstructionSet) {
   std::cout << "largest difference from the reference: " << worst * 255 << " / 255\n";
 }
 
-TEST(FastRenderer, LeavesHalfFloatLightFieldsToTheReference) {
-  SimulateLightFieldOptions o;
-  o.rows = o.cols = 3;
-  o.n_s = 24;
-  o.n_t = 22;
-  o.supersampling = 1;
-  o.sample_type = SampleType::kLinearF16;
-  const LightField lf = SimulateLightField(MakePaperScene(), o);
-  VirtualCameraParams p;
-  p.width = p.height = 16;
-  p.eye = lf.slab().uv.center();
-  p.look_at = p.eye - Vec3(0, 0, 1000);
-  EXPECT_EQ(RenderLightFieldCpu(lf, VirtualCamera(p)).path, "reference");
+// A light field of linear half floats (`--sample-type linear_f16`): the same samples, the row
+// kernels convert them where they decode bytes; the kernels that gather single samples read only
+// 8-bit words, and leave such frames to the reference.
+TEST(FastRenderer, ReadsHalfFloatLightFieldsWithTheRowKernels) {
+  const LightField& bytes = SmallPaperLightField();
+  LightField halves(bytes.dims(), SampleType::kLinearF16, bytes.slab());
+  halves.set_measured_poses(bytes.measured_poses());
+  const LightFieldDims& d = bytes.dims();
+  for (int r = 0; r < d.rows; ++r)
+    for (int c = 0; c < d.cols; ++c)
+      for (int l = 0; l < d.n_t; ++l)
+        for (int k = 0; k < d.n_s; ++k)
+          halves.set_linear_rgb(r, c, k, l, bytes.linear_rgb(r, c, k, l));
+  const std::vector<std::int64_t> targets = Targets();
+  int row_frames = 0;
+  for (const render_test::Case& c : Cases()) {
+    if (c.turned) continue;
+    const VirtualCamera camera(c.camera);
+    CpuRenderOptions options;
+    options.integrator = c.integrator;
+    options.interpolation = c.interpolation;
+    options.reference = true;
+    options.threads = 1;
+    const RenderResult reference = RenderLightFieldCpu(halves, camera, options);
+    // The 8-bit light field's frame: what the half floats hold is its samples, decoded.
+    const RenderResult from_bytes = RenderLightFieldCpu(bytes, camera, options);
+    EXPECT_LE(cv::norm(reference.image, from_bytes.image, cv::NORM_INF), 1e-3) << c.name;
+    options.reference = false;
+    options.threads = 0;
+    for (const std::int64_t target : targets) {
+      hwy::SetSupportedTargetsForTest(target);
+      const RenderResult fast = RenderLightFieldCpu(halves, camera, options);
+      const std::string where = c.name + " on " + hwy::TargetName(target);
+      if (c.path == "separable") {
+        EXPECT_EQ(fast.path, "separable (" + std::string(hwy::TargetName(target)) + ")") << where;
+        ++row_frames;
+      } else {
+        EXPECT_EQ(fast.path, "reference") << where;
+      }
+      EXPECT_LE(cv::norm(fast.image, reference.image, cv::NORM_INF), 1.0 / 255) << where;
+      EXPECT_EQ(cv::countNonZero(fast.hit_mask != reference.hit_mask), 0) << where;
+    }
+    hwy::SetSupportedTargetsForTest(0);
+  }
+  EXPECT_GT(row_frames, 0);
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include "lfcam/render/quadrilinear_limit.h"
 
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -117,6 +118,8 @@ LightField PrefilterViews(const LightField& lf, const StPrefilter& prefilter,
   const LightFieldDims& d = lf.dims();
   RequireMemory(double(lf.total_bytes()) + 2.0 * 12.0 * double(d.samples_per_view()),
                 "the prefiltered copy of the light field");
+  // Zeros that cost nothing until written: only the regions read are (a third of each view on
+  // the demo's frames).
   LightField out(d, lf.sample_type(), lf.slab());
   out.set_measured_poses(lf.measured_poses());
   out.set_st_offsets(lf.st_offsets());
@@ -127,16 +130,28 @@ LightField PrefilterViews(const LightField& lf, const StPrefilter& prefilter,
   const int reach_s = int(taps_s.size()) / 2, reach_t = int(taps_t.size()) / 2;
   const cv::Rect whole(0, 0, d.n_s, d.n_t);
   const bool bytes = lf.sample_type() == SampleType::kSrgb8;
+  // Each thread's linear and filtered samples, kept from view to view (fresh blocks this size
+  // would each be mapped and faulted in anew).
+  struct Scratch {
+    std::vector<cv::Vec3f> linear, filtered;
+  };
+  tbb::enumerable_thread_specific<Scratch> scratch;
   tbb::parallel_for(0, int(d.view_count()), [&](int v) {
     const cv::Rect region = regions[std::size_t(v)] & whole;
     if (region.empty()) return;
     const int row = v / d.cols, col = v % d.cols;
-    // The region with the kernel's reach around it, as far as the view goes; beyond the view
-    // the filter replicates its edge.
+    // The region with the kernel's reach around it, as far as the view goes.
     const cv::Rect source = cv::Rect(region.x - reach_s, region.y - reach_t,
                                      region.width + 2 * reach_s, region.height + 2 * reach_t) &
                             whole;
-    cv::Mat linear(source.height, source.width, CV_32FC3);
+    Scratch& s = scratch.local();
+    s.linear.resize(std::size_t(source.area()));
+    s.filtered.resize(std::size_t(region.area()));
+    // Headers over the buffers: `linear` is a whole matrix to OpenCV, so the filter of its
+    // region reads the real samples around the region and replicates only beyond `linear`,
+    // which stops short of the reach only at the view's own edges.
+    cv::Mat linear(source.height, source.width, CV_32FC3, s.linear.data());
+    cv::Mat filtered(region.height, region.width, CV_32FC3, s.filtered.data());
     for (int l = 0; l < source.height; ++l) {
       auto* p = linear.ptr<cv::Vec3f>(l);
       if (bytes) {
@@ -152,19 +167,12 @@ LightField PrefilterViews(const LightField& lf, const StPrefilter& prefilter,
         }
       }
     }
-    // Replicate the view's own edges only: where the source stops short of them, the samples
-    // beyond the region are real and inside `source`.
-    cv::Mat padded;
-    cv::copyMakeBorder(linear, padded, reach_t - (region.y - source.y),
-                       reach_t - (source.br().y - region.br().y), reach_s - (region.x - source.x),
-                       reach_s - (source.br().x - region.br().x), cv::BORDER_REPLICATE);
-    cv::Mat filtered;
-    cv::sepFilter2D(padded, filtered, CV_32F, kernel_s, kernel_t, cv::Point(-1, -1), 0,
+    const cv::Mat inner = linear(region - source.tl());
+    cv::sepFilter2D(inner, filtered, CV_32F, kernel_s, kernel_t, cv::Point(-1, -1), 0,
                     cv::BORDER_REPLICATE);
-    const cv::Mat inner = filtered(cv::Rect(reach_s, reach_t, region.width, region.height));
     const auto& encode = LinearToSrgb8EncodeTable();
     for (int l = 0; l < region.height; ++l) {
-      const auto* p = inner.ptr<cv::Vec3f>(l);
+      const auto* p = filtered.ptr<cv::Vec3f>(l);
       if (bytes) {
         std::uint8_t* o = out.mutable_view_data(row, col) +
                           3 * (std::size_t(region.y + l) * d.n_s + std::size_t(region.x));

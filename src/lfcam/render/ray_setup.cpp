@@ -63,6 +63,8 @@ RaySetup::RaySetup(const LightField& lf, const VirtualCamera& camera, bool lens_
       n_s(lf.dims().n_s),
       n_t(lf.dims().n_t),
       view_bytes(static_cast<long long>(lf.view_bytes())),
+      half_floats(lf.sample_type() == SampleType::kLinearF16),
+      sample_bytes(half_floats ? 6 : 3),
       width(camera.width()),
       height(camera.height()) {
   const SamplePlane uv_plane = UvSamplePlane(lf), st_plane = StSamplePlane(lf);
@@ -95,10 +97,15 @@ RaySetup::RaySetup(const LightField& lf, const VirtualCamera& camera, bool lens_
     }
 }
 
-bool FastKernelsSupport(const LightField& lf) {
+bool RowKernelsSupport(const LightField& lf) {
   const LightFieldDims& d = lf.dims();
-  return lf.sample_type() == SampleType::kSrgb8 && d.n_s >= 2 && d.n_t >= 2 && d.rows >= 1 &&
-         d.cols >= 1 && lf.total_bytes() < std::size_t(std::numeric_limits<std::int32_t>::max());
+  return (lf.sample_type() == SampleType::kSrgb8 || lf.sample_type() == SampleType::kLinearF16) &&
+         d.n_s >= 2 && d.n_t >= 2 && d.rows >= 1 && d.cols >= 1;
+}
+
+bool FastKernelsSupport(const LightField& lf) {
+  return RowKernelsSupport(lf) && lf.sample_type() == SampleType::kSrgb8 &&
+         lf.total_bytes() < std::size_t(std::numeric_limits<std::int32_t>::max());
 }
 
 }  // namespace lfcam

@@ -59,10 +59,13 @@ SamplePlane StSamplePlane(const LightField& lf);  // st samples k and l
 
 // Everything the fast kernels read for one frame.
 struct RaySetup {
-  const std::uint8_t* samples = nullptr;  // srgb8 light field; 4 readable bytes precede it
+  const std::uint8_t* samples = nullptr;  // the light field's; 4 readable bytes precede it
   const float* decode = nullptr;          // the 256-entry sRGB decoding table
   int rows = 0, cols = 0, n_s = 0, n_t = 0;
   long long view_bytes = 0;
+  // Linear half floats (6 bytes a sample: only the row kernels read them) or 8-bit sRGB (3).
+  bool half_floats = false;
+  int sample_bytes = 3;
   int width = 0, height = 0;
   PlaneAffines uv, st;  // p_o against the uv- and st-planes
   // The sampled st domain in reference samples (lo_k, lo_l, hi_k, hi_l: the outer edges of the
@@ -85,8 +88,13 @@ struct RaySetup {
   }
 };
 
-// Whether the fast kernels can read this light field: srgb8, at least two samples and cameras
-// along each axis, and byte offsets that fit 32 bits. Otherwise the scalar reference renders.
+// Whether the vectorised kernels that read views a sample row at a time (the separable frame's,
+// and the cameras integrator's rows) can read this light field: 8-bit sRGB or linear half
+// floats, at least two samples and cameras along each axis, any size.
+bool RowKernelsSupport(const LightField& lf);
+// Whether the kernels that gather single samples can: 8-bit sRGB (each sample a 32-bit word's
+// top three bytes) and byte offsets that fit 32 bits, as well. Otherwise the scalar reference
+// renders what the row kernels cannot.
 bool FastKernelsSupport(const LightField& lf);
 
 }  // namespace lfcam

@@ -1,7 +1,7 @@
 // The vectorised helpers both kernel files share (Highway's per-target inline header: included
 // once per instruction set by each kernel file, inside its target's namespace): decoding sample
-// rows through the sRGB table, a row of bilinear reads along k, and the lines from an origin
-// through a pixel row's points in focus.
+// rows (8-bit sRGB, or converting linear half floats), a row of bilinear reads along k, and the
+// lines from an origin through a pixel row's points in focus.
 #if defined(LFCAM_RENDER_SAMPLE_ROWS_INL_H_) == defined(HWY_TARGET_TOGGLE)
 #ifdef LFCAM_RENDER_SAMPLE_ROWS_INL_H_
 #undef LFCAM_RENDER_SAMPLE_ROWS_INL_H_
@@ -87,6 +87,52 @@ inline void DecodeRow(const std::uint8_t* bytes, int count, float* r, float* g, 
     hn::StoreU(DecodeSrgb(hn::ConvertTo(d, hn::PromoteTo(di, v1))), d, g + k);
     hn::StoreU(DecodeSrgb(hn::ConvertTo(d, hn::PromoteTo(di, v2))), d, b + k);
   }
+}
+
+// Converts `count` samples of one st row of a linear half-float light field (RGB, three IEEE
+// binary16 values a sample, `halves`) into linear planes: one conversion a value (F16C where
+// the instruction set has it), no decoding. `next` as in DecodeRow.
+inline void ConvertHalfRow(const std::uint16_t* halves, int count, float* r, float* g, float* b,
+                           const std::uint16_t* next = nullptr) {
+  const DF d;
+  const hn::Rebind<std::uint16_t, DF> d16;
+  const hn::Rebind<hwy::float16_t, DF> dh;
+  const int lanes = int(hn::Lanes(d));
+  std::uint16_t tail[3 * HWY_MAX_BYTES / 4] = {};
+  for (int k = 0; k < count; k += lanes) {
+    const std::uint16_t* at = halves + std::size_t(k) * 3;
+    if (next != nullptr) {  // twice the bytes of DecodeRow's step: two cache lines
+      hwy::Prefetch(next + std::size_t(k) * 3);
+      hwy::Prefetch(next + std::size_t(k) * 3 + 32);
+    }
+    if (k + lanes > count) {  // the last samples: never read past the row
+      std::copy_n(at, std::size_t(count - k) * 3, tail);
+      at = tail;
+    }
+    hn::Vec<decltype(d16)> v0, v1, v2;
+    hn::LoadInterleaved3(d16, at, v0, v1, v2);
+    hn::StoreU(hn::PromoteTo(d, hn::BitCast(dh, v0)), d, r + k);
+    hn::StoreU(hn::PromoteTo(d, hn::BitCast(dh, v1)), d, g + k);
+    hn::StoreU(hn::PromoteTo(d, hn::BitCast(dh, v2)), d, b + k);
+  }
+}
+
+// Sample row `l` of view `view` (0-based, row-major) from sample `k0`, `count` samples, into
+// linear planes, whatever the light field stores (RaySetup::half_floats); the next row is
+// prefetched meanwhile when `prefetch_next`.
+inline void ReadSampleRow(const RaySetup& s, int view, int l, int k0, int count, bool prefetch_next,
+                          float* r, float* g, float* b) {
+  const std::size_t first =
+      std::size_t(view) * std::size_t(s.view_bytes) +
+      (std::size_t(l) * std::size_t(s.n_s) + std::size_t(k0)) * std::size_t(s.sample_bytes);
+  const std::size_t row_bytes = std::size_t(s.n_s) * std::size_t(s.sample_bytes);
+  const std::uint8_t* row = s.samples + first;
+  const std::uint8_t* next = prefetch_next ? row + row_bytes : nullptr;
+  if (s.half_floats)
+    ConvertHalfRow(reinterpret_cast<const std::uint16_t*>(row), count, r, g, b,
+                   reinterpret_cast<const std::uint16_t*>(next));
+  else
+    DecodeRow(row, count, r, g, b, next);
 }
 
 // One axis's bilinear read for the pixels of a tile along it (its columns or its rows), for one

@@ -101,8 +101,8 @@ class Builder {
   std::map<int, int> camera_origins_;
 };
 
-bool BuildCamerasIntegrator(const LightField& lf, const VirtualCamera& camera, Builder& builder) {
-  const CameraIntegratorFrame cameras(lf, camera);
+bool BuildCamerasIntegrator(const LightField& lf, const VirtualCamera& camera,
+                            const CameraIntegratorFrame& cameras, Builder& builder) {
   const auto& uniform = cameras.uniform_weights();
   if (uniform.empty()) return false;
   SeparableFrame& frame = builder.frame();
@@ -154,14 +154,20 @@ bool BuildLensSamples(const LightField& lf, const VirtualCamera& camera, bool fo
 }  // namespace
 
 std::optional<SeparableFrame> MakeSeparableFrame(const LightField& lf, const VirtualCamera& camera,
-                                                 const CpuRenderOptions& options) {
-  if (!FastKernelsSupport(lf)) return std::nullopt;
+                                                 const CpuRenderOptions& options,
+                                                 const CameraIntegratorFrame* cameras) {
+  if (!RowKernelsSupport(lf)) return std::nullopt;
   Builder builder(lf, camera);
   const bool focal_plane = options.integrator == Integrator::kCameras ||
                            options.interpolation == Interpolation::kFocalPlane;
-  const bool built = options.integrator == Integrator::kCameras && !camera.is_pinhole()
-                         ? BuildCamerasIntegrator(lf, camera, builder)
-                         : BuildLensSamples(lf, camera, focal_plane, builder);
+  bool built = false;
+  if (options.integrator == Integrator::kCameras && !camera.is_pinhole()) {
+    std::optional<CameraIntegratorFrame> own;
+    built =
+        BuildCamerasIntegrator(lf, camera, cameras ? *cameras : own.emplace(lf, camera), builder);
+  } else {
+    built = BuildLensSamples(lf, camera, focal_plane, builder);
+  }
   if (!built || !builder.WithinTolerance() || !builder.ReadsInsideTheirWindows())
     return std::nullopt;
   return std::move(builder.frame());

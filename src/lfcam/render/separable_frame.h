@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "lfcam/core/lightfield.h"
+#include "lfcam/render/camera_integrator.h"
 #include "lfcam/render/cpu_renderer.h"
 #include "lfcam/render/ray_setup.h"
 #include "lfcam/render/virtual_camera.h"
@@ -61,8 +62,10 @@ struct SeparableFrame {
 
 // The separable form of the frame, or nothing when the frame is not separable (an eye off the
 // array's plane, a turned camera, an st-plane turned too far) or the light field cannot be read
-// by the fast kernels.
+// by the fast kernels. `cameras`, when given, is the cameras integrator's frame for `camera` on
+// a light field of `lf`'s slab and grid (its weights are then not worked out again).
 std::optional<SeparableFrame> MakeSeparableFrame(const LightField& lf, const VirtualCamera& camera,
-                                                 const CpuRenderOptions& options);
+                                                 const CpuRenderOptions& options,
+                                                 const CameraIntegratorFrame* cameras = nullptr);
 
 }  // namespace lfcam

@@ -58,7 +58,6 @@ void AddTerm(const SeparableFrame& f, const RaySetup& s, const SeparableTerm& t,
   // to where l crosses it): the rows that read it lie within 1 / |dl/dj| of there, and k drifts
   // with the row by at most SeparableFrame::map_error over that.
   resampled.Resize(std::size_t(l_hi - l_lo + 1), std::size_t(padded));
-  const std::uint8_t* view = s.samples + std::size_t(t.view) * std::size_t(s.view_bytes);
   for (int l = l_lo; l <= l_hi; ++l) {
     double j_l = 0.5 * (j0 + j1 - 1);
     if (std::abs(l_last - l_first) > 1e-12)
@@ -70,9 +69,8 @@ void AddTerm(const SeparableFrame& f, const RaySetup& s, const SeparableTerm& t,
                  s.n_s, k_map);
     const int k_count = k_map.hi - k_map.lo + 1;
     decoded.Resize(1, std::size_t(k_count + lanes));
-    const std::uint8_t* row = view + (std::size_t(l) * s.n_s + std::size_t(k_map.lo)) * 3;
-    DecodeRow(row, k_count, decoded.channel(0, 0), decoded.channel(0, 1), decoded.channel(0, 2),
-              l < l_hi ? row + std::size_t(s.n_s) * 3 : nullptr);
+    ReadSampleRow(s, t.view, l, k_map.lo, k_count, l < l_hi, decoded.channel(0, 0),
+                  decoded.channel(0, 1), decoded.channel(0, 2));
     const float* const in[3] = {decoded.channel(0, 0), decoded.channel(0, 1),
                                 decoded.channel(0, 2)};
     const std::size_t at = std::size_t(l - l_lo);

@@ -362,14 +362,12 @@ bool RenderRowCamerasResampledT(const RaySetup& s, const GridCameraWeight* unifo
     const int k_count = k_map.hi - k_map.lo + 1;
     decoded.Resize(1, std::size_t(k_count + lanes));
     resampled.Resize(std::size_t(l_hi - l_lo + 1), std::size_t(padded));
-    const std::uint8_t* view = s.samples + std::size_t(view_index) * std::size_t(s.view_bytes);
     const float* const in[3] = {decoded.channel(0, 0), decoded.channel(0, 1),
                                 decoded.channel(0, 2)};
     for (int l = l_lo; l <= l_hi; ++l) {
-      const std::uint8_t* bytes = view + (std::size_t(l) * s.n_s + std::size_t(k_map.lo)) * 3;
-      sample_rows::DecodeRow(bytes, k_count, decoded.channel(0, 0), decoded.channel(0, 1),
-                             decoded.channel(0, 2),
-                             l < l_hi ? bytes + std::size_t(s.n_s) * 3 : nullptr);
+      sample_rows::ReadSampleRow(s, view_index, l, k_map.lo, k_count, l < l_hi,
+                                 decoded.channel(0, 0), decoded.channel(0, 1),
+                                 decoded.channel(0, 2));
       const std::size_t at = std::size_t(l - l_lo);
       float* const rows_out[3] = {resampled.channel(at, 0), resampled.channel(at, 1),
                                   resampled.channel(at, 2)};
