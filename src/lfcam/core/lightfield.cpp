@@ -1,11 +1,13 @@
 #include "lfcam/core/lightfield.h"
 
 #include <fmt/format.h>
+#include <sys/mman.h>
 
 #include <Eigen/Core>
 #include <algorithm>
 #include <atomic>
 #include <climits>
+#include <cstdint>
 #include <cstdlib>
 #include <new>
 
@@ -46,14 +48,27 @@ SampleBuffer SampleBuffer::Allocate(std::size_t size) {
 }
 
 SampleBuffer SampleBuffer::AllocateZeroed(std::size_t size) {
-  // calloc takes a large block straight from the kernel, whose pages read as zero until first
-  // written: no pass over the whole buffer, and pages nobody writes cost no memory.
-  void* memory = std::calloc(size + kReadableBefore, 1);
-  if (memory == nullptr) throw std::bad_alloc();
-  std::shared_ptr<std::uint8_t> owned(static_cast<std::uint8_t*>(memory),
-                                      [](std::uint8_t* p) { std::free(p); });
+  // Anonymous memory straight from the kernel reads as zero until first written: no pass over
+  // the whole buffer, and pages nobody writes cost no memory. A large buffer is aligned to, and
+  // advised onto, transparent huge pages: a fault then maps 2 MB, not 4 KB (a filtered copy of
+  // the views writes a third of each view, a fault every 4 KB being most of its time).
+  constexpr std::size_t kHugePage = std::size_t(2) << 20, kLarge = std::size_t(4) << 20;
+  const bool large = size >= kLarge;
+  const std::size_t mapped = size + kReadableBefore + (large ? kHugePage : 0);
+  void* memory =
+      ::mmap(nullptr, mapped, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+  if (memory == MAP_FAILED) throw std::bad_alloc();
+  auto* base = static_cast<std::uint8_t*>(memory);
+  std::uint8_t* start = base;
+  if (large) {
+    start = base + (kHugePage - reinterpret_cast<std::uintptr_t>(base) % kHugePage) % kHugePage;
+    // Advice only: where the kernel has no transparent huge pages the call fails and nothing
+    // changes.
+    ::madvise(start, mapped - std::size_t(start - base), MADV_HUGEPAGE);
+  }
+  std::shared_ptr<std::uint8_t> owned(base, [mapped](std::uint8_t* p) { ::munmap(p, mapped); });
   SampleBuffer b;
-  b.data_ = owned.get() + kReadableBefore;
+  b.data_ = start + kReadableBefore;
   b.keep_alive_ = std::move(owned);
   b.size_ = size;
   b.writable_ = true;

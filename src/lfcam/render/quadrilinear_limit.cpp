@@ -5,10 +5,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <opencv2/imgproc.hpp>
 
-#include "lfcam/core/color.h"
 #include "lfcam/core/limits.h"
+#include "lfcam/render/srgb_values.h"
 
 namespace lfcam {
 
@@ -133,7 +134,16 @@ LightField PrefilterViews(const LightField& lf, const StPrefilter& prefilter,
   // Each thread's linear and filtered samples, kept from view to view (fresh blocks this size
   // would each be mapped and faulted in anew).
   struct Scratch {
-    std::vector<cv::Vec3f> linear, filtered;
+    // Uninitialised floats (three a sample), grown as needed: each view writes what it reads.
+    std::unique_ptr<float[]> linear, filtered;
+    std::size_t linear_size = 0, filtered_size = 0;
+    static float* Reserve(std::unique_ptr<float[]>& buffer, std::size_t& size, std::size_t n) {
+      if (size < n) {
+        buffer.reset(new float[n]);
+        size = n;
+      }
+      return buffer.get();
+    }
   };
   tbb::enumerable_thread_specific<Scratch> scratch;
   tbb::parallel_for(0, int(d.view_count()), [&](int v) {
@@ -145,21 +155,19 @@ LightField PrefilterViews(const LightField& lf, const StPrefilter& prefilter,
                                      region.width + 2 * reach_s, region.height + 2 * reach_t) &
                             whole;
     Scratch& s = scratch.local();
-    s.linear.resize(std::size_t(source.area()));
-    s.filtered.resize(std::size_t(region.area()));
     // Headers over the buffers: `linear` is a whole matrix to OpenCV, so the filter of its
     // region reads the real samples around the region and replicates only beyond `linear`,
     // which stops short of the reach only at the view's own edges.
-    cv::Mat linear(source.height, source.width, CV_32FC3, s.linear.data());
-    cv::Mat filtered(region.height, region.width, CV_32FC3, s.filtered.data());
+    cv::Mat linear(source.height, source.width, CV_32FC3,
+                   Scratch::Reserve(s.linear, s.linear_size, 3 * std::size_t(source.area())));
+    cv::Mat filtered(region.height, region.width, CV_32FC3,
+                     Scratch::Reserve(s.filtered, s.filtered_size, 3 * std::size_t(region.area())));
     for (int l = 0; l < source.height; ++l) {
       auto* p = linear.ptr<cv::Vec3f>(l);
       if (bytes) {
-        const auto& decode = SrgbDecodeTable();
         const std::uint8_t* in = lf.view_data(row, col) +
                                  3 * (std::size_t(source.y + l) * d.n_s + std::size_t(source.x));
-        for (int k = 0; k < source.width; ++k)
-          p[k] = {decode[in[3 * k]], decode[in[3 * k + 1]], decode[in[3 * k + 2]]};
+        DecodeSrgbValues(in, 3 * std::size_t(source.width), &p[0][0]);
       } else {
         for (int k = 0; k < source.width; ++k) {
           const Eigen::Vector3f c = lf.linear_rgb(row, col, source.x + k, source.y + l);
@@ -170,14 +178,12 @@ LightField PrefilterViews(const LightField& lf, const StPrefilter& prefilter,
     const cv::Mat inner = linear(region - source.tl());
     cv::sepFilter2D(inner, filtered, CV_32F, kernel_s, kernel_t, cv::Point(-1, -1), 0,
                     cv::BORDER_REPLICATE);
-    const auto& encode = LinearToSrgb8EncodeTable();
     for (int l = 0; l < region.height; ++l) {
       const auto* p = filtered.ptr<cv::Vec3f>(l);
       if (bytes) {
         std::uint8_t* o = out.mutable_view_data(row, col) +
                           3 * (std::size_t(region.y + l) * d.n_s + std::size_t(region.x));
-        for (int k = 0; k < region.width; ++k)
-          for (int ch = 0; ch < 3; ++ch) o[3 * k + ch] = LinearToSrgb8With(encode, p[k][ch]);
+        EncodeSrgbValues(&p[0][0], 3 * std::size_t(region.width), o);
       } else {
         for (int k = 0; k < region.width; ++k)
           out.set_linear_rgb(row, col, region.x + k, region.y + l, {p[k][0], p[k][1], p[k][2]});
