@@ -24,16 +24,25 @@ std::array<double, 7> AxisKinks(int i, int n) {
   return k;
 }
 
-// The integral of AxisWeight(., i, n) from -infinity to y: exact, since the weight is linear
-// between kinks and the midpoint rule integrates a linear function exactly.
-double AxisCumulative(double y, int i, int n, const std::array<double, 7>& kinks) {
-  double sum = 0.0;
-  for (std::size_t p = 0; p + 1 < kinks.size(); ++p) {
-    const double a = kinks[p], b = std::min(kinks[p + 1], y);
-    if (b <= a) continue;
-    sum += (b - a) * AxisWeight(0.5 * (a + b), i, n);
+// The integral of AxisWeight(., i, n) from -infinity to y, in closed form: the weight's rising
+// half (1 over the window's outer half-sample for the first camera, else the tent's t over
+// [i - 1, i]) and its falling half (1 over the outer half-sample for the last camera, else
+// 1 - t over [i, i + 1]).
+double AxisCumulative(double y, int i, int n) {
+  double rising, falling;
+  if (i == 0) {
+    rising = std::clamp(y + 0.5, 0.0, 0.5);
+  } else {
+    const double t = std::clamp(y - (i - 1), 0.0, 1.0);
+    rising = 0.5 * t * t;
   }
-  return sum;
+  if (i == n - 1) {
+    falling = std::clamp(y - i, 0.0, 0.5);
+  } else {
+    const double t = std::clamp(y - i, 0.0, 1.0);
+    falling = t - 0.5 * t * t;
+  }
+  return rising + falling;
 }
 
 // Gauss-Legendre, 8 points on [-1, 1].
@@ -65,8 +74,7 @@ double DiskCameraIntegral(double radius, double cx, double cy, int col, int row,
     const double x = cx + radius * std::sin(theta), h = radius * std::cos(theta);
     const double wx = AxisWeight(x, col, cols);
     if (wx == 0.0) return 0.0;
-    const double wy =
-        AxisCumulative(cy + h, row, rows, y_kinks) - AxisCumulative(cy - h, row, rows, y_kinks);
+    const double wy = AxisCumulative(cy + h, row, rows) - AxisCumulative(cy - h, row, rows);
     return wx * wy * h;  // dx = R cos(theta) dtheta = h dtheta
   };
   double sum = 0.0;
@@ -97,8 +105,6 @@ std::vector<GridCameraWeight> DiskCameraWeights(double radius, double cx, double
     // camera's kinks (the grid's lines, and the window's edges), so each piece is smooth for
     // every camera, and each node's sine and cosine serve them all. A node's x meets at most two
     // cameras' weights along x; its chord, the rows it spans.
-    std::vector<std::array<double, 7>> row_kinks;
-    for (int r = r0; r <= r1; ++r) row_kinks.push_back(AxisKinks(r, rows));
     std::vector<double> cuts = {-0.5 * std::numbers::pi, 0.5 * std::numbers::pi};
     const auto grid_lines = [](int n, const auto& add) {
       add(-0.5);
@@ -132,9 +138,7 @@ std::vector<GridCameraWeight> DiskCameraWeights(double radius, double cx, double
       const int lo = std::max(r0, int(std::floor(cy - h)) - 1),
                 hi = std::min(r1, int(std::ceil(cy + h)) + 1);
       for (int r = lo; r <= hi; ++r) {
-        const auto& kinks = row_kinks[std::size_t(r - r0)];
-        const double wy =
-            AxisCumulative(cy + h, r, rows, kinks) - AxisCumulative(cy - h, r, rows, kinks);
+        const double wy = AxisCumulative(cy + h, r, rows) - AxisCumulative(cy - h, r, rows);
         if (wy == 0.0) continue;
         double* at = box.data() + std::size_t(r - r0) * std::size_t(box_cols);
         for (int n = 0; n < n_columns; ++n) at[columns[n] - c0] += weight * wx[n] * wy * h;
