@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "lfcam/core/error.h"
+#include "lfcam/core/instruction_sets_for_tests.h"
 
 namespace lfcam::local_planes_test {
 namespace {
@@ -168,9 +169,7 @@ TEST(LocalPlanes, TheVectorisedFitIsTheDefinitionsOnEveryInstructionSet) {
   wide.radius = 10;
   wide.sigma_space = 5;
   wide.refit_below_confidence = 0.1;
-  std::vector<std::int64_t> targets;
-  for (std::int64_t t = 1; t != 0 && t <= HWY_TARGETS; t <<= 1)
-    if ((HWY_TARGETS & t) && (hwy::SupportedTargets() & t)) targets.push_back(t);
+  const std::vector<std::int64_t> targets = testing::InstructionSetsThisMachineRuns();
   ASSERT_FALSE(targets.empty());
   double worst = 0, worst_slope = 0;
   for (const LocalPlaneOptions& o : {narrow, wide}) {

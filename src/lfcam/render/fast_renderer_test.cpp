@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "lfcam/core/instruction_sets_for_tests.h"
 #include "lfcam/render/cpu_renderer.h"
 #include "lfcam/render/render_test_cases.h"
 #include "lfcam/render/simd_kernels.h"
@@ -22,16 +23,19 @@ using render_test::Cases;
 using render_test::SmallPaperLightField;
 using render_test::TurnedStPlaneLightField;
 
-// The instruction sets compiled in that this machine runs.
-std::vector<std::int64_t> Targets() {
-  std::vector<std::int64_t> targets;
-  for (std::int64_t t = 1; t != 0 && t <= HWY_TARGETS; t <<= 1)
-    if ((HWY_TARGETS & t) && (hwy::SupportedTargets() & t)) targets.push_back(t);
-  return targets;
+// A case's options for the scalar reference (one thread), and for the vectorised renderer (every
+// core).
+CpuRenderOptions CaseOptions(const render_test::Case& c, bool reference) {
+  CpuRenderOptions o;
+  o.integrator = c.integrator;
+  o.interpolation = c.interpolation;
+  o.reference = reference;
+  o.threads = reference ? 1 : 0;
+  return o;
 }
 
 TEST(FastRenderer, AgreesWithTheScalarReferenceOnEveryInstructionSet) {
-  const std::vector<std::int64_t> targets = Targets();
+  const std::vector<std::int64_t> targets = testing::InstructionSetsThisMachineRuns();
   ASSERT_FALSE(targets.empty());
   std::cout << "instruction sets:";
   for (const std::int64_t t : targets) std::cout << " " << hwy::TargetName(t);
@@ -40,17 +44,10 @@ TEST(FastRenderer, AgreesWithTheScalarReferenceOnEveryInstructionSet) {
   for (const render_test::Case& c : Cases()) {
     const LightField& lf = c.turned ? TurnedStPlaneLightField() : SmallPaperLightField();
     const VirtualCamera camera(c.camera);
-    CpuRenderOptions reference_options;
-    reference_options.integrator = c.integrator;
-    reference_options.interpolation = c.interpolation;
-    reference_options.reference = true;
-    reference_options.threads = 1;
-    const RenderResult reference = RenderLightFieldCpu(lf, camera, reference_options);
+    const RenderResult reference = RenderLightFieldCpu(lf, camera, CaseOptions(c, true));
     ASSERT_EQ(reference.path, "reference");
     ASSERT_GT(reference.rays_hit, 0) << c.name;
-    CpuRenderOptions fast_options = reference_options;
-    fast_options.reference = false;
-    fast_options.threads = 0;
+    const CpuRenderOptions fast_options = CaseOptions(c, false);
     for (const std::int64_t target : targets) {
       hwy::SetSupportedTargetsForTest(target);
       const RenderResult fast = RenderLightFieldCpu(lf, camera, fast_options);
@@ -85,25 +82,18 @@ TEST(FastRenderer, ReadsHalfFloatLightFieldsWithTheRowKernels) {
       for (int l = 0; l < d.n_t; ++l)
         for (int k = 0; k < d.n_s; ++k)
           halves.set_linear_rgb(r, c, k, l, bytes.linear_rgb(r, c, k, l));
-  const std::vector<std::int64_t> targets = Targets();
+  const std::vector<std::int64_t> targets = testing::InstructionSetsThisMachineRuns();
   int row_frames = 0;
   for (const render_test::Case& c : Cases()) {
     if (c.turned) continue;
     const VirtualCamera camera(c.camera);
-    CpuRenderOptions options;
-    options.integrator = c.integrator;
-    options.interpolation = c.interpolation;
-    options.reference = true;
-    options.threads = 1;
-    const RenderResult reference = RenderLightFieldCpu(halves, camera, options);
+    const RenderResult reference = RenderLightFieldCpu(halves, camera, CaseOptions(c, true));
     // The 8-bit light field's frame: what the half floats hold is its samples, decoded.
-    const RenderResult from_bytes = RenderLightFieldCpu(bytes, camera, options);
+    const RenderResult from_bytes = RenderLightFieldCpu(bytes, camera, CaseOptions(c, true));
     EXPECT_LE(cv::norm(reference.image, from_bytes.image, cv::NORM_INF), 1e-3) << c.name;
-    options.reference = false;
-    options.threads = 0;
     for (const std::int64_t target : targets) {
       hwy::SetSupportedTargetsForTest(target);
-      const RenderResult fast = RenderLightFieldCpu(halves, camera, options);
+      const RenderResult fast = RenderLightFieldCpu(halves, camera, CaseOptions(c, false));
       const std::string where = c.name + " on " + hwy::TargetName(target);
       if (c.path == "separable") {
         EXPECT_EQ(fast.path, "separable (" + std::string(hwy::TargetName(target)) + ")") << where;

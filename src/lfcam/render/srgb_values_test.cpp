@@ -3,7 +3,6 @@
 #include "lfcam/render/srgb_values.h"
 
 #include <gtest/gtest.h>
-#include <hwy/targets.h>
 
 #include <cmath>
 #include <cstdint>
@@ -12,16 +11,10 @@
 #include <vector>
 
 #include "lfcam/core/color.h"
+#include "lfcam/core/instruction_sets_for_tests.h"
 
 namespace lfcam {
 namespace {
-
-std::vector<std::int64_t> Targets() {
-  std::vector<std::int64_t> targets;
-  for (std::int64_t t = 1; t != 0 && t <= HWY_TARGETS; t <<= 1)
-    if ((HWY_TARGETS & t) && (hwy::SupportedTargets() & t)) targets.push_back(t);
-  return targets;
-}
 
 TEST(SrgbValues, DecodeAndEncodeAsTheTablesDoOnEveryInstructionSet) {
   // Every code, in runs that end mid-vector (the scalar tails) and start anywhere.
@@ -46,7 +39,7 @@ TEST(SrgbValues, DecodeAndEncodeAsTheTablesDoOnEveryInstructionSet) {
   for (int i = 0; i < 20000; ++i) linear.push_back(unit(rng));
   const auto& decode = SrgbDecodeTable();
   const auto& encode = LinearToSrgb8EncodeTable();
-  for (const std::int64_t target : Targets()) {
+  for (const std::int64_t target : testing::InstructionSetsThisMachineRuns()) {
     hwy::SetSupportedTargetsForTest(target);
     SCOPED_TRACE(hwy::TargetName(target));
     for (const std::size_t start : {std::size_t(0), std::size_t(3), std::size_t(17)}) {
