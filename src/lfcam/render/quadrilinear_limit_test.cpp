@@ -130,5 +130,49 @@ TEST(QuadrilinearLimit, APinholeOrFocusOnTheStPlaneIsTheFocalPlaneLookup) {
               0.5, 1e-9);
 }
 
+// Filtering a region gives the samples the whole view filtered gives there: the filter reads the
+// view's real samples around the region and repeats the view's own edge only beyond it, for
+// regions in the middle, along each edge and at the corners, in 8-bit and half-float views.
+TEST(QuadrilinearLimit, AFilteredRegionIsTheWholeFilteredViewThere) {
+  const LightField& bytes = render_test::SmallPaperLightField();
+  const LightFieldDims& d = bytes.dims();
+  LightField halves(d, SampleType::kLinearF16, bytes.slab());
+  for (int r = 0; r < d.rows; ++r)
+    for (int c = 0; c < d.cols; ++c)
+      for (int l = 0; l < d.n_t; ++l)
+        for (int k = 0; k < d.n_s; ++k)
+          halves.set_linear_rgb(r, c, k, l, bytes.linear_rgb(r, c, k, l));
+  StPrefilter filter;
+  filter.h_s = 4.3;  // 9 taps along s
+  filter.h_t = 2.2;  // 5 along t
+  const cv::Rect whole(0, 0, d.n_s, d.n_t);
+  const cv::Rect cuts[] = {{30, 20, 17, 25}, {0, 10, 12, 30}, {70, 5, 26, 9},
+                           {40, 0, 9, 3},    {0, 0, 5, 6},    {90, 80, 6, 8},
+                           {2, 84, 93, 4},   {1, 1, 94, 86},  {95, 87, 1, 1}};
+  for (const LightField* lf : {&bytes, static_cast<const LightField*>(&halves)}) {
+    const std::vector<cv::Rect> everything(d.view_count(), whole);
+    const LightField reference = PrefilterViews(*lf, filter, everything);
+    std::vector<cv::Rect> regions(d.view_count());
+    for (std::size_t v = 0; v < regions.size(); ++v) regions[v] = cuts[v % std::size(cuts)];
+    const LightField cut = PrefilterViews(*lf, filter, regions);
+    int compared = 0;
+    for (int v = 0; v < int(d.view_count()); ++v) {
+      const cv::Rect& region = regions[std::size_t(v)];
+      for (int l = region.y; l < region.br().y; ++l)
+        for (int k = region.x; k < region.br().x; ++k, ++compared) {
+          ASSERT_EQ(cut.linear_rgb(v / d.cols, v % d.cols, k, l),
+                    reference.linear_rgb(v / d.cols, v % d.cols, k, l))
+              << ToString(lf->sample_type()) << " view " << v << " sample " << k << ", " << l;
+        }
+      // Outside its region a view is left black.
+      const int k = region.x > 0 ? 0 : d.n_s - 1, l = region.y > 0 ? 0 : d.n_t - 1;
+      if (!region.contains({k, l})) {
+        EXPECT_EQ(cut.linear_rgb(v / d.cols, v % d.cols, k, l), Eigen::Vector3f::Zero());
+      }
+    }
+    EXPECT_GT(compared, 10000);
+  }
+}
+
 }  // namespace
 }  // namespace lfcam
