@@ -8,21 +8,17 @@
 
 #ifndef LFCAM_RENDER_SRGB_VALUES_ONCE
 #define LFCAM_RENDER_SRGB_VALUES_ONCE
-#include <array>
+#include <vector>
 
 #include "lfcam/core/color.h"
 
 namespace lfcam::srgb_values {
 
-// The encoding table's codes widened to 32 bits: what a vector gather reads.
-inline const std::array<std::int32_t, 65536>& WideEncodeTable() {
-  static const std::array<std::int32_t, 65536> table = [] {
-    std::array<std::int32_t, 65536> wide{};
-    const auto& codes = LinearToSrgb8EncodeTable();
-    for (std::size_t i = 0; i < wide.size(); ++i) wide[i] = codes[i];
-    return wide;
-  }();
-  return table;
+// The encoding table's codes widened to 32 bits: what a vector gather reads (256 KB, on the heap).
+inline const std::int32_t* WideEncodeTable() {
+  static const std::vector<std::int32_t> table(LinearToSrgb8EncodeTable().begin(),
+                                               LinearToSrgb8EncodeTable().end());
+  return table.data();
 }
 
 }  // namespace lfcam::srgb_values
@@ -54,7 +50,7 @@ void EncodeSrgbValuesT(const float* in, std::size_t n, std::uint8_t* out) {
   const DF d;
   const DI di;
   const D8 d8;
-  const std::int32_t* table = srgb_values::WideEncodeTable().data();
+  const std::int32_t* table = srgb_values::WideEncodeTable();
   const auto& codes = LinearToSrgb8EncodeTable();
   const std::size_t lanes = hn::Lanes(d);
   const auto zero = hn::Zero(d), one = hn::Set(d, 1.0f), scale = hn::Set(d, 65535.0f),
