@@ -13,6 +13,7 @@
 
 #include "lfcam/core/color.h"
 #include "lfcam/core/error.h"
+#include "lfcam/core/huge_pages.h"
 
 namespace lfcam {
 
@@ -50,21 +51,19 @@ SampleBuffer SampleBuffer::Allocate(std::size_t size) {
 SampleBuffer SampleBuffer::AllocateZeroed(std::size_t size) {
   // Anonymous memory straight from the kernel reads as zero until first written: no pass over
   // the whole buffer, and pages nobody writes cost no memory. A large buffer is aligned to, and
-  // advised onto, transparent huge pages: a fault then maps 2 MB, not 4 KB (a filtered copy of
-  // the views writes a third of each view, a fault every 4 KB being most of its time).
-  constexpr std::size_t kHugePage = std::size_t(2) << 20, kLarge = std::size_t(4) << 20;
-  const bool large = size >= kLarge;
-  const std::size_t mapped = size + kReadableBefore + (large ? kHugePage : 0);
+  // advised onto, transparent huge pages (core/huge_pages.h: a filtered copy of the views writes
+  // a third of each view, a fault every 4 KB being most of its time).
+  const bool large = size >= kHugePagesFrom;
+  const std::size_t mapped = size + kReadableBefore + (large ? kHugePageBytes : 0);
   void* memory =
       ::mmap(nullptr, mapped, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
   if (memory == MAP_FAILED) throw std::bad_alloc();
   auto* base = static_cast<std::uint8_t*>(memory);
   std::uint8_t* start = base;
   if (large) {
-    start = base + (kHugePage - reinterpret_cast<std::uintptr_t>(base) % kHugePage) % kHugePage;
-    // Advice only: where the kernel has no transparent huge pages the call fails and nothing
-    // changes.
-    ::madvise(start, mapped - std::size_t(start - base), MADV_HUGEPAGE);
+    start = base + (kHugePageBytes - reinterpret_cast<std::uintptr_t>(base) % kHugePageBytes) %
+                       kHugePageBytes;
+    AdviseHugePages(start, mapped - std::size_t(start - base));
   }
   std::shared_ptr<std::uint8_t> owned(base, [mapped](std::uint8_t* p) { ::munmap(p, mapped); });
   SampleBuffer b;

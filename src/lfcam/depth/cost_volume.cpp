@@ -1,7 +1,6 @@
 #include "lfcam/depth/cost_volume.h"
 
 #include <fmt/format.h>
-#include <sys/mman.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -19,6 +18,7 @@
 
 #include "lfcam/core/color.h"
 #include "lfcam/core/error.h"
+#include "lfcam/core/huge_pages.h"
 #include "lfcam/core/keys_cubic.h"
 #include "lfcam/depth/noise_level.h"
 #include "lfcam/depth/plane_sweep.h"
@@ -28,16 +28,13 @@
 namespace lfcam {
 
 void* AllocateVolumeMemory(std::size_t bytes) {
-  constexpr std::size_t kHugePage = std::size_t(2) << 20, kLarge = std::size_t(4) << 20;
-  const bool large = bytes >= kLarge;
-  const std::size_t alignment = large ? kHugePage : 64;
+  const bool large = bytes >= kHugePagesFrom;
+  const std::size_t alignment = large ? kHugePageBytes : 64;
   const std::size_t size =
       (std::max<std::size_t>(bytes, 1) + alignment - 1) / alignment * alignment;
   void* block = std::aligned_alloc(alignment, size);
   if (!block) throw std::bad_alloc();
-  // Advice only: where the kernel has no transparent huge pages the call fails and nothing
-  // changes.
-  if (large) ::madvise(block, size, MADV_HUGEPAGE);
+  if (large) AdviseHugePages(block, size);
   return block;
 }
 
