@@ -450,17 +450,23 @@ RenderResult RenderLightFieldCpu(const LightField& lf, const VirtualCamera& came
     CpuRenderOptions focal = options;
     focal.integrator = Integrator::kCameras;
     focal.interpolation = Interpolation::kFocalPlane;
-    const StPrefilter prefilter = QuadrilinearLimitPrefilter(lf, camera);
+    StPrefilter prefilter = QuadrilinearLimitPrefilter(lf, camera);
     if (camera.is_pinhole() || (prefilter.h_s < 1e-3 && prefilter.h_t < 1e-3))
       return RenderEither(lf, camera, focal);
+    // The filtered copy keeps the samples the tent leaves distinct, so that its cost follows
+    // the frame's footprint on the views, not the light field's sampling.
+    prefilter.stride_s = PrefilterStride(prefilter.h_s, lf.dims().n_s);
+    prefilter.stride_t = PrefilterStride(prefilter.h_t, lf.dims().n_t);
     // Only the views some pixel reads are filtered; the filtered copy has the same slab and
-    // grid, so the cameras' weights serve its render too.
+    // grid of cameras, so the cameras' weights serve its render too.
     const CameraIntegratorFrame cameras(lf, camera);
-    const LightField filtered =
-        PrefilterViews(lf, prefilter, ViewRegionsRead(lf, camera, cameras.CamerasRead()));
+    LightField filtered = PrefilteredCopy(lf, prefilter.stride_s, prefilter.stride_t);
+    PrefilterViews(lf, prefilter, ViewRegionsRead(filtered, camera, cameras.CamerasRead()),
+                   &filtered);
     RenderResult result = RenderEither(filtered, camera, focal, &cameras);
-    result.path = fmt::format("{}, views prefiltered ({:.2f} x {:.2f} samples)", result.path,
-                              prefilter.h_s, prefilter.h_t);
+    result.path = fmt::format("{}, views prefiltered ({:.2f} x {:.2f} samples, kept every {} x {})",
+                              result.path, prefilter.h_s, prefilter.h_t, prefilter.stride_s,
+                              prefilter.stride_t);
     return result;
   }
   return RenderEither(lf, camera, options);

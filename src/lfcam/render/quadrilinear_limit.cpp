@@ -1,5 +1,6 @@
 #include "lfcam/render/quadrilinear_limit.h"
 
+#include <fmt/format.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
@@ -8,6 +9,7 @@
 #include <memory>
 #include <opencv2/imgproc.hpp>
 
+#include "lfcam/core/error.h"
 #include "lfcam/core/limits.h"
 #include "lfcam/render/srgb_values.h"
 
@@ -51,12 +53,23 @@ std::vector<double> SampledTent(double w, double* variance) {
 
 }  // namespace
 
-std::vector<float> PrefilterTaps(double h) {
-  if (!(h > 1e-6)) return {1.0f};
-  // The renderer reads the filtered view bilinearly: a tent of half-width 1 after the taps. For
-  // the two to make tent_1 * tent_h, the taps take the tent_h's part: its variance, h^2 / 6
-  // (the variances of convolved kernels add), in the tent's own shape where it is wide enough.
-  const double target = h * h / 6;
+int PrefilterStride(double h, int samples) {
+  // Measured on the paper scene's checkerboard, swirl and text (docs/benchmarks.md): kept every
+  // m <= h / 1.75 samples, the limit's frame stays within 49-55 dB of the whole copy's (mean
+  // error a quarter to half a level); at h / m about 1 it falls to 35-40 dB.
+  int m = std::max(1, int(std::floor(h / 1.75)));
+  if (m % 2 == 0) --m;  // odd: the copy's samples sit on the view's
+  while (m > 1 && samples / m < 16) m -= 2;
+  return m;
+}
+
+std::vector<float> PrefilterTaps(double h, int stride) {
+  // The renderer reads the filtered view bilinearly: a tent of half-width `stride` (view
+  // samples) after the taps. For the two to make tent_1 * tent_h, the taps take the rest of its
+  // variance, (h^2 + 1 - stride^2) / 6 (the variances of convolved kernels add; with stride 1,
+  // tent_h's own h^2 / 6), in the tent's own shape where it is wide enough.
+  const double target = (h * h + 1 - double(stride) * stride) / 6;
+  if (!(h > 1e-6) || !(target > 1e-12)) return {1.0f};
   std::vector<double> taps;
   if (target <= 1.0 / 3) {
     const double a = target / 2;  // [a, 1 - 2a, a]: variance 2a
@@ -114,83 +127,176 @@ std::vector<cv::Rect> ViewRegionsRead(const LightField& lf, const VirtualCamera&
   return regions;
 }
 
-LightField PrefilterViews(const LightField& lf, const StPrefilter& prefilter,
-                          const std::vector<cv::Rect>& regions) {
+namespace {
+
+int FloorDiv(int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
+
+// Each thread's linear and filtered samples, kept from view to view (fresh blocks this size
+// would each be mapped and faulted in anew).
+struct Scratch {
+  // Uninitialised floats (three a sample), grown as needed: each view writes what it reads.
+  std::unique_ptr<float[]> linear, filtered;
+  std::size_t linear_size = 0, filtered_size = 0;
+  static float* Reserve(std::unique_ptr<float[]>& buffer, std::size_t& size, std::size_t n) {
+    if (size < n) {
+      buffer.reset(new float[n]);
+      size = n;
+    }
+    return buffer.get();
+  }
+};
+
+// View (row, col)'s samples inside `source` in linear light, into `linear` (source's size).
+void DecodeRegion(const LightField& lf, int row, int col, const cv::Rect& source, cv::Mat& linear) {
   const LightFieldDims& d = lf.dims();
-  RequireMemory(double(lf.total_bytes()) + 2.0 * 12.0 * double(d.samples_per_view()),
+  for (int l = 0; l < source.height; ++l) {
+    auto* p = linear.ptr<cv::Vec3f>(l);
+    if (lf.sample_type() == SampleType::kSrgb8) {
+      const std::uint8_t* in =
+          lf.view_data(row, col) + 3 * (std::size_t(source.y + l) * d.n_s + std::size_t(source.x));
+      DecodeSrgbValues(in, 3 * std::size_t(source.width), &p[0][0]);
+    } else {
+      for (int k = 0; k < source.width; ++k) {
+        const Eigen::Vector3f c = lf.linear_rgb(row, col, source.x + k, source.y + l);
+        p[k] = {c.x(), c.y(), c.z()};
+      }
+    }
+  }
+}
+
+// Writes `width` linear samples into view (row, col) of `out` from sample (k, l) on.
+void EncodeRow(const float* linear, int width, int row, int col, int k, int l, LightField* out) {
+  if (out->sample_type() == SampleType::kSrgb8) {
+    std::uint8_t* o =
+        out->mutable_view_data(row, col) + 3 * (std::size_t(l) * out->dims().n_s + std::size_t(k));
+    EncodeSrgbValues(linear, 3 * std::size_t(width), o);
+  } else {
+    for (int i = 0; i < width; ++i)
+      out->set_linear_rgb(row, col, k + i, l,
+                          {linear[3 * i], linear[3 * i + 1], linear[3 * i + 2]});
+  }
+}
+
+}  // namespace
+
+LightField PrefilteredCopy(const LightField& lf, int stride_s, int stride_t) {
+  if (stride_s < 1 || stride_t < 1 || stride_s % 2 == 0 || stride_t % 2 == 0)
+    throw Error(fmt::format("the prefiltered copy's strides must be odd and positive, not {} x {}",
+                            stride_s, stride_t));
+  const LightFieldDims& d = lf.dims();
+  const bool windows = lf.has_view_windows();
+  LightFieldDims copy = d;
+  // Each view's copy starts at or up to stride - 1 samples before its own window (its offset
+  // rounded down to the copy's), so with windows it needs that much more to reach the end.
+  copy.n_s = (d.n_s + (windows ? stride_s - 1 : 0) + stride_s - 1) / stride_s;
+  copy.n_t = (d.n_t + (windows ? stride_t - 1 : 0) + stride_t - 1) / stride_t;
+  Slab slab = lf.slab();
+  slab.st_domain.s1 = slab.st_domain.s0 + slab.st_domain.s_extent() * copy.n_s * stride_s / d.n_s;
+  slab.st_domain.t1 = slab.st_domain.t0 + slab.st_domain.t_extent() * copy.n_t * stride_t / d.n_t;
+  RequireMemory(double(copy.samples_per_view()) * double(d.view_count()) * 3 *
+                        double(BytesPerChannel(lf.sample_type())) +
+                    2.0 * 12.0 * double(d.samples_per_view()),
                 "the prefiltered copy of the light field");
   // Zeros that cost nothing until written: only the regions read are (a third of each view on
   // the demo's frames).
-  LightField out(d, lf.sample_type(), lf.slab());
+  LightField out(copy, lf.sample_type(), slab);
   out.set_measured_poses(lf.measured_poses());
-  out.set_st_offsets(lf.st_offsets());
-  const std::vector<float> taps_s = PrefilterTaps(prefilter.h_s);
-  const std::vector<float> taps_t = PrefilterTaps(prefilter.h_t);
-  const cv::Mat kernel_s(1, int(taps_s.size()), CV_32F, const_cast<float*>(taps_s.data()));
-  const cv::Mat kernel_t(int(taps_t.size()), 1, CV_32F, const_cast<float*>(taps_t.data()));
+  if (windows) {
+    std::vector<StOffset> offsets;
+    for (const StOffset& o : lf.st_offsets())
+      offsets.push_back({FloorDiv(o.k, stride_s), FloorDiv(o.l, stride_t)});
+    out.set_st_offsets(std::move(offsets));
+  }
+  return out;
+}
+
+void PrefilterViews(const LightField& lf, const StPrefilter& prefilter,
+                    const std::vector<cv::Rect>& regions, LightField* out) {
+  const LightFieldDims& d = lf.dims();
+  const int m_s = prefilter.stride_s, m_t = prefilter.stride_t;
+  const std::vector<float> taps_s = PrefilterTaps(prefilter.h_s, m_s);
+  const std::vector<float> taps_t = PrefilterTaps(prefilter.h_t, m_t);
   const int reach_s = int(taps_s.size()) / 2, reach_t = int(taps_t.size()) / 2;
   const cv::Rect whole(0, 0, d.n_s, d.n_t);
-  const bool bytes = lf.sample_type() == SampleType::kSrgb8;
-  // Each thread's linear and filtered samples, kept from view to view (fresh blocks this size
-  // would each be mapped and faulted in anew).
-  struct Scratch {
-    // Uninitialised floats (three a sample), grown as needed: each view writes what it reads.
-    std::unique_ptr<float[]> linear, filtered;
-    std::size_t linear_size = 0, filtered_size = 0;
-    static float* Reserve(std::unique_ptr<float[]>& buffer, std::size_t& size, std::size_t n) {
-      if (size < n) {
-        buffer.reset(new float[n]);
-        size = n;
-      }
-      return buffer.get();
-    }
-  };
+  const cv::Rect copy_whole(0, 0, out->dims().n_s, out->dims().n_t);
   tbb::enumerable_thread_specific<Scratch> scratch;
+  if (m_s == 1 && m_t == 1) {
+    // Every sample kept: OpenCV's separable filter over each region.
+    const cv::Mat kernel_s(1, int(taps_s.size()), CV_32F, const_cast<float*>(taps_s.data()));
+    const cv::Mat kernel_t(int(taps_t.size()), 1, CV_32F, const_cast<float*>(taps_t.data()));
+    tbb::parallel_for(0, int(d.view_count()), [&](int v) {
+      const cv::Rect region = regions[std::size_t(v)] & whole;
+      if (region.empty()) return;
+      const int row = v / d.cols, col = v % d.cols;
+      // The region with the kernel's reach around it, as far as the view goes.
+      const cv::Rect source = cv::Rect(region.x - reach_s, region.y - reach_t,
+                                       region.width + 2 * reach_s, region.height + 2 * reach_t) &
+                              whole;
+      Scratch& s = scratch.local();
+      // Headers over the buffers: `linear` is a whole matrix to OpenCV, so the filter of its
+      // region reads the real samples around the region and replicates only beyond `linear`,
+      // which stops short of the reach only at the view's own edges.
+      cv::Mat linear(source.height, source.width, CV_32FC3,
+                     Scratch::Reserve(s.linear, s.linear_size, 3 * std::size_t(source.area())));
+      cv::Mat filtered(
+          region.height, region.width, CV_32FC3,
+          Scratch::Reserve(s.filtered, s.filtered_size, 3 * std::size_t(region.area())));
+      DecodeRegion(lf, row, col, source, linear);
+      const cv::Mat inner = linear(region - source.tl());
+      cv::sepFilter2D(inner, filtered, CV_32F, kernel_s, kernel_t, cv::Point(-1, -1), 0,
+                      cv::BORDER_REPLICATE);
+      for (int l = 0; l < region.height; ++l)
+        EncodeRow(filtered.ptr<float>(l), region.width, row, col, region.x, region.y + l, out);
+    });
+    return;
+  }
+  // Kept every m samples: each kept row is the taps' sum of the view's rows around it, and each
+  // kept sample of it the taps' sum along the row, only where a copy sample stands.
   tbb::parallel_for(0, int(d.view_count()), [&](int v) {
-    const cv::Rect region = regions[std::size_t(v)] & whole;
+    const cv::Rect region = regions[std::size_t(v)] & copy_whole;
     if (region.empty()) return;
     const int row = v / d.cols, col = v % d.cols;
-    // The region with the kernel's reach around it, as far as the view goes.
-    const cv::Rect source = cv::Rect(region.x - reach_s, region.y - reach_t,
-                                     region.width + 2 * reach_s, region.height + 2 * reach_t) &
-                            whole;
+    const StOffset own = lf.st_offset(row, col), copy = out->st_offset(row, col);
+    // The view's own sample under copy sample k (l).
+    const auto view_k = [&](int k) { return m_s * (k + copy.k) + (m_s - 1) / 2 - own.k; };
+    const auto view_l = [&](int l) { return m_t * (l + copy.l) + (m_t - 1) / 2 - own.l; };
+    const auto clamp_k = [&](int k) { return std::clamp(k, 0, d.n_s - 1); };
+    const auto clamp_l = [&](int l) { return std::clamp(l, 0, d.n_t - 1); };
+    const int k0 = clamp_k(view_k(region.x) - reach_s);
+    const int k1 = clamp_k(view_k(region.br().x - 1) + reach_s);
+    const int l0 = clamp_l(view_l(region.y) - reach_t);
+    const int l1 = clamp_l(view_l(region.br().y - 1) + reach_t);
+    const cv::Rect source(k0, l0, k1 - k0 + 1, l1 - l0 + 1);
     Scratch& s = scratch.local();
-    // Headers over the buffers: `linear` is a whole matrix to OpenCV, so the filter of its
-    // region reads the real samples around the region and replicates only beyond `linear`,
-    // which stops short of the reach only at the view's own edges.
+    const std::size_t row_values = 3 * std::size_t(source.width);
     cv::Mat linear(source.height, source.width, CV_32FC3,
                    Scratch::Reserve(s.linear, s.linear_size, 3 * std::size_t(source.area())));
-    cv::Mat filtered(region.height, region.width, CV_32FC3,
-                     Scratch::Reserve(s.filtered, s.filtered_size, 3 * std::size_t(region.area())));
-    for (int l = 0; l < source.height; ++l) {
-      auto* p = linear.ptr<cv::Vec3f>(l);
-      if (bytes) {
-        const std::uint8_t* in = lf.view_data(row, col) +
-                                 3 * (std::size_t(source.y + l) * d.n_s + std::size_t(source.x));
-        DecodeSrgbValues(in, 3 * std::size_t(source.width), &p[0][0]);
-      } else {
-        for (int k = 0; k < source.width; ++k) {
-          const Eigen::Vector3f c = lf.linear_rgb(row, col, source.x + k, source.y + l);
-          p[k] = {c.x(), c.y(), c.z()};
+    float* filtered =
+        Scratch::Reserve(s.filtered, s.filtered_size, row_values + 3 * std::size_t(region.width));
+    float* kept = filtered + row_values;
+    DecodeRegion(lf, row, col, source, linear);
+    for (int l = region.y; l < region.br().y; ++l) {
+      const int centre = view_l(l);
+      std::fill(filtered, filtered + row_values, 0.0f);
+      for (int i = -reach_t; i <= reach_t; ++i) {
+        const float w = taps_t[std::size_t(i + reach_t)];
+        const float* in = linear.ptr<float>(clamp_l(centre + i) - l0);
+        for (std::size_t j = 0; j < row_values; ++j) filtered[j] += w * in[j];
+      }
+      for (int k = region.x; k < region.br().x; ++k) {
+        const int at = view_k(k);
+        float sum[3] = {0, 0, 0};
+        for (int i = -reach_s; i <= reach_s; ++i) {
+          const float w = taps_s[std::size_t(i + reach_s)];
+          const float* in = filtered + 3 * std::size_t(clamp_k(at + i) - k0);
+          sum[0] += w * in[0], sum[1] += w * in[1], sum[2] += w * in[2];
         }
+        float* o = kept + 3 * std::size_t(k - region.x);
+        o[0] = sum[0], o[1] = sum[1], o[2] = sum[2];
       }
-    }
-    const cv::Mat inner = linear(region - source.tl());
-    cv::sepFilter2D(inner, filtered, CV_32F, kernel_s, kernel_t, cv::Point(-1, -1), 0,
-                    cv::BORDER_REPLICATE);
-    for (int l = 0; l < region.height; ++l) {
-      const auto* p = filtered.ptr<cv::Vec3f>(l);
-      if (bytes) {
-        std::uint8_t* o = out.mutable_view_data(row, col) +
-                          3 * (std::size_t(region.y + l) * d.n_s + std::size_t(region.x));
-        EncodeSrgbValues(&p[0][0], 3 * std::size_t(region.width), o);
-      } else {
-        for (int k = 0; k < region.width; ++k)
-          out.set_linear_rgb(row, col, region.x + k, region.y + l, {p[k][0], p[k][1], p[k][2]});
-      }
+      EncodeRow(kept, region.width, row, col, region.x, l, out);
     }
   });
-  return out;
 }
 
 }  // namespace lfcam

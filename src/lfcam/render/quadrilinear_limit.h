@@ -27,15 +27,28 @@ namespace lfcam {
 struct StPrefilter {
   double h_s = 0, h_t = 0;
   double k = 0;  // the scale from uv offsets to st offsets
+  // How many of the light field's samples apart the filtered copy keeps its samples along s and
+  // t (PrefilteredCopy; 1: every sample). A copy strides m apart is read through the bilinear
+  // read's tent of half-width m, so the taps carry less of the blur (PrefilterTaps).
+  int stride_s = 1, stride_t = 1;
 };
 StPrefilter QuadrilinearLimitPrefilter(const LightField& lf, const VirtualCamera& camera);
+
+// The stride (odd, at least 1) at which the copy of a view filtered by the tent of half-width h
+// keeps its samples: at most h / 1.75, so that the tent still spans three or more of the copy's
+// samples each side and what the decimation aliases stays within about a level of the 8-bit
+// encoding; the CPU's work then follows the frame's footprint on the views rather than the light
+// field's sampling. `samples` (the view's extent along the axis): the copy keeps 16 or more.
+int PrefilterStride(double h, int samples);
 
 // The taps that filter a view's samples so that its bilinear reads are reads through the tent of
 // half-width h (samples): the read's own tent_1 follows them, so they carry tent_h's part of
 // tent_1 * tent_h, matched in its second moment (variance h^2 / 6): three taps [a, 1 - 2a, a]
 // while that is at most 1/3, else the tent sampled at the integers with the width that gives
-// it. Symmetric, normalised to 1; h = 0 gives {1}.
-std::vector<float> PrefilterTaps(double h);
+// it. Symmetric, normalised to 1; h = 0 gives {1}. For a copy kept every `stride` samples, read
+// bilinearly between its own samples (a tent of half-width `stride` in the view's samples), the
+// taps carry the rest of tent_1 * tent_h's variance: (h^2 + 1 - stride^2) / 6.
+std::vector<float> PrefilterTaps(double h, int stride = 1);
 
 // The samples of each view (row-major) that the cameras integrator reads for the frame, with
 // the margin a bilinear read needs: camera c reads along its lines through the plane of focus,
@@ -45,10 +58,19 @@ std::vector<float> PrefilterTaps(double h);
 std::vector<cv::Rect> ViewRegionsRead(const LightField& lf, const VirtualCamera& camera,
                                       const std::vector<bool>& views);
 
-// A light field whose views are `lf`'s filtered by the tent (in linear light, the views' edges
-// replicated) inside `regions[row * cols + col]`; the rest is left black. Same slab, measured
-// poses and sample type.
-LightField PrefilterViews(const LightField& lf, const StPrefilter& prefilter,
-                          const std::vector<cv::Rect>& regions);
+// The filtered copy's layout, all black (its pages mapped only as they are written): `lf`'s
+// views kept every stride_s, stride_t samples, the same slab, poses and sample type. Copy
+// sample k of a view stands at the view's own sample stride_s * (k + O) + (stride_s - 1) / 2 - o,
+// o its window's offset and O = floor(o / stride_s) the copy's (core/st_sampling.h); the copy's
+// st domain starts where `lf`'s does and ends up to stride_s - 1 samples past it (each view's
+// window covers the view's own, its last samples repeating the edge). Strides 1: `lf`'s layout.
+LightField PrefilteredCopy(const LightField& lf, int stride_s, int stride_t);
+
+// Writes into `out` (PrefilteredCopy(lf, prefilter.stride_s, prefilter.stride_t)) the views of
+// `lf` filtered by the tent (in linear light, the views' edges replicated) inside
+// `regions[row * cols + col]` (in `out`'s samples, as ViewRegionsRead(out, ...) gives them);
+// the rest stays black.
+void PrefilterViews(const LightField& lf, const StPrefilter& prefilter,
+                    const std::vector<cv::Rect>& regions, LightField* out);
 
 }  // namespace lfcam

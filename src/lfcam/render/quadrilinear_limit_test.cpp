@@ -107,6 +107,96 @@ TEST(QuadrilinearLimit, IsTheLimitOfLensSamplesWithTheQuadrilinearLookup) {
   }
 }
 
+// The CPU renderer keeps the filtered views every m samples where the tent is wide enough
+// (PrefilterStride), reading the copy bilinearly between its samples: its frames are the frames
+// of the whole filtered copy to within the decimation's aliasing, for views that share the
+// light field's window and for views in windows of their own (offsets that are not multiples of
+// the stride: each view's copy starts up to m - 1 samples before its window).
+TEST(QuadrilinearLimit, AStridedCopyRendersAsTheWholeCopyDoes) {
+  LightField lf = testing::SharedPaperLightField();
+  const auto whole_copy = [](const LightField& source, const VirtualCamera& camera) {
+    const StPrefilter f = QuadrilinearLimitPrefilter(source, camera);
+    LightField copy = PrefilteredCopy(source, 1, 1);
+    const LightFieldDims& d = source.dims();
+    PrefilterViews(source, f, std::vector<cv::Rect>(d.view_count(), cv::Rect(0, 0, d.n_s, d.n_t)),
+                   &copy);
+    CpuRenderOptions o;
+    o.integrator = Integrator::kCameras;
+    o.interpolation = Interpolation::kFocalPlane;
+    return RenderLightFieldCpu(copy, camera, o);
+  };
+  int strided = 0;
+  for (const bool windows : {false, true}) {
+    if (windows) {
+      std::vector<StOffset> offsets;
+      for (int r = 0; r < lf.dims().rows; ++r)
+        for (int c = 0; c < lf.dims().cols; ++c) offsets.push_back({(c % 5) - 2, (r % 4) - 1});
+      lf.set_st_offsets(offsets);
+    }
+    for (const render_test::ConvergenceCamera& c : {
+             render_test::ConvergenceCamera{
+                 "far focus", {300, 275, 3600}, {300, 275, 0}, 500, 9000, 192, true},
+             render_test::ConvergenceCamera{
+                 "near focus", {300, 275, 3600}, {300, 275, 0}, 300, 2000, 256, true},
+             render_test::ConvergenceCamera{
+                 "in front", {250, 300, 2500}, {250, 300, 0}, 300, 7000, 96, false},
+         }) {
+      SCOPED_TRACE(std::string(c.name) + (windows ? ", views in windows" : ""));
+      const VirtualCamera camera(c.Params(96));
+      const StPrefilter f = QuadrilinearLimitPrefilter(lf, camera);
+      const int m = PrefilterStride(f.h_s, lf.dims().n_s);
+      const RenderResult ours =
+          Render(lf, c.Params(96), Integrator::kCamerasQuadrilinear, Interpolation::kQuadrilinear);
+      const double psnr = LinearPsnr(ours, whole_copy(lf, camera));
+      std::cout << "[" << c.name << (windows ? ", windows" : "") << "] tent " << f.h_s
+                << " samples, kept every " << m << ": " << psnr << " dB from the whole copy\n";
+      strided += m > 1;
+      EXPECT_GT(psnr, 50.0);
+    }
+  }
+  EXPECT_GE(strided, 4);
+}
+
+// Each view's strided copy covers the view's own window, and its samples stand on the view's
+// own samples: with no filter left for the taps (h^2 + 1 <= m^2), copy sample k is the view's
+// sample m (k + O) + (m - 1) / 2 - o (its edge repeated beyond it), for offsets of either sign.
+TEST(QuadrilinearLimit, EachViewsStridedCopyStandsOnItsOwnSamplesAndCoversItsWindow) {
+  LightField lf = render_test::SmallPaperLightField();
+  const LightFieldDims& d = lf.dims();
+  std::vector<StOffset> offsets;
+  for (int v = 0; v < int(d.view_count()); ++v) offsets.push_back({v % 7 - 3, v % 5 - 4});
+  lf.set_st_offsets(offsets);
+  for (const int m : {3, 5}) {
+    SCOPED_TRACE(m);
+    StPrefilter f;
+    f.h_s = f.h_t = 1.5;
+    f.stride_s = f.stride_t = m;
+    ASSERT_EQ(PrefilterTaps(f.h_s, m), std::vector<float>{1.0f});
+    LightField copy = PrefilteredCopy(lf, m, m);
+    ASSERT_EQ(copy.dims().n_s, (d.n_s + 2 * m - 2) / m);
+    const cv::Rect everything(0, 0, copy.dims().n_s, copy.dims().n_t);
+    PrefilterViews(lf, f, std::vector<cv::Rect>(d.view_count(), everything), &copy);
+    for (int v = 0; v < int(d.view_count()); ++v) {
+      const int r = v / d.cols, c = v % d.cols;
+      const StSampling own = lf.st_sampling(r, c), kept = copy.st_sampling(r, c);
+      EXPECT_LE(kept.domain.s0, own.domain.s0 + 1e-12);
+      EXPECT_LE(kept.domain.t0, own.domain.t0 + 1e-12);
+      EXPECT_GE(kept.domain.s1, own.domain.s1 - 1e-12);
+      EXPECT_GE(kept.domain.t1, own.domain.t1 - 1e-12);
+      for (int l = 0; l < copy.dims().n_t; l += 3)
+        for (int k = 0; k < copy.dims().n_s; ++k) {
+          const double at_k = own.k_of(kept.s_of(k)), at_l = own.l_of(kept.t_of(l));
+          ASSERT_NEAR(at_k, std::round(at_k), 1e-9);
+          ASSERT_NEAR(at_l, std::round(at_l), 1e-9);
+          const int vk = std::clamp(int(std::round(at_k)), 0, d.n_s - 1);
+          const int vl = std::clamp(int(std::round(at_l)), 0, d.n_t - 1);
+          ASSERT_EQ(copy.linear_rgb(r, c, k, l), lf.linear_rgb(r, c, vk, vl))
+              << "view " << v << ", copy sample " << k << ", " << l;
+        }
+    }
+  }
+}
+
 TEST(QuadrilinearLimit, APinholeOrFocusOnTheStPlaneIsTheFocalPlaneLookup) {
   VirtualCameraParams p;
   p.width = p.height = 32;
@@ -151,10 +241,12 @@ TEST(QuadrilinearLimit, AFilteredRegionIsTheWholeFilteredViewThere) {
                            {2, 84, 93, 4},   {1, 1, 94, 86},  {95, 87, 1, 1}};
   for (const LightField* lf : {&bytes, static_cast<const LightField*>(&halves)}) {
     const std::vector<cv::Rect> everything(d.view_count(), whole);
-    const LightField reference = PrefilterViews(*lf, filter, everything);
+    LightField reference = PrefilteredCopy(*lf, 1, 1);
+    PrefilterViews(*lf, filter, everything, &reference);
     std::vector<cv::Rect> regions(d.view_count());
     for (std::size_t v = 0; v < regions.size(); ++v) regions[v] = cuts[v % std::size(cuts)];
-    const LightField cut = PrefilterViews(*lf, filter, regions);
+    LightField cut = PrefilteredCopy(*lf, 1, 1);
+    PrefilterViews(*lf, filter, regions, &cut);
     int compared = 0;
     for (int v = 0; v < int(d.view_count()); ++v) {
       const cv::Rect& region = regions[std::size_t(v)];
