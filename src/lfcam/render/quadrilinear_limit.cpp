@@ -12,6 +12,7 @@
 #include "lfcam/core/error.h"
 #include "lfcam/core/limits.h"
 #include "lfcam/render/srgb_values.h"
+#include "lfcam/render/strided_sums.h"
 
 namespace lfcam {
 
@@ -146,15 +147,18 @@ struct Scratch {
   }
 };
 
-// View (row, col)'s samples inside `source` in linear light, into `linear` (source's size).
-void DecodeRegion(const LightField& lf, int row, int col, const cv::Rect& source, cv::Mat& linear) {
+// View (row, col)'s samples inside `source` in linear light, into `linear` (source's size):
+// 8-bit samples by the decoding table, or `computed` (within 4.7e-6 of it).
+void DecodeRegion(const LightField& lf, int row, int col, const cv::Rect& source, cv::Mat& linear,
+                  bool computed = false) {
   const LightFieldDims& d = lf.dims();
   for (int l = 0; l < source.height; ++l) {
     auto* p = linear.ptr<cv::Vec3f>(l);
     if (lf.sample_type() == SampleType::kSrgb8) {
       const std::uint8_t* in =
           lf.view_data(row, col) + 3 * (std::size_t(source.y + l) * d.n_s + std::size_t(source.x));
-      DecodeSrgbValues(in, 3 * std::size_t(source.width), &p[0][0]);
+      (computed ? DecodeSrgbValuesComputed : DecodeSrgbValues)(in, 3 * std::size_t(source.width),
+                                                               &p[0][0]);
     } else {
       for (int k = 0; k < source.width; ++k) {
         const Eigen::Vector3f c = lf.linear_rgb(row, col, source.x + k, source.y + l);
@@ -268,32 +272,38 @@ void PrefilterViews(const LightField& lf, const StPrefilter& prefilter,
     const int l1 = clamp_l(view_l(region.br().y - 1) + reach_t);
     const cv::Rect source(k0, l0, k1 - k0 + 1, l1 - l0 + 1);
     Scratch& s = scratch.local();
+    // The view's rows in linear light, each decoded once, as the kept rows come to them: a ring
+    // of the rows the taps span (in cache, where decoding the whole region at once would stream
+    // four times its bytes through memory).
+    const int ring = int(taps_t.size());
     const std::size_t row_values = 3 * std::size_t(source.width);
-    cv::Mat linear(source.height, source.width, CV_32FC3,
-                   Scratch::Reserve(s.linear, s.linear_size, 3 * std::size_t(source.area())));
+    float* linear = Scratch::Reserve(s.linear, s.linear_size, std::size_t(ring) * row_values);
+    int decoded = l0;  // the next row to decode
+    // A kept row's filtered samples from the first kept sample's first tap to the last's last,
+    // with the view's own columns among them (the view's edge repeated beyond it), then the
+    // kept samples themselves.
+    const int first = view_k(region.x) - reach_s, last = view_k(region.br().x - 1) + reach_s;
+    const int lo = std::min(first, k0), hi = std::max(last, k1);
+    const std::size_t padded = 3 * std::size_t(hi - lo + 1);
     float* filtered =
-        Scratch::Reserve(s.filtered, s.filtered_size, row_values + 3 * std::size_t(region.width));
-    float* kept = filtered + row_values;
-    DecodeRegion(lf, row, col, source, linear);
+        Scratch::Reserve(s.filtered, s.filtered_size, padded + 3 * std::size_t(region.width));
+    float* kept = filtered + padded;
+    float* inside = filtered + 3 * std::size_t(k0 - lo);
+    std::vector<const float*> rows(taps_t.size());
     for (int l = region.y; l < region.br().y; ++l) {
-      const int centre = view_l(l);
-      std::fill(filtered, filtered + row_values, 0.0f);
-      for (int i = -reach_t; i <= reach_t; ++i) {
-        const float w = taps_t[std::size_t(i + reach_t)];
-        const float* in = linear.ptr<float>(clamp_l(centre + i) - l0);
-        for (std::size_t j = 0; j < row_values; ++j) filtered[j] += w * in[j];
+      for (const int last_row = clamp_l(view_l(l) + reach_t); decoded <= last_row; ++decoded) {
+        cv::Mat one(1, source.width, CV_32FC3, linear + std::size_t(decoded % ring) * row_values);
+        DecodeRegion(lf, row, col, cv::Rect(source.x, decoded, source.width, 1), one, true);
       }
-      for (int k = region.x; k < region.br().x; ++k) {
-        const int at = view_k(k);
-        float sum[3] = {0, 0, 0};
-        for (int i = -reach_s; i <= reach_s; ++i) {
-          const float w = taps_s[std::size_t(i + reach_s)];
-          const float* in = filtered + 3 * std::size_t(clamp_k(at + i) - k0);
-          sum[0] += w * in[0], sum[1] += w * in[1], sum[2] += w * in[2];
-        }
-        float* o = kept + 3 * std::size_t(k - region.x);
-        o[0] = sum[0], o[1] = sum[1], o[2] = sum[2];
-      }
+      for (int i = -reach_t; i <= reach_t; ++i)
+        rows[std::size_t(i + reach_t)] =
+            linear + std::size_t(clamp_l(view_l(l) + i) % ring) * row_values;
+      WeightedRowSum(rows.data(), taps_t.data(), int(taps_t.size()), row_values, inside);
+      for (int k = lo; k < k0; ++k) std::copy_n(inside, 3, filtered + 3 * (k - lo));
+      for (int k = k1 + 1; k <= hi; ++k)
+        std::copy_n(inside + 3 * (k1 - k0), 3, filtered + 3 * (k - lo));
+      StridedTapSum(filtered + 3 * (first - lo), taps_s.data(), int(taps_s.size()), m_s,
+                    std::size_t(region.width), kept);
       EncodeRow(kept, region.width, row, col, region.x, l, out);
     }
   });

@@ -6,6 +6,8 @@
 #include <hwy/foreach_target.h>  // must come before highway.h
 #include <hwy/highway.h>
 
+#include "lfcam/render/sample_rows-inl.h"
+
 #ifndef LFCAM_RENDER_SRGB_VALUES_ONCE
 #define LFCAM_RENDER_SRGB_VALUES_ONCE
 #include <vector>
@@ -46,6 +48,19 @@ void DecodeSrgbValuesT(const std::uint8_t* in, std::size_t n, float* out) {
   for (; i < n; ++i) out[i] = table[in[i]];
 }
 
+void DecodeSrgbValuesComputedT(const std::uint8_t* in, std::size_t n, float* out) {
+  const DF d;
+  const DI di;
+  const D8 d8;
+  const std::size_t lanes = hn::Lanes(d);
+  std::size_t i = 0;
+  for (; i + lanes <= n; i += lanes)
+    hn::StoreU(sample_rows::DecodeSrgb(hn::ConvertTo(d, hn::PromoteTo(di, hn::LoadU(d8, in + i)))),
+               d, out + i);
+  const float* table = SrgbDecodeTable().data();
+  for (; i < n; ++i) out[i] = table[in[i]];
+}
+
 void EncodeSrgbValuesT(const float* in, std::size_t n, std::uint8_t* out) {
   const DF d;
   const DI di;
@@ -75,10 +90,15 @@ HWY_AFTER_NAMESPACE();
 namespace lfcam {
 
 HWY_EXPORT(DecodeSrgbValuesT);
+HWY_EXPORT(DecodeSrgbValuesComputedT);
 HWY_EXPORT(EncodeSrgbValuesT);
 
 void DecodeSrgbValues(const std::uint8_t* in, std::size_t n, float* out) {
   HWY_DYNAMIC_DISPATCH(DecodeSrgbValuesT)(in, n, out);
+}
+
+void DecodeSrgbValuesComputed(const std::uint8_t* in, std::size_t n, float* out) {
+  HWY_DYNAMIC_DISPATCH(DecodeSrgbValuesComputedT)(in, n, out);
 }
 
 void EncodeSrgbValues(const float* in, std::size_t n, std::uint8_t* out) {

@@ -11,6 +11,12 @@ namespace lfcam {
 // out[i] = SrgbDecodeTable()[in[i]] for i < n.
 void DecodeSrgbValues(const std::uint8_t* in, std::size_t n, float* out);
 
+// out[i] within 4.7e-6 of SrgbDecodeTable()[in[i]] (0.015 of a level once encoded again),
+// computed rather than looked up (render/sample_rows-inl.h's DecodeSrgb): a vector gather a
+// lane costs several times the polynomial's arithmetic. For values that are filtered and
+// encoded again (the quadrilinear limit's strided prefilter).
+void DecodeSrgbValuesComputed(const std::uint8_t* in, std::size_t n, float* out);
+
 // out[i] = LinearToSrgb8With(LinearToSrgb8EncodeTable(), in[i]) for i < n (NaN and below 0 to
 // 0, 1 and above to 255).
 void EncodeSrgbValues(const float* in, std::size_t n, std::uint8_t* out);
