@@ -55,12 +55,19 @@ std::vector<double> SampledTent(double w, double* variance) {
 }  // namespace
 
 int PrefilterStride(double h, int samples) {
-  // Measured on the paper scene's checkerboard, swirl and text (docs/benchmarks.md): kept every
-  // m <= h / 1.75 samples, the limit's frame stays within 49-55 dB of the whole copy's (mean
-  // error a quarter to half a level); at h / m about 1 it falls to 35-40 dB.
-  int m = std::max(1, int(std::floor(h / 1.75)));
-  if (m % 2 == 0) --m;  // odd: the copy's samples sit on the view's
-  while (m > 1 && samples / m < 16) m -= 2;
+  // The taps left for a copy kept every m samples are a tent of half-width w with
+  // w^2 = h^2 + 1 - m^2 (PrefilterTaps). What the copy aliases is what that tent passes near
+  // the copy's Nyquist frequency, 1 / (2m) cycles a sample: none where w >= 2m (the tent's first
+  // zero). Natural images hold less there the smaller m is, so strides of 2 and 3 are kept with
+  // w >= 1.45 m (measured, docs/benchmarks.md: 54-58 dB from the whole copy's frame on the paper
+  // scene's checkerboard and the shop's photographs; 4 and more need w >= 2m, below which the
+  // checkerboard's frames fell to 44-49 dB).
+  const auto accepted = [&](int m) {
+    const double w2 = h * h + 1 - double(m) * m;
+    return w2 >= (m <= 3 ? 1.45 * 1.45 : 4.0) * m * m && samples / m >= 16;
+  };
+  int m = 1;  // every stride below an accepted one is accepted too
+  while (accepted(m + 1)) ++m;
   return m;
 }
 
@@ -184,19 +191,29 @@ void EncodeRow(const float* linear, int width, int row, int col, int k, int l, L
 }  // namespace
 
 LightField PrefilteredCopy(const LightField& lf, int stride_s, int stride_t) {
-  if (stride_s < 1 || stride_t < 1 || stride_s % 2 == 0 || stride_t % 2 == 0)
-    throw Error(fmt::format("the prefiltered copy's strides must be odd and positive, not {} x {}",
+  if (stride_s < 1 || stride_t < 1)
+    throw Error(fmt::format("the prefiltered copy's strides must be positive, not {} x {}",
                             stride_s, stride_t));
   const LightFieldDims& d = lf.dims();
   const bool windows = lf.has_view_windows();
+  // Copy sample k stands on the view's sample m k + (m - 1) / 2 (rounded down): at its cell's
+  // centre for an odd m, half a sample before it for an even m, whose cells then start half a
+  // sample before the view's.
+  const auto extent = [&](int n, int m) {
+    // Each view's copy starts up to m - 1 samples before its own window (its offset rounded
+    // down to the copy's), so with windows it needs that much more to reach the end.
+    return (n + (windows ? m - 1 : 0) + (m % 2 == 0 ? 1 : 0) + m - 1) / m;
+  };
   LightFieldDims copy = d;
-  // Each view's copy starts at or up to stride - 1 samples before its own window (its offset
-  // rounded down to the copy's), so with windows it needs that much more to reach the end.
-  copy.n_s = (d.n_s + (windows ? stride_s - 1 : 0) + stride_s - 1) / stride_s;
-  copy.n_t = (d.n_t + (windows ? stride_t - 1 : 0) + stride_t - 1) / stride_t;
+  copy.n_s = extent(d.n_s, stride_s);
+  copy.n_t = extent(d.n_t, stride_t);
   Slab slab = lf.slab();
-  slab.st_domain.s1 = slab.st_domain.s0 + slab.st_domain.s_extent() * copy.n_s * stride_s / d.n_s;
-  slab.st_domain.t1 = slab.st_domain.t0 + slab.st_domain.t_extent() * copy.n_t * stride_t / d.n_t;
+  StDomain& domain = slab.st_domain;
+  const double ds = domain.s_extent() / d.n_s, dt = domain.t_extent() / d.n_t;
+  domain.s0 -= stride_s % 2 == 0 ? 0.5 * ds : 0.0;
+  domain.t0 -= stride_t % 2 == 0 ? 0.5 * dt : 0.0;
+  domain.s1 = domain.s0 + ds * copy.n_s * stride_s;
+  domain.t1 = domain.t0 + dt * copy.n_t * stride_t;
   RequireMemory(double(copy.samples_per_view()) * double(d.view_count()) * 3 *
                         double(BytesPerChannel(lf.sample_type())) +
                     2.0 * 12.0 * double(d.samples_per_view()),

@@ -34,11 +34,12 @@ struct StPrefilter {
 };
 StPrefilter QuadrilinearLimitPrefilter(const LightField& lf, const VirtualCamera& camera);
 
-// The stride (odd, at least 1) at which the copy of a view filtered by the tent of half-width h
-// keeps its samples: at most h / 1.75, so that the tent still spans three or more of the copy's
-// samples each side and what the decimation aliases stays within about a level of the 8-bit
-// encoding; the CPU's work then follows the frame's footprint on the views rather than the light
-// field's sampling. `samples` (the view's extent along the axis): the copy keeps 16 or more.
+// The stride (at least 1) at which the copy of a view filtered by the tent of half-width h
+// keeps its samples: the largest m whose taps (a tent of half-width w, w^2 = h^2 + 1 - m^2) pass
+// little near the copy's Nyquist frequency, w >= 2m (w >= 1.45 m for m of 2 and 3), so that
+// its frames stay within about 50 dB of the whole copy's; the CPU's work then follows the
+// frame's footprint on the views rather than the light field's sampling. `samples` (the view's
+// extent along the axis): the copy keeps 16 or more.
 int PrefilterStride(double h, int samples);
 
 // The taps that filter a view's samples so that its bilinear reads are reads through the tent of
@@ -60,10 +61,12 @@ std::vector<cv::Rect> ViewRegionsRead(const LightField& lf, const VirtualCamera&
 
 // The filtered copy's layout, all black (its pages mapped only as they are written): `lf`'s
 // views kept every stride_s, stride_t samples, the same slab, poses and sample type. Copy
-// sample k of a view stands at the view's own sample stride_s * (k + O) + (stride_s - 1) / 2 - o,
-// o its window's offset and O = floor(o / stride_s) the copy's (core/st_sampling.h); the copy's
-// st domain starts where `lf`'s does and ends up to stride_s - 1 samples past it (each view's
-// window covers the view's own, its last samples repeating the edge). Strides 1: `lf`'s layout.
+// sample k of a view stands on the view's own sample stride_s * (k + O) + (stride_s - 1) / 2 - o
+// (rounded down), o its window's offset and O = floor(o / stride_s) the copy's
+// (core/st_sampling.h); the copy's st domain starts where `lf`'s does (half a sample before it
+// for an even stride, whose copy samples sit half a sample before their cells' centres) and ends
+// up to a stride past it: each view's window covers the view's own, its outer samples repeating
+// the edge. Strides 1: `lf`'s layout.
 LightField PrefilteredCopy(const LightField& lf, int stride_s, int stride_t);
 
 // Writes into `out` (PrefilteredCopy(lf, prefilter.stride_s, prefilter.stride_t)) the views of
