@@ -192,13 +192,14 @@ void AddBenchCommand(CLI::App& app) {
     const Backend backend = flags->backend.Validate(render_options);
     if (!flags->json.empty()) RequireWritableOutput(flags->json, "--json");
     const std::unique_ptr<FrameRenderer> opened = BackendFlags::Open(backend);
+    // The viewer's and the playback's frames keep the filtered views as the viewer does; the
+    // tables time whole frames.
+    if (flags->table == "viewer" || flags->table == "playback") opened->KeepPrefilteredViews();
     const FrameRenderer& renderer = *opened;
 
-    // The viewer's default unless --integrator says: on a GPU the quadrilinear limit, on the CPU
-    // the paper's estimator.
-    const Integrator viewers_integrator = integrator_option->count() > 0 ? integrator
-                                          : renderer.uses_gl() ? Integrator::kCamerasQuadrilinear
-                                                               : Integrator::kLensSamples;
+    // The viewer's default unless --integrator says: the quadrilinear limit.
+    const Integrator viewers_integrator =
+        integrator_option->count() > 0 ? integrator : Integrator::kCamerasQuadrilinear;
     if (flags->table == "playback") {
       if (flags->lightfield.empty())
         throw UsageError("playback: --lightfield VIDEO.lfv (a light field video) is required");

@@ -16,6 +16,7 @@
 #include "lfcam/core/error.h"
 #include "lfcam/render/camera_integrator.h"
 #include "lfcam/render/depth_aware_sampler.h"
+#include "lfcam/render/prefilter_cache.h"
 #include "lfcam/render/quadrilinear_limit.h"
 #include "lfcam/render/ray_setup.h"
 #include "lfcam/render/separable_frame.h"
@@ -460,13 +461,21 @@ RenderResult RenderLightFieldCpu(const LightField& lf, const VirtualCamera& came
     // Only the views some pixel reads are filtered; the filtered copy has the same slab and
     // grid of cameras, so the cameras' weights serve its render too.
     const CameraIntegratorFrame cameras(lf, camera);
-    LightField filtered = PrefilteredCopy(lf, prefilter.stride_s, prefilter.stride_t);
-    PrefilterViews(lf, prefilter, ViewRegionsRead(filtered, camera, cameras.CamerasRead()),
-                   &filtered);
-    RenderResult result = RenderEither(filtered, camera, focal, &cameras);
-    result.path = fmt::format("{}, views prefiltered ({:.2f} x {:.2f} samples, kept every {} x {})",
-                              result.path, prefilter.h_s, prefilter.h_t, prefilter.stride_s,
-                              prefilter.stride_t);
+    LightField own;
+    const LightField* filtered = &own;
+    bool kept = false;
+    if (options.prefilter_cache) {
+      filtered = &options.prefilter_cache->Filtered(lf, prefilter, camera, cameras.CamerasRead());
+      kept = options.prefilter_cache->last_filtered_samples() == 0;
+    } else {
+      own = PrefilteredCopy(lf, prefilter.stride_s, prefilter.stride_t);
+      PrefilterViews(lf, prefilter, ViewRegionsRead(own, camera, cameras.CamerasRead()), &own);
+    }
+    RenderResult result = RenderEither(*filtered, camera, focal, &cameras);
+    result.path =
+        fmt::format("{}, views prefiltered ({:.2f} x {:.2f} samples, kept every {} x {}{})",
+                    result.path, prefilter.h_s, prefilter.h_t, prefilter.stride_s,
+                    prefilter.stride_t, kept ? ", from the last frame" : "");
     return result;
   }
   return RenderEither(lf, camera, options);

@@ -16,6 +16,8 @@
 
 namespace lfcam {
 
+class PrefilterCache;
+
 // How a pixel integrates over the aperture.
 enum class Integrator {
   kLensSamples,  // the paper's: the average over n_ls lens samples (with either lookup)
@@ -43,6 +45,9 @@ struct CpuRenderOptions {
   bool antialias = false;
   // With the depth lookup: which cameras are blended (render/depth_aware_sampler.h).
   DepthBlend depth_blend = DepthBlend::kAgreeing;
+  // The quadrilinear limit's filtered copy kept from frame to frame (render/prefilter_cache.h;
+  // the viewer's), or none: each frame filters what it reads.
+  PrefilterCache* prefilter_cache = nullptr;
 };
 
 struct RenderResult {

@@ -4,6 +4,7 @@
 #include <tbb/info.h>
 
 #include "lfcam/core/error.h"
+#include "lfcam/render/prefilter_cache.h"
 #include "lfcam/render/simd_kernels.h"
 
 namespace lfcam {
@@ -90,7 +91,12 @@ RenderResult FrameRenderer::Render(const LightField& lf, const VirtualCamera& ca
   o.depth = options.depth;
   o.antialias = options.antialias;
   o.depth_blend = options.depth_blend;
+  o.prefilter_cache = prefilter_cache_.get();
   return RenderLightFieldCpu(lf, camera, o);
+}
+
+void FrameRenderer::KeepPrefilteredViews() {
+  if (!prefilter_cache_) prefilter_cache_ = std::make_unique<PrefilterCache>();
 }
 
 }  // namespace lfcam

@@ -8,6 +8,7 @@
 
 #include "lfcam/render/cpu_renderer.h"
 #include "lfcam/render/gl_renderer.h"
+#include "lfcam/render/prefilter_cache.h"
 
 namespace lfcam {
 
@@ -45,8 +46,14 @@ class FrameRenderer {
   RenderResult Render(const LightField& lf, const VirtualCamera& camera,
                       const FrameRenderOptions& options) const;
 
+  // On the CPU, keep the quadrilinear limit's filtered views from frame to frame, as the GL
+  // renderer keeps them (render/prefilter_cache.h): for a renderer that draws many frames of one
+  // light field (the viewer). A frame at a focus already filtered then costs its render alone.
+  void KeepPrefilteredViews();
+
  private:
   std::unique_ptr<GlRenderer> gl_;
+  std::unique_ptr<PrefilterCache> prefilter_cache_;
   std::string description_;
 };
 

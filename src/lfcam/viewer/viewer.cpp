@@ -53,6 +53,7 @@ class Viewer {
     ImGui_ImplOpenGL3_Init("#version 330 core");
     display_ = std::make_unique<FrameDisplay>();
     renderer_ = std::make_unique<FrameRenderer>(options.backend, true);
+    renderer_->KeepPrefilteredViews();  // on the CPU; the GL renderer keeps its own
     FrameRenderOptions render_options;
     render_options.threads = options.threads;
     render_options.workgroup_x = options.workgroup_x;
@@ -69,13 +70,11 @@ class Viewer {
       rig_position_[0] = 0.5 * (lf().dims().rows - 1);  // where StartingView stands
       rig_position_[1] = 0.5 * (lf().dims().cols - 1);
       // A smooth out-of-focus blur (the focal-plane limit, Integrator::kCameras, shows a lattice
-      // of the cameras' copies there): on the GPU the paper's estimator's limit, noise-free; on
-      // the CPU the paper's estimator itself, which stays responsive (reduced frames while the
-      // view moves, lens samples accumulated in parts at rest), where the limit's prefilter
-      // would remake the views it reads for every frame (0.2-0.45 s on two cores whatever the
-      // frame's size: over the frame budget at any scale).
-      view_.integrator =
-          renderer_->uses_gl() ? Integrator::kCamerasQuadrilinear : Integrator::kLensSamples;
+      // of the cameras' copies there): the paper's estimator's limit, noise-free, on either
+      // renderer. On the CPU its filtered views are kept from frame to frame
+      // (render/prefilter_cache.h), so a frame at the same focus costs about what the cameras
+      // integrator's does (docs/viewer.md).
+      view_.integrator = Integrator::kCamerasQuadrilinear;
     }
     view_.light_field = options.light_field;
     stats_.backend = renderer_->description();

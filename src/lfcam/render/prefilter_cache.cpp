@@ -1,0 +1,71 @@
+#include "lfcam/render/prefilter_cache.h"
+
+#include <cmath>
+
+namespace lfcam {
+namespace {
+
+bool SameFilter(const StPrefilter& a, const StPrefilter& b) {
+  // The focus point is computed anew each frame: the same focus may differ in its last bits.
+  const auto same = [](double x, double y) { return std::abs(x - y) <= 1e-9 * (1 + std::abs(x)); };
+  return same(a.h_s, b.h_s) && same(a.h_t, b.h_t) && a.stride_s == b.stride_s &&
+         a.stride_t == b.stride_t;
+}
+
+// What of `wanted` lies outside `held`, as up to four rectangles within their bounding
+// rectangle (above, below, and left and right of `held`), and that bounding rectangle.
+std::vector<cv::Rect> Missing(const cv::Rect& held, const cv::Rect& wanted, cv::Rect* grown) {
+  if (held.empty()) {
+    *grown = wanted;
+    return {wanted};
+  }
+  if ((wanted & held) == wanted) {
+    *grown = held;
+    return {};
+  }
+  const cv::Rect u = held | wanted;
+  *grown = u;
+  std::vector<cv::Rect> parts = {
+      cv::Rect(u.x, u.y, u.width, held.y - u.y),                          // above
+      cv::Rect(u.x, held.br().y, u.width, u.br().y - held.br().y),        // below
+      cv::Rect(u.x, held.y, held.x - u.x, held.height),                   // left
+      cv::Rect(held.br().x, held.y, u.br().x - held.br().x, held.height)  // right
+  };
+  std::erase_if(parts, [](const cv::Rect& r) { return r.width <= 0 || r.height <= 0; });
+  return parts;
+}
+
+}  // namespace
+
+const LightField& PrefilterCache::Filtered(const LightField& lf, const StPrefilter& prefilter,
+                                           const VirtualCamera& camera,
+                                           const std::vector<bool>& views) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  if (serial_ != lf.samples_serial() || !SameFilter(prefilter_, prefilter)) {
+    copy_ = LightField();  // the old copy's memory back before the new one's
+    copy_ = PrefilteredCopy(lf, prefilter.stride_s, prefilter.stride_t);
+    serial_ = lf.samples_serial();
+    prefilter_ = prefilter;
+    filtered_.assign(lf.dims().view_count(), cv::Rect());
+  }
+  const std::vector<cv::Rect> wanted = ViewRegionsRead(copy_, camera, views);
+  // Each view's missing parts, filtered in rounds of one part a view.
+  std::vector<std::vector<cv::Rect>> parts(wanted.size());
+  std::size_t rounds = 0;
+  last_filtered_samples_ = 0;
+  for (std::size_t v = 0; v < wanted.size(); ++v) {
+    if (wanted[v].empty()) continue;
+    parts[v] = Missing(filtered_[v], wanted[v], &filtered_[v]);
+    rounds = std::max(rounds, parts[v].size());
+    for (const cv::Rect& r : parts[v]) last_filtered_samples_ += r.area();
+  }
+  for (std::size_t round = 0; round < rounds; ++round) {
+    std::vector<cv::Rect> regions(wanted.size());
+    for (std::size_t v = 0; v < wanted.size(); ++v)
+      if (round < parts[v].size()) regions[v] = parts[v][round];
+    PrefilterViews(lf, prefilter, regions, &copy_);
+  }
+  return copy_;
+}
+
+}  // namespace lfcam

@@ -1,0 +1,71 @@
+#include "lfcam/render/prefilter_cache.h"
+
+#include <gtest/gtest.h>
+
+#include "lfcam/render/cpu_renderer.h"
+#include "lfcam/render/render_test_cases.h"
+#include "lfcam/sim/test_paper_lightfield.h"
+
+namespace lfcam {
+namespace {
+
+RenderResult Limit(const LightField& lf, const VirtualCameraParams& p, PrefilterCache* cache) {
+  CpuRenderOptions o;
+  o.integrator = Integrator::kCamerasQuadrilinear;
+  o.prefilter_cache = cache;
+  return RenderLightFieldCpu(lf, VirtualCamera(p), o);
+}
+
+// A frame rendered from the kept copy is the frame rendered from its own copy, byte for byte:
+// again at the same view (nothing filtered), with the eye moved and the view turned at the same
+// focus (only what the kept copy lacks filtered), and at another focus or from another light
+// field (a fresh copy).
+TEST(PrefilterCache, FiltersOnlyWhatEarlierFramesDidNotAndRendersTheSameFrames) {
+  const LightField lf = testing::SharedPaperLightField();
+  PrefilterCache cache;
+  VirtualCameraParams p =
+      render_test::ConvergenceCamera{"far focus", {300, 275, 3600}, {300, 275, 0}, 500, 9000, 192,
+                                     true}
+          .Params(64);
+  const auto same_as_alone = [&](const VirtualCameraParams& q) {
+    const RenderResult kept = Limit(lf, q, &cache), alone = Limit(lf, q, nullptr);
+    EXPECT_EQ(cv::norm(kept.image, alone.image, cv::NORM_INF), 0.0);
+    EXPECT_EQ(cv::norm(kept.hit_mask, alone.hit_mask, cv::NORM_INF), 0.0);
+    return kept;
+  };
+  RenderResult first = same_as_alone(p);
+  const long long whole = cache.last_filtered_samples();
+  EXPECT_GT(whole, 0);
+  EXPECT_EQ(first.path.find("from the last frame"), std::string::npos) << first.path;
+  EXPECT_NE(first.path.find("kept every"), std::string::npos) << first.path;
+
+  const RenderResult again = same_as_alone(p);
+  EXPECT_EQ(cache.last_filtered_samples(), 0);
+  EXPECT_NE(again.path.find("from the last frame"), std::string::npos) << again.path;
+
+  // The eye 30 mm across and the view following it: a little more of each view.
+  p.eye += Vec3(30, 0, 0);
+  p.look_at += Vec3(30, 0, 0);
+  same_as_alone(p);
+  EXPECT_GT(cache.last_filtered_samples(), 0);
+  EXPECT_LT(cache.last_filtered_samples(), whole / 4);
+  // Back where it was: all kept.
+  p.eye -= Vec3(30, 0, 0);
+  p.look_at -= Vec3(30, 0, 0);
+  same_as_alone(p);
+  EXPECT_EQ(cache.last_filtered_samples(), 0);
+
+  // Another focus: another tent, a fresh copy.
+  p.focus_distance_mm = 7000;
+  same_as_alone(p);
+  EXPECT_GT(cache.last_filtered_samples(), whole / 2);
+
+  // Another light field with the same layout (another buffer): a fresh copy.
+  const LightField other = testing::SharedPaperLightField();
+  ASSERT_NE(other.samples_serial(), lf.samples_serial());
+  Limit(other, p, &cache);
+  EXPECT_GT(cache.last_filtered_samples(), whole / 2);
+}
+
+}  // namespace
+}  // namespace lfcam
