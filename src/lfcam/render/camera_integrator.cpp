@@ -192,6 +192,120 @@ void CameraIntegratorFrame::Weights(const Footprint& f, float* weights) const {
     for (std::size_t c = 0; c < cameras; ++c) weights[c] /= total;
 }
 
+void CameraIntegratorFrame::RowWeights(int j, int width, std::size_t stride, float* weights,
+                                       std::vector<int>* cameras_used) const {
+  const std::size_t cameras = std::size_t(rows_) * std::size_t(cols_);
+  cameras_used->clear();
+  if (levels_.empty()) return;
+  // Each pixel's table cell (its lower radius level k and lattice node (a, b), or k = -1 for no
+  // weights) and the coefficients of the cell's nodes, computed as Weights computes them.
+  struct Cell {
+    int k = -1, a = 0, b = 0;
+    bool operator==(const Cell&) const = default;
+  };
+  const bool two = levels_.size() > 1;
+  const int nodes = two ? 8 : 4;
+  std::vector<Cell> cells(static_cast<std::size_t>(width));
+  // Node n's coefficient for pixel i at coefficients[n * width + i]: loops over the pixels run
+  // along contiguous memory.
+  std::vector<float> coefficients(std::size_t(width) * 8);
+  for (int i = 0; i < width; ++i) {
+    const Footprint f = FootprintOf(i, j);
+    if (!f.valid) continue;
+    const double dx = std::max({-0.5 - f.cx, f.cx - (cols_ - 0.5), 0.0});
+    const double dy = std::max({-0.5 - f.cy, f.cy - (rows_ - 0.5), 0.0});
+    if (dx * dx + dy * dy >= f.radius * f.radius && (dx > 0 || dy > 0)) continue;
+    int k = 0;
+    float t = 0.0f;
+    if (two) {
+      const double step = levels_[1].radius - levels_[0].radius;
+      const double x =
+          std::clamp((f.radius - levels_[0].radius) / step, 0.0, double(levels_.size() - 1));
+      k = std::min(int(x), int(levels_.size()) - 2);
+      t = float(x - k);
+    }
+    // The lattice is the same at every level (TableLayout).
+    const Level& level = levels_[std::size_t(k)];
+    const double x = f.cx * kNodesPerPitch - level.x0, y = f.cy * kNodesPerPitch - level.y0;
+    const int a = int(std::floor(x)), b = int(std::floor(y));
+    const float fx = float(x - a), fy = float(y - b);
+    cells[std::size_t(i)] = {k, a, b};
+    const auto c = [&](int n) -> float& {
+      return coefficients[std::size_t(n) * std::size_t(width) + std::size_t(i)];
+    };
+    const float w0 = two ? 1 - t : 1.0f;
+    c(0) = w0 * (1 - fx) * (1 - fy), c(1) = w0 * fx * (1 - fy);
+    c(2) = w0 * (1 - fx) * fy, c(3) = w0 * fx * fy;
+    if (two)
+      c(4) = t * (1 - fx) * (1 - fy), c(5) = t * fx * (1 - fy), c(6) = t * (1 - fx) * fy,
+      c(7) = t * fx * fy;
+  }
+  std::vector<float> total(static_cast<std::size_t>(width));
+  std::vector<char> used(cameras, 0);
+  std::vector<int> run_cameras;
+  for (int i0 = 0; i0 < width;) {
+    int i1 = i0 + 1;
+    while (i1 < width && cells[std::size_t(i1)] == cells[std::size_t(i0)]) ++i1;
+    const Cell cell = cells[std::size_t(i0)];
+    if (cell.k >= 0) {
+      // The cell's nodes, in the order Weights adds them (clamped as AddNode clamps).
+      const float* node[8];
+      for (int n = 0; n < nodes; ++n) {
+        const Level& level = levels_[std::size_t(cell.k + n / 4)];
+        const int a = std::clamp(cell.a + n % 2, 0, level.nx - 1);
+        const int b = std::clamp(cell.b + (n / 2) % 2, 0, level.ny - 1);
+        node[n] = level.weights.data() + (std::size_t(b) * level.nx + a) * cameras;
+      }
+      run_cameras.clear();
+      for (std::size_t c = 0; c < cameras; ++c) {
+        bool any = false;
+        for (int n = 0; n < nodes; ++n) any |= node[n][c] != 0.0f;
+        if (!any) continue;
+        run_cameras.push_back(int(c));
+        float* out = weights + c * stride;
+        const float* k = coefficients.data();
+        const std::size_t w = std::size_t(width);
+        if (two) {
+          const float s0 = node[0][c], s1 = node[1][c], s2 = node[2][c], s3 = node[3][c],
+                      s4 = node[4][c], s5 = node[5][c], s6 = node[6][c], s7 = node[7][c];
+          for (int i = i0; i < i1; ++i) {
+            float v = 0.0f;  // the nodes in Weights' order, each pixel on its own
+            v += k[i] * s0, v += k[w + i] * s1, v += k[2 * w + i] * s2, v += k[3 * w + i] * s3;
+            v += k[4 * w + i] * s4, v += k[5 * w + i] * s5, v += k[6 * w + i] * s6;
+            v += k[7 * w + i] * s7;
+            out[i] = v;
+          }
+          for (int i = i0; i < i1; ++i) used[c] |= out[i] != 0.0f;
+        } else {
+          const float s0 = node[0][c], s1 = node[1][c], s2 = node[2][c], s3 = node[3][c];
+          for (int i = i0; i < i1; ++i) {
+            float v = 0.0f;
+            v += k[i] * s0, v += k[w + i] * s1, v += k[2 * w + i] * s2, v += k[3 * w + i] * s3;
+            out[i] = v;
+          }
+          for (int i = i0; i < i1; ++i) used[c] |= out[i] != 0.0f;
+        }
+      }
+      // Renormalised as Weights renormalises: by the sum over the cameras, in their order.
+      std::fill(total.begin() + i0, total.begin() + i1, 0.0f);
+      for (const int c : run_cameras) {
+        const float* out = weights + std::size_t(c) * stride;
+        for (int i = i0; i < i1; ++i) total[std::size_t(i)] += out[i];
+      }
+      for (const int c : run_cameras) {
+        float* out = weights + std::size_t(c) * stride;
+        for (int i = i0; i < i1; ++i) {
+          const float t = total[std::size_t(i)];
+          out[i] = t > 0.0f ? out[i] / t : out[i];
+        }
+      }
+    }
+    i0 = i1;
+  }
+  for (std::size_t c = 0; c < cameras; ++c)
+    if (used[c]) cameras_used->push_back(int(c));
+}
+
 std::vector<bool> CameraIntegratorFrame::CamerasRead() const {
   const std::size_t cameras = std::size_t(rows_) * std::size_t(cols_);
   std::vector<bool> read(cameras, false);

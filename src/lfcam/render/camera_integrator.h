@@ -43,6 +43,13 @@ class CameraIntegratorFrame {
   // The weights of every camera (row-major, rows x cols) for a footprint; sums to 1, or all 0
   // when the footprint misses the window.
   void Weights(const Footprint& footprint, float* weights) const;
+  // The weights of every pixel of row j (0 <= i < width), the numbers Weights gives for each
+  // pixel's footprint, camera-major: camera c's for pixel i at weights[c * stride + i]. Only the
+  // cameras with a weight somewhere in the row are written (listed in `cameras`, ascending); the
+  // caller zeroes the rest. Pixels whose footprints share a table cell are weighted together,
+  // camera by camera across them, where Weights adds each node's whole vector to one pixel.
+  void RowWeights(int j, int width, std::size_t stride, float* weights,
+                  std::vector<int>* cameras) const;
 
   bool exact() const { return exact_; }  // the lens is parallel to the array
   // The frame's footprints differ from pixel to pixel, so its weights come from a table (built

@@ -175,3 +175,58 @@ TEST(CameraIntegrator, FootprintsAreTheLensSeenThroughThePointInFocus) {
 
 }  // namespace
 }  // namespace lfcam
+
+namespace lfcam {
+namespace {
+
+// A row's weights, pixels sharing a table cell weighted together camera by camera, are each
+// pixel's own weights (Weights of its footprint) to the last bit, for an eye behind the array, in
+// front of it and a turned view, one table level or several; and the cameras listed are those
+// with a weight somewhere in the row.
+TEST(CameraIntegrator, ARowsWeightsAreEachPixelsOwn) {
+  const LightField& lf = render_test::GridPaperLightField();
+  const int views = int(lf.dims().view_count());
+  for (const render_test::ConvergenceCamera& c : {
+           render_test::ConvergenceCamera{
+               "behind", {300, 275, 4100}, {300, 275, 0}, 444, 4000, 256, true},
+           render_test::ConvergenceCamera{
+               "in front", {150, 120, 2900}, {150, 120, 0}, 300, 4000, 128, false},
+           render_test::ConvergenceCamera{
+               "turned", {280, 275, 3600}, {300, 275, 2600}, 500, 3400, 192, true},
+           render_test::ConvergenceCamera{
+               "small aperture, turned", {300, 275, 3600}, {450, 200, 0}, 500, 4700, 20, true},
+       }) {
+    SCOPED_TRACE(c.name);
+    VirtualCameraParams p = c.Params(0);
+    p.width = 77;
+    p.height = 9;
+    const VirtualCamera camera(p);
+    const CameraIntegratorFrame frame(lf, camera);
+    ASSERT_TRUE(frame.needs_table());
+    const std::size_t stride = 80;
+    std::vector<float> row(std::size_t(views) * stride), one(static_cast<std::size_t>(views));
+    std::vector<int> cameras;
+    for (int j = 0; j < p.height; j += 4) {
+      std::fill(row.begin(), row.end(), 0.0f);
+      frame.RowWeights(j, p.width, stride, row.data(), &cameras);
+      std::vector<int> expected;
+      for (int v = 0; v < views; ++v)
+        for (int i = 0; i < p.width; ++i)
+          if (row[std::size_t(v) * stride + std::size_t(i)] != 0.0f) {
+            expected.push_back(v);
+            break;
+          }
+      for (int i = 0; i < p.width; ++i) {
+        frame.Weights(frame.FootprintOf(i, j), one.data());
+        for (int v = 0; v < views; ++v)
+          ASSERT_EQ(row[std::size_t(v) * stride + std::size_t(i)], one[std::size_t(v)])
+              << "pixel " << i << ", " << j << ", camera " << v;
+      }
+      EXPECT_EQ(cameras, expected) << "row " << j;
+      EXPECT_FALSE(cameras.empty());
+    }
+  }
+}
+
+}  // namespace
+}  // namespace lfcam

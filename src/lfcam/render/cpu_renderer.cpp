@@ -321,20 +321,7 @@ void FillPixelWeights(const CameraIntegratorFrame& frame, int views, int width, 
     for (const int c : buffers.cameras)
       std::fill_n(buffers.pixel_weights.begin() + std::ptrdiff_t(c) * padded, padded, 0.0f);
   }
-  buffers.weights.resize(std::size_t(views));
-  std::vector<char> used(std::size_t(views), 0);
-  for (int i = 0; i < width; ++i) {
-    frame.Weights(frame.FootprintOf(i, j), buffers.weights.data());
-    for (int c = 0; c < views; ++c) {
-      const float w = buffers.weights[std::size_t(c)];
-      if (!(w > 0.0f)) continue;
-      buffers.pixel_weights[std::size_t(c) * padded + i] = w;
-      used[std::size_t(c)] = 1;
-    }
-  }
-  buffers.cameras.clear();
-  for (int c = 0; c < views; ++c)
-    if (used[std::size_t(c)]) buffers.cameras.push_back(c);
+  frame.RowWeights(j, width, std::size_t(padded), buffers.pixel_weights.data(), &buffers.cameras);
 }
 
 // The separable frame: bands of rows, each a weighted sum of resized views.
