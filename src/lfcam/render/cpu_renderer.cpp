@@ -304,7 +304,6 @@ struct RowBuffers {
   std::vector<float> r, g, b;
   std::vector<std::int32_t> count;
   std::vector<float> pixel_weights;  // [camera][pixel], the cameras integrator off-plane
-  std::vector<float> weights;        // one pixel's, every camera
   std::vector<int> cameras;          // those with a weight somewhere in the row
   explicit RowBuffers(int padded) : r(padded), g(padded), b(padded), count(padded) {}
   RowOutput output() { return {r.data(), g.data(), b.data(), count.data()}; }
