@@ -15,6 +15,10 @@
 // measure the gap). k is taken at the frame's central pixel: one filter per frame, exact when
 // the plane of focus is parallel to the st-plane (a camera looking along the array's normal),
 // close for a turned camera.
+//
+// On the CPU the filtered views are kept every m samples where the tent is wide
+// (PrefilterStride), so that a frame's work follows its footprint on the views, not the light
+// field's sampling; the GL renderer filters every sample.
 #include <opencv2/core.hpp>
 #include <vector>
 
@@ -28,8 +32,8 @@ struct StPrefilter {
   double h_s = 0, h_t = 0;
   double k = 0;  // the scale from uv offsets to st offsets
   // How many of the light field's samples apart the filtered copy keeps its samples along s and
-  // t (PrefilteredCopy; 1: every sample). A copy strides m apart is read through the bilinear
-  // read's tent of half-width m, so the taps carry less of the blur (PrefilterTaps).
+  // t (PrefilteredCopy; 1: every sample). A copy kept m samples apart is read through the
+  // bilinear read's tent of half-width m, so the taps carry less of the blur (PrefilterTaps).
   int stride_s = 1, stride_t = 1;
 };
 StPrefilter QuadrilinearLimitPrefilter(const LightField& lf, const VirtualCamera& camera);
