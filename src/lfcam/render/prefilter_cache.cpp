@@ -41,30 +41,48 @@ const LightField& PrefilterCache::Filtered(const LightField& lf, const StPrefilt
                                            const VirtualCamera& camera,
                                            const std::vector<bool>& views) {
   const std::lock_guard<std::mutex> lock(mutex_);
-  if (serial_ != lf.samples_serial() || !SameFilter(prefilter_, prefilter)) {
+  // The same samples (a buffer), seen through the same layout (a copy of a light field may
+  // share its buffer and differ in its windows or its slab).
+  const StDomain& domain = lf.slab().st_domain;
+  const bool same_light_field = serial_ == lf.samples_serial() && dims_ == lf.dims() &&
+                                offsets_ == lf.st_offsets() && domain_.s0 == domain.s0 &&
+                                domain_.t0 == domain.t0 && domain_.s1 == domain.s1 &&
+                                domain_.t1 == domain.t1;
+  if (!same_light_field || !SameFilter(prefilter_, prefilter)) {
+    serial_ = 0;
     copy_ = LightField();  // the old copy's memory back before the new one's
     copy_ = PrefilteredCopy(lf, prefilter.stride_s, prefilter.stride_t);
     serial_ = lf.samples_serial();
+    dims_ = lf.dims();
+    offsets_ = lf.st_offsets();
+    domain_ = domain;
     prefilter_ = prefilter;
     filtered_.assign(lf.dims().view_count(), cv::Rect());
   }
   const std::vector<cv::Rect> wanted = ViewRegionsRead(copy_, camera, views);
   // Each view's missing parts, filtered in rounds of one part a view.
   std::vector<std::vector<cv::Rect>> parts(wanted.size());
+  std::vector<cv::Rect> grown = filtered_;
   std::size_t rounds = 0;
   last_filtered_samples_ = 0;
   for (std::size_t v = 0; v < wanted.size(); ++v) {
     if (wanted[v].empty()) continue;
-    parts[v] = Missing(filtered_[v], wanted[v], &filtered_[v]);
+    parts[v] = Missing(filtered_[v], wanted[v], &grown[v]);
     rounds = std::max(rounds, parts[v].size());
     for (const cv::Rect& r : parts[v]) last_filtered_samples_ += r.area();
   }
-  for (std::size_t round = 0; round < rounds; ++round) {
-    std::vector<cv::Rect> regions(wanted.size());
-    for (std::size_t v = 0; v < wanted.size(); ++v)
-      if (round < parts[v].size()) regions[v] = parts[v][round];
-    PrefilterViews(lf, prefilter, regions, &copy_);
+  try {
+    for (std::size_t round = 0; round < rounds; ++round) {
+      std::vector<cv::Rect> regions(wanted.size());
+      for (std::size_t v = 0; v < wanted.size(); ++v)
+        if (round < parts[v].size()) regions[v] = parts[v][round];
+      PrefilterViews(lf, prefilter, regions, &copy_);
+    }
+  } catch (...) {
+    serial_ = 0;  // what the copy holds is no longer known: the next frame starts afresh
+    throw;
   }
+  filtered_ = std::move(grown);
   return copy_;
 }
 

@@ -18,7 +18,8 @@ class PrefilterCache {
  public:
   // The copy of `lf` filtered by `prefilter` (its strides set) wherever `camera`'s frame reads
   // views `views` (ViewRegionsRead), filtering only what the kept copy lacks; a fresh copy when
-  // the light field (its samples' buffer) or the filter changed. The reference stays valid until
+  // the light field (its samples' buffer, its dimensions, its views' windows or its st domain)
+  // or the filter changed. The reference stays valid until
   // the next call; one frame at a time.
   const LightField& Filtered(const LightField& lf, const StPrefilter& prefilter,
                              const VirtualCamera& camera, const std::vector<bool>& views);
@@ -28,7 +29,11 @@ class PrefilterCache {
 
  private:
   std::mutex mutex_;
-  std::uint64_t serial_ = 0;  // the light field's samples (SampleBuffer::serial)
+  // The light field the copy is of: its samples (SampleBuffer::serial; 0: none) and layout.
+  std::uint64_t serial_ = 0;
+  LightFieldDims dims_{};
+  std::vector<StOffset> offsets_;
+  StDomain domain_;
   StPrefilter prefilter_;
   LightField copy_;
   std::vector<cv::Rect> filtered_;  // each view's filtered rectangle, in the copy's samples

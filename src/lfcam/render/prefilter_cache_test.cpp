@@ -60,6 +60,19 @@ TEST(PrefilterCache, FiltersOnlyWhatEarlierFramesDidNotAndRendersTheSameFrames) 
   same_as_alone(p);
   EXPECT_GT(cache.last_filtered_samples(), whole / 2);
 
+  // The same samples in views of windows of their own (a copy sharing the buffer): a fresh copy,
+  // laid out for them.
+  LightField windows = lf;
+  ASSERT_EQ(windows.samples_serial(), lf.samples_serial());
+  std::vector<StOffset> offsets;
+  for (int v = 0; v < int(lf.dims().view_count()); ++v) offsets.push_back({v % 3 - 1, v % 2});
+  windows.set_st_offsets(offsets);
+  const RenderResult in_windows = Limit(windows, p, &cache);
+  EXPECT_GT(cache.last_filtered_samples(), whole / 2);
+  EXPECT_EQ(cv::norm(in_windows.image, Limit(windows, p, nullptr).image, cv::NORM_INF), 0.0);
+  Limit(lf, p, &cache);  // and back
+  EXPECT_GT(cache.last_filtered_samples(), whole / 2);
+
   // Another light field with the same layout (another buffer): a fresh copy.
   const LightField other = testing::SharedPaperLightField();
   ASSERT_NE(other.samples_serial(), lf.samples_serial());
