@@ -139,23 +139,48 @@ Footprint CameraIntegratorFrame::FootprintOf(int i, int j) const {
   return f;
 }
 
-void CameraIntegratorFrame::AddNode(const Level& level, int a, int b, float w, float* out) const {
-  a = std::clamp(a, 0, level.nx - 1);
-  b = std::clamp(b, 0, level.ny - 1);
-  const std::size_t cameras = std::size_t(rows_) * std::size_t(cols_);
-  const float* node = level.weights.data() + (std::size_t(b) * level.nx + a) * cameras;
-  for (std::size_t c = 0; c < cameras; ++c) out[c] += w * node[c];
-}
-
-void CameraIntegratorFrame::AddLevel(const Level& level, double cx, double cy, float w,
-                                     float* out) const {
-  const double x = cx * kNodesPerPitch - level.x0, y = cy * kNodesPerPitch - level.y0;
+bool CameraIntegratorFrame::CellOf(const Footprint& f, TableCell* cell,
+                                   float coefficients[8]) const {
+  if (!f.valid || levels_.empty()) return false;
+  // A footprint that does not meet the window has no weights (its lattice neighbours may).
+  const double dx = std::max({-0.5 - f.cx, f.cx - (cols_ - 0.5), 0.0});
+  const double dy = std::max({-0.5 - f.cy, f.cy - (rows_ - 0.5), 0.0});
+  if (dx * dx + dy * dy >= f.radius * f.radius && (dx > 0 || dy > 0)) return false;
+  const bool two = levels_.size() > 1;
+  int k = 0;
+  float t = 0.0f;
+  if (two) {
+    // Linear between the two radius levels around the footprint's.
+    const double step = levels_[1].radius - levels_[0].radius;
+    const double x =
+        std::clamp((f.radius - levels_[0].radius) / step, 0.0, double(levels_.size() - 1));
+    k = std::min(int(x), int(levels_.size()) - 2);
+    t = float(x - k);
+  }
+  // Bilinear in the lattice, the same at every level (TableLayout).
+  const Level& level = levels_[std::size_t(k)];
+  const double x = f.cx * kNodesPerPitch - level.x0, y = f.cy * kNodesPerPitch - level.y0;
   const int a = int(std::floor(x)), b = int(std::floor(y));
   const float fx = float(x - a), fy = float(y - b);
-  AddNode(level, a, b, w * (1 - fx) * (1 - fy), out);
-  AddNode(level, a + 1, b, w * fx * (1 - fy), out);
-  AddNode(level, a, b + 1, w * (1 - fx) * fy, out);
-  AddNode(level, a + 1, b + 1, w * fx * fy, out);
+  *cell = {k, a, b};
+  const float w0 = two ? 1 - t : 1.0f;
+  coefficients[0] = w0 * (1 - fx) * (1 - fy), coefficients[1] = w0 * fx * (1 - fy);
+  coefficients[2] = w0 * (1 - fx) * fy, coefficients[3] = w0 * fx * fy;
+  if (two) {
+    coefficients[4] = t * (1 - fx) * (1 - fy), coefficients[5] = t * fx * (1 - fy);
+    coefficients[6] = t * (1 - fx) * fy, coefficients[7] = t * fx * fy;
+  }
+  return true;
+}
+
+void CameraIntegratorFrame::NodesOf(const TableCell& cell, const float* nodes[8]) const {
+  const std::size_t cameras = std::size_t(rows_) * std::size_t(cols_);
+  for (int n = 0; n < NodesPerCell(); ++n) {
+    const Level& level = levels_[std::size_t(cell.k + n / 4)];
+    const int a = std::clamp(cell.a + n % 2, 0, level.nx - 1);
+    const int b = std::clamp(cell.b + (n / 2) % 2, 0, level.ny - 1);
+    nodes[n] = level.weights.data() + (std::size_t(b) * level.nx + a) * cameras;
+  }
 }
 
 void CameraIntegratorFrame::Weights(const Footprint& f, float* weights) const {
@@ -167,23 +192,13 @@ void CameraIntegratorFrame::Weights(const Footprint& f, float* weights) const {
       weights[std::size_t(c.row * cols_ + c.col)] = float(c.weight);
     return;
   }
-  if (levels_.empty()) return;
-  // A footprint that does not meet the window has no weights (its lattice neighbours may).
-  const double dx = std::max({-0.5 - f.cx, f.cx - (cols_ - 0.5), 0.0});
-  const double dy = std::max({-0.5 - f.cy, f.cy - (rows_ - 0.5), 0.0});
-  if (dx * dx + dy * dy >= f.radius * f.radius && (dx > 0 || dy > 0)) return;
-  if (levels_.size() == 1) {
-    AddLevel(levels_[0], f.cx, f.cy, 1.0f, weights);
-  } else {
-    // Linear between the two radius levels around the footprint's.
-    const double step = levels_[1].radius - levels_[0].radius;
-    const double x =
-        std::clamp((f.radius - levels_[0].radius) / step, 0.0, double(levels_.size() - 1));
-    const int k = std::min(int(x), int(levels_.size()) - 2);
-    const float t = float(x - k);
-    AddLevel(levels_[std::size_t(k)], f.cx, f.cy, 1 - t, weights);
-    AddLevel(levels_[std::size_t(k) + 1], f.cx, f.cy, t, weights);
-  }
+  TableCell cell;
+  float coefficients[8];
+  if (!CellOf(f, &cell, coefficients)) return;
+  const float* nodes[8];
+  NodesOf(cell, nodes);
+  for (int n = 0; n < NodesPerCell(); ++n)
+    for (std::size_t c = 0; c < cameras; ++c) weights[c] += coefficients[n] * nodes[n][c];
   // Renormalised: next to the window's edge a lattice neighbour may miss the window (no
   // weights) while the footprint itself meets it.
   float total = 0.0f;
@@ -197,48 +212,18 @@ void CameraIntegratorFrame::RowWeights(int j, int width, std::size_t stride, flo
   const std::size_t cameras = std::size_t(rows_) * std::size_t(cols_);
   cameras_used->clear();
   if (levels_.empty()) return;
-  // Each pixel's table cell (its lower radius level k and lattice node (a, b), or k = -1 for no
-  // weights) and the coefficients of the cell's nodes, computed as Weights computes them.
-  struct Cell {
-    int k = -1, a = 0, b = 0;
-    bool operator==(const Cell&) const = default;
-  };
+  // Each pixel's table cell (k = -1: no weights) and its nodes' coefficients, node n's for
+  // pixel i at coefficients[n * width + i], so that the loops over the pixels run along
+  // contiguous memory.
   const bool two = levels_.size() > 1;
-  const int nodes = two ? 8 : 4;
-  std::vector<Cell> cells(static_cast<std::size_t>(width));
-  // Node n's coefficient for pixel i at coefficients[n * width + i]: loops over the pixels run
-  // along contiguous memory.
+  const int nodes = NodesPerCell();
+  std::vector<TableCell> cells(static_cast<std::size_t>(width));
   std::vector<float> coefficients(std::size_t(width) * 8);
   for (int i = 0; i < width; ++i) {
-    const Footprint f = FootprintOf(i, j);
-    if (!f.valid) continue;
-    const double dx = std::max({-0.5 - f.cx, f.cx - (cols_ - 0.5), 0.0});
-    const double dy = std::max({-0.5 - f.cy, f.cy - (rows_ - 0.5), 0.0});
-    if (dx * dx + dy * dy >= f.radius * f.radius && (dx > 0 || dy > 0)) continue;
-    int k = 0;
-    float t = 0.0f;
-    if (two) {
-      const double step = levels_[1].radius - levels_[0].radius;
-      const double x =
-          std::clamp((f.radius - levels_[0].radius) / step, 0.0, double(levels_.size() - 1));
-      k = std::min(int(x), int(levels_.size()) - 2);
-      t = float(x - k);
-    }
-    // The lattice is the same at every level (TableLayout).
-    const Level& level = levels_[std::size_t(k)];
-    const double x = f.cx * kNodesPerPitch - level.x0, y = f.cy * kNodesPerPitch - level.y0;
-    const int a = int(std::floor(x)), b = int(std::floor(y));
-    const float fx = float(x - a), fy = float(y - b);
-    cells[std::size_t(i)] = {k, a, b};
-    const auto c = [&](int n) -> float& {
-      return coefficients[std::size_t(n) * std::size_t(width) + std::size_t(i)];
-    };
-    const float w0 = two ? 1 - t : 1.0f;
-    c(0) = w0 * (1 - fx) * (1 - fy), c(1) = w0 * fx * (1 - fy);
-    c(2) = w0 * (1 - fx) * fy, c(3) = w0 * fx * fy;
-    if (two)
-      c(4) = t * (1 - fx) * (1 - fy), c(5) = t * fx * (1 - fy), c(6) = t * (1 - fx) * fy,
-      c(7) = t * fx * fy;
+    float c[8];
+    if (!CellOf(FootprintOf(i, j), &cells[std::size_t(i)], c)) continue;
+    for (int n = 0; n < nodes; ++n)
+      coefficients[std::size_t(n) * std::size_t(width) + std::size_t(i)] = c[n];
   }
   std::vector<float> total(static_cast<std::size_t>(width));
   std::vector<char> used(cameras, 0);
@@ -246,16 +231,10 @@ void CameraIntegratorFrame::RowWeights(int j, int width, std::size_t stride, flo
   for (int i0 = 0; i0 < width;) {
     int i1 = i0 + 1;
     while (i1 < width && cells[std::size_t(i1)] == cells[std::size_t(i0)]) ++i1;
-    const Cell cell = cells[std::size_t(i0)];
+    const TableCell cell = cells[std::size_t(i0)];
     if (cell.k >= 0) {
-      // The cell's nodes, in the order Weights adds them (clamped as AddNode clamps).
       const float* node[8];
-      for (int n = 0; n < nodes; ++n) {
-        const Level& level = levels_[std::size_t(cell.k + n / 4)];
-        const int a = std::clamp(cell.a + n % 2, 0, level.nx - 1);
-        const int b = std::clamp(cell.b + (n / 2) % 2, 0, level.ny - 1);
-        node[n] = level.weights.data() + (std::size_t(b) * level.nx + a) * cameras;
-      }
+      NodesOf(cell, node);
       run_cameras.clear();
       for (std::size_t c = 0; c < cameras; ++c) {
         bool any = false;

@@ -94,9 +94,18 @@ class CameraIntegratorFrame {
   std::vector<Level> levels_;  // increasing radius
   std::vector<GridCameraWeight> uniform_;
 
-  // Adds (w times) the weights of lattice node (a, b) of `level` to `out`.
-  void AddNode(const Level& level, int a, int b, float w, float* out) const;
-  void AddLevel(const Level& level, double cx, double cy, float w, float* out) const;
+  // Where a footprint's weights come from in the table: its lower radius level k and lattice
+  // node (a, b), and the coefficients of the cell's nodes (4, or 8 across two levels), in the
+  // order Weights adds them. False when the footprint has no weights (invalid, or missing the
+  // window).
+  struct TableCell {
+    int k = -1, a = 0, b = 0;
+    bool operator==(const TableCell& o) const { return k == o.k && a == o.a && b == o.b; }
+  };
+  bool CellOf(const Footprint& footprint, TableCell* cell, float coefficients[8]) const;
+  int NodesPerCell() const { return levels_.size() > 1 ? 8 : 4; }
+  // The weight vectors of the cell's nodes (clamped to the lattice), in the same order.
+  void NodesOf(const TableCell& cell, const float* nodes[8]) const;
 };
 
 }  // namespace lfcam
