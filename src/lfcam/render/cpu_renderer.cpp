@@ -35,6 +35,7 @@ struct Frame {
   const CameraIntegratorFrame* cameras = nullptr;  // the cameras integrator, with an aperture
   int view_count = 0;
   const DepthAwareSampler* depth = nullptr;  // Interpolation::kDepth
+  const WindowTaper* taper = nullptr;        // the cameras integrator's fade at the windows
   bool antialias = false;                    // with it: rays over the pixel's area
 
   bool Sample(const Vec3& origin, const Vec3& direction, float rgb[3], const Vec3& p_o) const {
@@ -47,8 +48,9 @@ struct Frame {
 // with its weight. A camera counts where its own line through p_o meets the sampled st domain
 // (and, with views in their own windows, its view's window holds the point), as a lens sample
 // counts where its line does: at the domain's edge the cameras that still see the point carry
-// the pixel, their weights renormalised, and a pixel none of them sees misses. Returns the
-// cameras read.
+// the pixel, their weights renormalised, and a pixel none of them sees misses. With a taper
+// (the quadrilinear limit's) a camera counts by the share of its tent inside its window instead.
+// Returns the cameras read.
 int RenderPixelCameras(const Frame& frame, int i, int j, float* weights, float out[3]) {
   const VirtualCamera& camera = frame.camera;
   const Vec3 direction = camera.pixel_direction(i, j);
@@ -59,6 +61,13 @@ int RenderPixelCameras(const Frame& frame, int i, int j, float* weights, float o
   float held = 0;  // the weights of the cameras that count
   const bool windows = frame.sampler.view_windows();
   const auto accumulate = [&](int row, int col, float w) {
+    if (frame.taper) {
+      const float a = frame.sampler.AccumulateFocusedTapered(row, col, p_o, w, *frame.taper, sum);
+      if (!(a > 0)) return;
+      held += a;
+      ++read;
+      return;
+    }
     if (!frame.sampler.CameraLineMeetsStDomain(row, col, p_o)) return;
     const float a = frame.sampler.AccumulateFocused(row, col, p_o, w, sum);
     if (windows && !(a > 0)) return;  // its window misses the point
@@ -240,6 +249,7 @@ RenderResult RenderReference(const LightField& lf, const VirtualCamera& camera,
     if (!camera.is_pinhole()) {
       frame.cameras = prebuilt ? prebuilt : &cameras.emplace(lf, camera);
       frame.view_count = lf.dims().rows * lf.dims().cols;
+      frame.taper = options.window_taper;
     }
   }
 
@@ -326,7 +336,8 @@ void FillPixelWeights(const CameraIntegratorFrame& frame, int views, int width, 
 // The separable frame: bands of rows, each a weighted sum of resized views.
 RenderResult RenderSeparable(const LightField& lf, const VirtualCamera& camera,
                              const SeparableFrame& frame, const CpuRenderOptions& options) {
-  const RaySetup setup(lf, camera, false);
+  RaySetup setup(lf, camera, false);
+  if (options.window_taper && frame.eye >= 0) setup.SetTaper(*options.window_taper);
   const int width = camera.width(), padded = PaddedRowWidth(width);
   RenderResult result = NewResult(camera);
   tbb::combinable<long long> hits_per_thread(0);
@@ -370,7 +381,8 @@ RenderResult RenderFast(const LightField& lf, const VirtualCamera& camera,
   // A pinhole's limit under the cameras integrator is the focal-plane lookup itself.
   const bool focal_plane = options.integrator == Integrator::kCameras ||
                            options.interpolation == Interpolation::kFocalPlane;
-  const RaySetup setup(lf, camera, lens_samples);
+  RaySetup setup(lf, camera, lens_samples);
+  if (!lens_samples && options.window_taper) setup.SetTaper(*options.window_taper);
   const int views = lf.dims().rows * lf.dims().cols;
   const int width = camera.width(), padded = PaddedRowWidth(width);
 
@@ -457,6 +469,9 @@ RenderResult RenderLightFieldCpu(const LightField& lf, const VirtualCamera& came
       own = PrefilteredCopy(lf, prefilter.stride_s, prefilter.stride_t);
       PrefilterViews(lf, prefilter, ViewRegionsRead(own, camera, cameras.CamerasRead()), &own);
     }
+    // Each camera fades out as its tent leaves its view's window, as the lens samples do.
+    const WindowTaper taper = QuadrilinearLimitTaper(lf, *filtered, prefilter);
+    focal.window_taper = &taper;
     RenderResult result = RenderEither(*filtered, camera, focal, &cameras);
     result.path =
         fmt::format("{}, views prefiltered ({:.2f} x {:.2f} samples, kept every {} x {}{})",

@@ -13,6 +13,7 @@
 #include "lfcam/render/depth_aware_sampler.h"
 #include "lfcam/render/lightfield_sampler.h"
 #include "lfcam/render/virtual_camera.h"
+#include "lfcam/render/window_taper.h"
 
 namespace lfcam {
 
@@ -48,6 +49,10 @@ struct CpuRenderOptions {
   // The quadrilinear limit's filtered copy kept from frame to frame (render/prefilter_cache.h;
   // the viewer's), or none: each frame filters what it reads.
   PrefilterCache* prefilter_cache = nullptr;
+  // The cameras integrator: each camera counted by the share of its tent inside its view's
+  // window (render/window_taper.h) rather than wholly or not at all. The quadrilinear limit sets
+  // it for its filtered copy; none: the hard edges of the focal-plane reads.
+  const WindowTaper* window_taper = nullptr;
 };
 
 struct RenderResult {

@@ -41,18 +41,21 @@ TEST(FastRenderer, AgreesWithTheScalarReferenceOnEveryInstructionSet) {
   for (const std::int64_t t : targets) std::cout << " " << hwy::TargetName(t);
   std::cout << "\n";
   double worst = 0;
-  for (const render_test::Case& c : Cases()) {
+  // The quadrilinear limits render their filtered copies, with the fade at the views' edges
+  // (render/window_taper.h), on the same paths.
+  for (const render_test::Case& c : render_test::WithQuadrilinearLimits(Cases())) {
     const LightField& lf = c.turned ? TurnedStPlaneLightField() : SmallPaperLightField();
     const VirtualCamera camera(c.camera);
     const RenderResult reference = RenderLightFieldCpu(lf, camera, CaseOptions(c, true));
-    ASSERT_EQ(reference.path, "reference");
+    ASSERT_EQ(reference.path.substr(0, 9), "reference") << c.name;
     ASSERT_GT(reference.rays_hit, 0) << c.name;
     const CpuRenderOptions fast_options = CaseOptions(c, false);
     for (const std::int64_t target : targets) {
       hwy::SetSupportedTargetsForTest(target);
       const RenderResult fast = RenderLightFieldCpu(lf, camera, fast_options);
       const std::string where = c.name + " on " + hwy::TargetName(target);
-      EXPECT_EQ(fast.path, c.path + " (" + hwy::TargetName(target) + ")") << where;
+      const std::string path = c.path + " (" + hwy::TargetName(target) + ")";
+      EXPECT_EQ(fast.path.substr(0, path.size()), path) << where;
       const double difference = cv::norm(fast.image, reference.image, cv::NORM_INF);
       worst = std::max(worst, difference);
       EXPECT_LE(difference, 1.0 / 255) << where;

@@ -299,6 +299,7 @@ double GlRenderer::RenderToTexture(const LightField& lf, const VirtualCamera& ca
   std::vector<ShaderCameraWeight> weights;
   GLuint sampled = views_;  // the views the frame reads: as uploaded, or prefiltered
   double prefilter_ms = 0;
+  float taper[2] = {0, 0};  // the quadrilinear limit's fade at the windows (render/window_taper.h)
   last_note_.clear();
   std::vector<CameraIntegratorFrame::Level> layout;  // the table's, built on the GPU
   double table_ms = 0;
@@ -320,6 +321,9 @@ double GlRenderer::RenderToTexture(const LightField& lf, const VirtualCamera& ca
         std::vector<bool> read(d.view_count(), mode == kCamerasTable);
         for (const ShaderCameraWeight& w : weights) read[std::size_t(w.index)] = true;
         sampled = Prefilter(lf, prefilter, read, &prefilter_ms);
+        // Every sample filtered, in the views' own layout: each view's window is its samples'.
+        taper[0] = float(prefilter.h_s);
+        taper[1] = float(prefilter.h_t);
         last_note_ = fmt::format(", views prefiltered ({:.2f} x {:.2f} samples)", prefilter.h_s,
                                  prefilter.h_t);
       }
@@ -352,6 +356,7 @@ double GlRenderer::RenderToTexture(const LightField& lf, const VirtualCamera& ca
   u.Plane("st", setup.st);
   u.Int("lens_count", int(setup.lens_uv.size()));
   u.Int("weight_count", int(weights.size()));
+  glUniform2f(u.At("window_taper"), taper[0], taper[1]);
   u.Int("views", 0);
   if (mode == kCamerasTable) {
     FootprintUniforms(u, lf, camera);

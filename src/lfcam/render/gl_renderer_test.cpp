@@ -31,6 +31,7 @@ namespace {
 using render_test::Case;
 using render_test::SmallPaperLightField;
 using render_test::TurnedStPlaneLightField;
+using render_test::WithQuadrilinearLimits;
 
 // The renderer every test shares (a context and an uploaded light field), or null with the
 // reason in `why`.
@@ -120,22 +121,6 @@ Agreement Compare(const RenderResult& gl, const RenderResult& cpu) {
   a.psnr = mse > 0 ? 10 * std::log10(1.0 / mse) : 99.0;
   a.mask_mismatch = double(cv::countNonZero(gl.hit_mask != cpu.hit_mask)) / gl.hit_mask.total();
   return a;
-}
-
-// The cases, and for each of the cameras integrator's also its quadrilinear limit (the views
-// prefiltered on the GPU).
-std::vector<Case> WithQuadrilinearLimits(const std::vector<Case>& cases) {
-  std::vector<Case> out;
-  for (const Case& c : cases) {
-    out.push_back(c);
-    if (c.integrator != Integrator::kCameras) continue;
-    Case limit = c;
-    limit.integrator = Integrator::kCamerasQuadrilinear;
-    limit.interpolation = Interpolation::kQuadrilinear;
-    limit.name += " (its quadrilinear limit)";
-    out.push_back(limit);
-  }
-  return out;
 }
 
 void ExpectAgreement(GlRenderer& gl, const std::vector<Case>& all_cases, Agreement& worst) {

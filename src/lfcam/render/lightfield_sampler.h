@@ -20,6 +20,7 @@
 #include "lfcam/core/color.h"
 #include "lfcam/core/keys_cubic.h"
 #include "lfcam/core/lightfield.h"
+#include "lfcam/render/window_taper.h"
 
 namespace lfcam {
 
@@ -195,6 +196,24 @@ class LightFieldSampler {
     double k, l;
     if (!StSampleAt(camera_centers_[std::size_t(row) * cols_ + col], p_o, k, l)) return 0.0f;
     return AccumulateAt(row, col, k, l, w, acc);
+  }
+
+  // As AccumulateFocused, the camera counted by the share of its tent inside its view's window
+  // (render/window_taper.h) rather than wholly or not at all: adds w times that share, read at
+  // the point clamped to the view's samples, and returns it.
+  float AccumulateFocusedTapered(int row, int col, const Vec3& p_o, float w,
+                                 const WindowTaper& taper, float acc[3]) const {
+    const std::size_t index = std::size_t(row) * cols_ + col;
+    double k, l;
+    if (!StSampleAt(camera_centers_[index], p_o, k, l)) return 0.0f;
+    if (!offsets_.empty()) {
+      k -= offsets_[index].k;
+      l -= offsets_[index].l;
+    }
+    const float held = w * float(taper.Share(int(index), k, l));
+    if (!(held > 0)) return 0.0f;
+    AccumulateView(row, col, AxisLerp::At(k, n_s_), AxisLerp::At(l, n_t_), held, acc);
+    return held;
   }
 
   // Whether the views have their own windows (reads outside a view's window then add nothing).

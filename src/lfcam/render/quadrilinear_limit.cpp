@@ -34,6 +34,23 @@ StPrefilter QuadrilinearLimitPrefilter(const LightField& lf, const VirtualCamera
   return f;
 }
 
+WindowTaper QuadrilinearLimitTaper(const LightField& lf, const LightField& copy,
+                                   const StPrefilter& prefilter) {
+  WindowTaper taper;
+  taper.h_k = prefilter.h_s / prefilter.stride_s;
+  taper.h_l = prefilter.h_t / prefilter.stride_t;
+  const LightFieldDims& d = lf.dims();
+  for (int row = 0; row < d.rows; ++row)
+    for (int col = 0; col < d.cols; ++col) {
+      // The view's window (its samples' outer edges, in window units) in the copy's own samples.
+      const StDomain window = lf.st_sampling(row, col).domain;
+      const StSampling in_copy = copy.st_sampling(row, col);
+      taper.windows.push_back({float(in_copy.k_of(window.s0)), float(in_copy.l_of(window.t0)),
+                               float(in_copy.k_of(window.s1)), float(in_copy.l_of(window.t1))});
+    }
+  return taper;
+}
+
 namespace {
 
 // The tent of half-width w sampled at the integers, normalised, and its variance.

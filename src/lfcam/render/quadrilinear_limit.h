@@ -12,7 +12,9 @@
 //
 // Exact where the aperture's footprint covers a camera's whole hat; for the cameras at the
 // footprint's rim, whose hats it cuts, the whole tent stands in for the cut one (the tests
-// measure the gap). k is taken at the frame's central pixel: one filter per frame, exact when
+// measure the gap). Where a camera's tent reaches past its view's window, the camera counts by
+// the share of the tent inside, as the lens samples drop their rays one by one there
+// (render/window_taper.h, QuadrilinearLimitTaper): it fades out rather than stepping. k is taken at the frame's central pixel: one filter per frame, exact when
 // the plane of focus is parallel to the st-plane (a camera looking along the array's normal),
 // close for a turned camera.
 //
@@ -24,6 +26,7 @@
 
 #include "lfcam/core/lightfield.h"
 #include "lfcam/render/virtual_camera.h"
+#include "lfcam/render/window_taper.h"
 
 namespace lfcam {
 
@@ -79,5 +82,12 @@ LightField PrefilteredCopy(const LightField& lf, int stride_s, int stride_t);
 // the rest stays black.
 void PrefilterViews(const LightField& lf, const StPrefilter& prefilter,
                     const std::vector<cv::Rect>& regions, LightField* out);
+
+// The fade at the views' edges (render/window_taper.h) for a render of `copy`, the views of
+// `lf` filtered by `prefilter` (PrefilteredCopy(lf, prefilter.stride_s, prefilter.stride_t), or
+// `lf`'s own layout for strides 1): the tent's half-widths in the copy's samples, and each of
+// `lf`'s views' windows (the sampled domain where the views share it) in the copy's coordinates.
+WindowTaper QuadrilinearLimitTaper(const LightField& lf, const LightField& copy,
+                                   const StPrefilter& prefilter);
 
 }  // namespace lfcam

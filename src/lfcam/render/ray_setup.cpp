@@ -97,6 +97,15 @@ RaySetup::RaySetup(const LightField& lf, const VirtualCamera& camera, bool lens_
     }
 }
 
+void RaySetup::SetTaper(const WindowTaper& window_taper) {
+  taper = true;
+  taper_h[0] = float(window_taper.h_k);
+  taper_h[1] = float(window_taper.h_l);
+  taper_window.clear();
+  for (const std::array<float, 4>& w : window_taper.windows)
+    taper_window.insert(taper_window.end(), w.begin(), w.end());
+}
+
 bool RowKernelsSupport(const LightField& lf) {
   const LightFieldDims& d = lf.dims();
   return (lf.sample_type() == SampleType::kSrgb8 || lf.sample_type() == SampleType::kLinearF16) &&

@@ -20,6 +20,7 @@
 
 #include "lfcam/core/lightfield.h"
 #include "lfcam/render/virtual_camera.h"
+#include "lfcam/render/window_taper.h"
 
 namespace lfcam {
 
@@ -80,6 +81,14 @@ struct RaySetup {
   // Per camera (row-major), the st constants of its own lines, one array per field (the
   // kernels gather them by camera index).
   std::vector<float> cam_num, cam_n_o, cam_x_o, cam_y_o, cam_x0, cam_y0;
+  // The cameras integrator's fade at the views' windows (render/window_taper.h; the quadrilinear
+  // limit's): each camera's read weighs w times the share of its tent inside its window, in
+  // place of the window's and the domain's hard edges. taper_window: 4 floats a camera (lo k,
+  // lo l, hi k, hi l in its own samples).
+  bool taper = false;
+  float taper_h[2] = {0, 0};
+  std::vector<float> taper_window;
+  void SetTaper(const WindowTaper& window_taper);
 
   RaySetup(const LightField& lf, const VirtualCamera& camera, bool lens_samples);
   OriginConstants camera_st(int index) const {

@@ -159,4 +159,20 @@ inline std::vector<Case> Cases() {
   return cases;
 }
 
+// The cases, and for each of the cameras integrator's also its quadrilinear limit (the views
+// prefiltered: on the GPU, or on the CPU kept every few samples).
+inline std::vector<Case> WithQuadrilinearLimits(const std::vector<Case>& cases) {
+  std::vector<Case> out;
+  for (const Case& c : cases) {
+    out.push_back(c);
+    if (c.integrator != Integrator::kCameras) continue;
+    Case limit = c;
+    limit.integrator = Integrator::kCamerasQuadrilinear;
+    limit.interpolation = Interpolation::kQuadrilinear;
+    limit.name += " (its quadrilinear limit)";
+    out.push_back(limit);
+  }
+  return out;
+}
+
 }  // namespace lfcam::render_test

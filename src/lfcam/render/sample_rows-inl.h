@@ -276,6 +276,43 @@ inline Hit Project(const OriginConstants& o, const RowFunctions& row, const VF& 
   return Project(o, row, pixel, bounds);
 }
 
+// TentShareInside (render/window_taper.h) per lane: the share of a tent of half-width h centred
+// at x inside [lo, hi]; with h 0 the hard edge (1 inside, ends included).
+inline VF TentShare(const VF& x, float lo, float hi, float h) {
+  const DF d;
+  const VF one = hn::Set(d, 1.0f);
+  if (!(h > 0)) {
+    return hn::IfThenElseZero(hn::And(hn::Ge(x, hn::Set(d, lo)), hn::Le(x, hn::Set(d, hi))), one);
+  }
+  const VF inv = hn::Set(d, 1.0f / h), half = hn::Set(d, 0.5f);
+  // The tent's distribution function at z half-widths from its centre.
+  const auto below = [&](VF z) {
+    z = hn::Min(hn::Max(z, hn::Neg(one)), one);
+    return hn::NegMulAdd(hn::Mul(half, z), hn::Abs(z), hn::Add(half, z));
+  };
+  const VF share = hn::Add(below(hn::Mul(hn::Sub(hn::Set(d, hi), x), inv)),
+                           below(hn::Mul(hn::Sub(x, hn::Set(d, lo)), inv)));
+  return hn::Max(hn::Zero(d), hn::Sub(share, one));
+}
+
+// Camera `index`'s share of its tent inside its view's window at its own sample coordinates
+// (k, l) (RaySetup::taper_window).
+inline VF WindowShare(const RaySetup& s, int index, const VF& k, const VF& l) {
+  const float* w = s.taper_window.data() + 4 * std::size_t(index);
+  return hn::Mul(TentShare(k, w[0], w[2], s.taper_h[0]), TentShare(l, w[1], w[3], s.taper_h[1]));
+}
+// Whether the share is 1 all along a pixel row whose line runs from (k_a, l_a) to (k_b, l_b):
+// both ends lie at least the tent's half-widths inside the window (it is convex).
+inline bool WholeShareAlong(const RaySetup& s, int index, double k_a, double l_a, double k_b,
+                            double l_b) {
+  const float* w = s.taper_window.data() + 4 * std::size_t(index);
+  const auto inside = [&](double k, double l) {
+    return k >= w[0] + s.taper_h[0] && k <= w[2] - s.taper_h[0] && l >= w[1] + s.taper_h[1] &&
+           l <= w[3] - s.taper_h[1];
+  };
+  return inside(k_a, l_a) && inside(k_b, l_b);
+}
+
 // The st coordinates (double) of origin o's line through pixel (i, j)'s point in focus.
 inline void Coordinates(const OriginConstants& o, const PlaneAffines& a, double i, double j,
                         double* k, double* l) {

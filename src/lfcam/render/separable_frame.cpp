@@ -70,8 +70,10 @@ class Builder {
   // origin moved by the window's offset). Where every term's reads stay inside its view's window
   // over the whole frame, no blend needs renormalising and the frame stays separable; otherwise
   // false (the per-pixel kernels renormalise). The maps are monotonic over the frame: the
-  // corners bound them.
-  bool ReadsInsideTheirWindows() {
+  // corners bound them. With a taper (`tapered`: the cameras integrator's) each term's reads
+  // count by their share of the window wherever they go, renormalised as at the domain's edge:
+  // the frame stays separable.
+  bool ReadsInsideTheirWindows(bool tapered) {
     if (!lf_.has_view_windows()) return true;
     const int w = camera_.width() - 1, h = camera_.height() - 1;
     const double k_hi = lf_.dims().n_s - 0.5, l_hi = lf_.dims().n_t - 0.5;
@@ -84,7 +86,7 @@ class Builder {
         const double lambda = read.num / (frame_.st.n.at(i, j) - read.n_o);
         const double k = read.x0 + lambda * (frame_.st.x.at(i, j) - read.x_o);
         const double l = read.y0 + lambda * (frame_.st.y.at(i, j) - read.y_o);
-        if (!(k >= -0.5 && k <= k_hi && l >= -0.5 && l <= l_hi)) return false;
+        if (!tapered && !(k >= -0.5 && k <= k_hi && l >= -0.5 && l <= l_hi)) return false;
       }
       frame_.origins.push_back(read);
       t.read = int(frame_.origins.size()) - 1;
@@ -168,7 +170,8 @@ std::optional<SeparableFrame> MakeSeparableFrame(const LightField& lf, const Vir
   } else {
     built = BuildLensSamples(lf, camera, focal_plane, builder);
   }
-  if (!built || !builder.WithinTolerance() || !builder.ReadsInsideTheirWindows())
+  const bool tapered = options.window_taper != nullptr && builder.frame().eye >= 0;
+  if (!built || !builder.WithinTolerance() || !builder.ReadsInsideTheirWindows(tapered))
     return std::nullopt;
   return std::move(builder.frame());
 }

@@ -51,7 +51,8 @@ struct SeparableFrame {
   // Lens samples: the pixel is the mean over these origins (each a lens sample whose rays meet
   // the array window) of their terms, counted where each meets the st domain. The cameras
   // integrator: empty, `eye` set, and every term masked by its own camera's line (a camera counts
-  // where its line through p_o meets the domain; the counted weights are renormalised).
+  // where its line through p_o meets the domain, or with a taper, RaySetup::taper, by the share
+  // of its tent inside its view's window; the counted weights are renormalised).
   std::vector<int> hit_origins;
   int eye = -1;
   int reads_per_pixel = 0;  // the cameras integrator: its cameras (those a pixel can read)

@@ -24,7 +24,8 @@ using namespace sample_rows;  // NOLINT: the shared helpers of this instruction 
 // in `hits` when `count_hits`, and the weight in `held` when given (the cameras integrator
 // renormalises by it): per pixel, or once for a row in `row_hits` and `row_held` (one for each
 // row of the band) where every pixel of the row counts, so that the blend's common path stores
-// nothing but its colour.
+// nothing but its colour. With a taper (RaySetup::taper, the cameras integrator's) the term counts
+// by the share of its tent inside its view's window, at the read's own coordinates.
 void AddTerm(const SeparableFrame& f, const RaySetup& s, const SeparableTerm& t, int j0, int j1,
              std::size_t stride, float* const acc[3], float* hits, bool count_hits, float* held,
              float* row_hits, float* row_held, Planes& decoded, Planes& resampled, TileMap& k_map) {
@@ -106,7 +107,13 @@ void AddTerm(const SeparableFrame& f, const RaySetup& s, const SeparableTerm& t,
     const auto in = [&](double k, double l) {
       return k >= s.domain[0] && k <= s.domain[2] && l >= s.domain[1] && l <= s.domain[3];
     };
-    const bool all_inside = in(k_a, l_ma) && in(k_b, l_mb);
+    bool all_inside = in(k_a, l_ma) && in(k_b, l_mb);
+    if (s.taper) {
+      double k_ra, l_ra, k_rb, l_rb;
+      Coordinates(read, f.st, 0, j, &k_ra, &l_ra);
+      Coordinates(read, f.st, last, j, &k_rb, &l_rb);
+      all_inside = WholeShareAlong(s, t.view, k_ra, l_ra, k_rb, l_rb);
+    }
     const int base = row_base(l_a);
     if (base == row_base(l_b) && all_inside) {
       // One pair of sample rows for the whole row, each pixel with its own weights.
@@ -140,10 +147,16 @@ void AddTerm(const SeparableFrame& f, const RaySetup& s, const SeparableTerm& t,
     for (int i = 0; i < padded; i += lanes) {
       const VF pixel = hn::Iota(d, float(i));
       const Hit r = Project(read, row, pixel, s.n_s, s.n_t);
-      const auto counted =
-          hn::And(hn::Lt(pixel, width),
-                  t.mask == t.read ? r.inside : Project(mask, row, pixel, s.domain).inside);
-      const VF w = hn::IfThenElseZero(counted, weight);
+      VF w;
+      if (s.taper) {
+        w = hn::IfThenElseZero(hn::Lt(pixel, width),
+                               hn::Mul(weight, WindowShare(s, t.view, r.k, r.l)));
+      } else {
+        const auto inside =
+            t.mask == t.read ? r.inside : Project(mask, row, pixel, s.domain).inside;
+        w = hn::IfThenElseZero(hn::And(hn::Lt(pixel, width), inside), weight);
+      }
+      const auto counted = hn::Gt(w, zero);
       if (count_hits)
         hn::StoreU(hn::Add(hn::LoadU(d, hits + at + i), hn::IfThenElseZero(counted, one)), d,
                    hits + at + i);

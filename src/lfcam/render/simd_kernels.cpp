@@ -167,6 +167,18 @@ VF AddFocused(const RaySetup& s, const ChunkPoints& st, const VI& index, const O
   return held;
 }
 
+// As AddFocused, the camera counted by the share of its tent inside its view's window
+// (RaySetup::taper): adds and returns w times that share, read clamped to the view's samples.
+VF AddFocusedTapered(const RaySetup& s, const ChunkPoints& st, int index, const OriginLanes& cam,
+                     const VF& w, Rgb& acc) {
+  const PlaneHit h = Project(st, cam);
+  const VF share = sample_rows::WindowShare(s, index, h.x, h.y);
+  const VF held = hn::IfThenElseZero(h.valid, hn::Mul(w, share));
+  AddView(s, hn::Set(DI(), index * int(s.view_bytes)), Lerp(h.x, s.n_s), Lerp(h.y, s.n_t), held,
+          acc);
+  return held;
+}
+
 // acc += w * the bilinear reads of the four cameras around the lens sample's uv point at the
 // ray's own st point (the paper's lookup) or along each camera's own line through p_o (the
 // focal-plane lookup), weights wr x wc. Returns the weight added (less than the weights' sum
@@ -274,9 +286,16 @@ void RenderRowCamerasT(const RaySetup& s, const GridCameraWeight* uniform, int u
     VF held = hn::Zero(d);  // the weights of the cameras that count
     // Camera `index` in the lanes of `listed` (those whose pixels weigh it): it counts where its
     // own line through p_o meets the sampled st domain and, with views in their own windows, its
-    // window holds the point (RenderPixelCameras).
+    // window holds the point (RenderPixelCameras); with a taper, by its share there.
     const auto read_camera = [&](int index, const VF& w, const MF& listed) {
       const OriginLanes camera = OriginLanes::Broadcast(s.camera_st(index));
+      if (s.taper) {
+        const VF h = AddFocusedTapered(s, p_st, index, camera, hn::IfThenElseZero(listed, w), sum);
+        const MF counted = hn::Gt(h, hn::Zero(d));
+        reads = hn::Add(reads, hn::IfThenElseZero(hn::RebindMask(di, counted), hn::Set(di, 1)));
+        held = hn::Add(held, h);
+        return;
+      }
       const MF in = hn::And(listed, InsideDomain(Project(p_st, camera), s));
       if (hn::AllFalse(d, in)) return;
       const VF h = AddFocused(s, p_st, hn::Set(di, index), camera, hn::IfThenElseZero(in, w), sum);
@@ -343,7 +362,8 @@ bool RenderRowCamerasResampledT(const RaySetup& s, const GridCameraWeight* unifo
   std::fill_n(out.g, padded, 0.0f);
   std::fill_n(out.b, padded, 0.0f);
   // Each camera counts where its own line through p_o meets the sampled st domain (the views
-  // share the grid here); `held` sums the counted cameras' weights, to renormalise by.
+  // share the grid here), or with a taper by its share of its tent inside it; `held` sums the
+  // counted cameras' weights, to renormalise by.
   const sample_rows::RowFunctions row(s.st, j);
   std::vector<float> reads(static_cast<std::size_t>(padded), 0.0f), held(reads.size(), 0.0f);
   sample_rows::Planes decoded, resampled;
@@ -377,9 +397,13 @@ bool RenderRowCamerasResampledT(const RaySetup& s, const GridCameraWeight* unifo
       const VF pixel = hn::Iota(d, float(i));
       const sample_rows::Hit line = sample_rows::Project(c, row, pixel, s.domain);
       VF w = weights ? hn::LoadU(d, weights + i) : uniform_weight;
-      const auto listed = hn::And(hn::Lt(pixel, hn::Set(d, float(s.width))),
-                                  weights ? hn::Gt(w, zero) : hn::Ge(w, zero));
-      const auto read = hn::And(listed, line.inside);
+      auto listed = hn::And(hn::Lt(pixel, hn::Set(d, float(s.width))),
+                            weights ? hn::Gt(w, zero) : hn::Ge(w, zero));
+      if (s.taper) {
+        w = hn::Mul(w, sample_rows::WindowShare(s, view_index, line.k, line.l));
+        listed = hn::And(listed, hn::Gt(w, zero));
+      }
+      const auto read = s.taper ? listed : hn::And(listed, line.inside);
       if (hn::AllFalse(d, read)) continue;
       w = hn::IfThenElseZero(read, w);
       hn::StoreU(hn::Add(hn::LoadU(d, reads.data() + i), hn::IfThenElseZero(read, one)), d,

@@ -125,6 +125,26 @@ TEST(ViewWindows, EveryCpuPathReadsEachViewInItsOwnWindow) {
   EXPECT_GT(separable, 0);
 }
 
+// The quadrilinear limit's cameras fade as their tents leave their own windows (render/
+// window_taper.h): the vectorised paths (the separable frame, whose terms then take the per-pixel
+// share, and the rows) weigh each camera as the scalar reference does.
+TEST(ViewWindows, TheQuadrilinearLimitFadesAtEachViewsWindowAlikeOnEveryCpuPath) {
+  const LightField& windowed = WindowedPaperLightField();
+  int separable = 0, rows = 0;
+  for (render_test::Case c : render_test::Cases()) {
+    if (c.turned || c.integrator != Integrator::kCameras || c.camera.aperture_mm <= 0) continue;
+    c.integrator = Integrator::kCamerasQuadrilinear;
+    c.interpolation = Interpolation::kQuadrilinear;
+    const RenderResult a = Cpu(windowed, c, true), b = Cpu(windowed, c, false);
+    const std::string where = c.name + " (" + b.path + ")";
+    EXPECT_LE(cv::norm(a.image, b.image, cv::NORM_INF), 1.0 / 255) << where;
+    EXPECT_EQ(cv::countNonZero(a.hit_mask != b.hit_mask), 0) << where;
+    (b.path.rfind("separable", 0) == 0 ? separable : rows) += 1;
+  }
+  EXPECT_GT(separable, 0);
+  EXPECT_GT(rows, 0);
+}
+
 // Near the union's edge only some views hold a point: their blend, renormalised, is close to the
 // shared grid's (the same scene through fewer cameras), never darkened toward black or smeared
 // from a window's edge; outside every window nothing is read.

@@ -43,6 +43,10 @@ uniform ivec2 st_size;     // n_s, n_t
 // renormalises over the views that hold the point (RaySetup).
 uniform vec4 st_domain;
 const bool view_windows = VIEW_WINDOWS != 0;
+// The cameras integrators: the quadrilinear limit's fade at the views' windows, the half-widths
+// (samples) of each camera's tent on the st-plane; (0, 0): the hard edges of the focal-plane
+// reads (render/window_taper.h).
+uniform vec2 window_taper;
 // p_o against the uv- and st-planes: (n.p_o, a_x.p_o, a_y.p_o) = at00 + di * i + dj * j.
 uniform vec3 uv_at00, uv_di, uv_dj, st_at00, st_di, st_dj;
 uniform int lens_count;
@@ -104,10 +108,27 @@ vec4 ReadFocused(int index, vec3 p_st) {
   return vec4(h.valid && held > 0.0 ? ReadView(index, h.at) : vec3(0.0), held);
 }
 
+// The share of a tent of half-width h centred at x inside [lo, hi] (TentShareInside in C++; h 0:
+// the hard edge).
+float TentShare(float x, float lo, float hi, float h) {
+  if (!(h > 0.0)) return x >= lo && x <= hi ? 1.0 : 0.0;
+  const float a = clamp((hi - x) / h, -1.0, 1.0), b = clamp((x - lo) / h, -1.0, 1.0);
+  return max(0.0, (0.5 + a - 0.5 * a * abs(a)) + (0.5 + b - 0.5 * b * abs(b)) - 1.0);
+}
+
 // The cameras integrator's read of camera `index`: as ReadFocused where the camera's own line
 // through p_o meets the sampled st domain, else nothing and no weight (a camera counts where its
-// line does, as a lens sample does; RenderPixelCameras in C++).
+// line does, as a lens sample does; RenderPixelCameras in C++). With a taper, by the share of its
+// tent inside its view's window (the domain where the views share it), the read weighted by it.
 vec4 ReadCounted(int index, vec3 p_st) {
+  if (window_taper.x > 0.0 || window_taper.y > 0.0) {
+    const Hit h = Project(p_st, camera_st[index]);
+    const vec2 hi = vec2(st_size) - 0.5;
+    const float share = h.valid ? TentShare(h.at.x, -0.5, hi.x, window_taper.x) *
+                                      TentShare(h.at.y, -0.5, hi.y, window_taper.y)
+                                : 0.0;
+    return share > 0.0 ? vec4(share * ReadView(index, h.at), share) : vec4(0.0);
+  }
   if (!InsideDomain(Project(p_st, camera_st[index]))) return vec4(0.0);
   return ReadFocused(index, p_st);
 }
@@ -173,7 +194,7 @@ void RenderCamerasTable(ivec2 pixel, vec3 p_st, out vec3 sum, out int reads) {
       if (!(w > 0.0)) continue;
       const vec4 read = ReadCounted(index, p_st);
       if (!(read.a > 0.0)) continue;
-      total += w;
+      total += w * read.a;
       sum += w * read.rgb;
       ++reads;
     }
