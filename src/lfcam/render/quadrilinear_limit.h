@@ -14,9 +14,9 @@
 // footprint's rim, whose hats it cuts, the whole tent stands in for the cut one (the tests
 // measure the gap). Where a camera's tent reaches past its view's window, the camera counts by
 // the share of the tent inside, as the lens samples drop their rays one by one there
-// (render/window_taper.h, QuadrilinearLimitTaper): it fades out rather than stepping. k is taken at the frame's central pixel: one filter per frame, exact when
-// the plane of focus is parallel to the st-plane (a camera looking along the array's normal),
-// close for a turned camera.
+// (render/window_taper.h, QuadrilinearLimitTaper): it fades out rather than stepping. k is taken at
+// the frame's central pixel: one filter per frame, exact when the plane of focus is parallel to the
+// st-plane (a camera looking along the array's normal), close for a turned camera.
 //
 // On the CPU the filtered views are kept every m samples where the tent is wide
 // (PrefilterStride), so that a frame's work follows its footprint on the views, not the light
