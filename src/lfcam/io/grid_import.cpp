@@ -379,6 +379,28 @@ std::optional<HciParameters> ReadHciParameters(const fs::path& dir) {
                             path.string());
 }
 
+// Where missing view `hole` lies among the views there: the nearest file in its row and in its
+// column, "camera (r, c) lies in the row of A and the column of B".
+std::string WhereTheViewBelongs(const ImportedGrid& g, const GridView& hole) {
+  const GridView* in_row = nullptr;
+  const GridView* in_col = nullptr;
+  for (const GridView& v : g.views) {
+    if (v.file.empty()) continue;
+    if (v.row == hole.row &&
+        (!in_row || std::abs(v.col - hole.col) < std::abs(in_row->col - hole.col)))
+      in_row = &v;
+    if (v.col == hole.col &&
+        (!in_col || std::abs(v.row - hole.row) < std::abs(in_col->row - hole.row)))
+      in_col = &v;
+  }
+  std::vector<std::string> beside;
+  if (in_row) beside.push_back(fmt::format("the row of {}", in_row->file));
+  if (in_col) beside.push_back(fmt::format("the column of {}", in_col->file));
+  if (beside.empty())
+    return fmt::format("{}: no view in its row or column", CameraLabel(hole.row, hole.col));
+  return fmt::format("{} lies in {}", CameraLabel(hole.row, hole.col), fmt::join(beside, " and "));
+}
+
 ImportedGrid GridFromNames(const fs::path& dir, std::optional<GridNaming> forced,
                            const std::optional<GridShape>& shape) {
   std::vector<std::string> files;
@@ -621,10 +643,18 @@ ImportedGrid ScanGridFolder(const fs::path& dir, bool allow_missing,
         fmt::format(
             "{}", fmt::join(g.missing.begin(), g.missing.begin() + std::ptrdiff_t(listed), ", ")) +
         (g.missing.size() > listed ? fmt::format(" and {} more", g.missing.size() - listed) : "");
-    throw Error(
-        fmt::format("{}: the {}x{} grid is incomplete: {} {} missing (--allow-missing "
-                    "fills them from their neighbours)",
-                    dir.string(), g.rows, g.cols, which, g.missing.size() == 1 ? "is" : "are"));
+    // A few holes are placed by the files beside them, in the folder's own names (lfcam counts
+    // rows from the bottom, which a folder's names need not).
+    std::vector<std::string> placed;
+    if (g.missing.size() <= 3)
+      for (const GridView& v : g.views)
+        if (v.file.empty()) placed.push_back(WhereTheViewBelongs(g, v));
+    throw Error(fmt::format(
+        "{}: the {}x{} grid is incomplete: {} {} missing ({}--allow-missing fills {} from {} "
+        "neighbours)",
+        dir.string(), g.rows, g.cols, which, g.missing.size() == 1 ? "is" : "are",
+        placed.empty() ? "" : fmt::format("{}; ", fmt::join(placed, "; ")),
+        g.missing.size() == 1 ? "it" : "them", g.missing.size() == 1 ? "its" : "their"));
   }
   return g;
 }

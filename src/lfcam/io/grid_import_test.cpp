@@ -210,6 +210,9 @@ TEST(GridImport, StanfordNamesNeedTheFocalLengthAndBadFoldersAreNamed) {
   const std::string one = grid.view(1, 1).file;
   fs::rename(dir / one, dir / "held");
   refused("camera (1, 1) is missing");
+  // ... placed by the files beside it, in the folder's own names.
+  refused(fmt::format("camera (1, 1) lies in the row of {} and the column of {}",
+                      grid.view(1, 0).file, grid.view(0, 1).file));
   EXPECT_EQ(ScanGridFolder(dir, true).missing, std::vector<std::string>{"camera (1, 1)"});
   // A view of another size.
   cv::imwrite((dir / one).string(), cv::Mat(10, 10, CV_8UC3, cv::Scalar(0)));
