@@ -174,6 +174,7 @@ VF AddFocusedTapered(const RaySetup& s, const ChunkPoints& st, int index, const 
   const PlaneHit h = Project(st, cam);
   const VF share = sample_rows::WindowShare(s, index, h.x, h.y);
   const VF held = hn::IfThenElseZero(h.valid, hn::Mul(w, share));
+  if (hn::AllFalse(DF(), hn::Gt(held, hn::Zero(DF())))) return held;  // no lane reads it
   AddView(s, hn::Set(DI(), index * int(s.view_bytes)), Lerp(h.x, s.n_s), Lerp(h.y, s.n_t), held,
           acc);
   return held;
