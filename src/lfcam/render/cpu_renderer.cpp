@@ -440,6 +440,10 @@ RenderResult RenderEither(const LightField& lf, const VirtualCamera& camera,
 
 RenderResult RenderLightFieldCpu(const LightField& lf, const VirtualCamera& camera,
                                  const CpuRenderOptions& options) {
+  if (options.window_taper &&
+      options.window_taper->windows.size() != std::size_t(lf.dims().view_count()))
+    throw Error(fmt::format("the window taper has {} views' windows for a light field of {} views",
+                            options.window_taper->windows.size(), lf.dims().view_count()));
   if (options.integrator == Integrator::kCamerasQuadrilinear) {
     // The cameras integrator over views prefiltered by the hat scaled by k.
     if (options.interpolation == Interpolation::kDepth)

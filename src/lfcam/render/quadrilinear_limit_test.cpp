@@ -5,6 +5,7 @@
 #include <cmath>
 #include <iostream>
 
+#include "lfcam/core/error.h"
 #include "lfcam/render/cpu_renderer.h"
 #include "lfcam/render/render_test_cases.h"
 #include "lfcam/sim/scene.h"
@@ -173,6 +174,21 @@ TEST(QuadrilinearLimit, ACameraFadesOutAsItsTentLeavesItsWindowAsTheLensSamplesD
       EXPECT_GT(at_edges, 47.5);
     }
   }
+}
+
+// The taper's windows are the light field's views', one each: any other count is refused.
+TEST(QuadrilinearLimit, ATaperForAnotherLightFieldIsRefused) {
+  const LightField& lf = render_test::SmallPaperLightField();
+  WindowTaper taper;
+  taper.h_k = taper.h_l = 2;
+  taper.windows.assign(lf.dims().view_count() - 1, {-0.5f, -0.5f, 10.5f, 10.5f});
+  CpuRenderOptions o;
+  o.integrator = Integrator::kCameras;
+  o.window_taper = &taper;
+  VirtualCameraParams p;
+  p.width = p.height = 8;
+  p.aperture_mm = 50;
+  EXPECT_THROW(RenderLightFieldCpu(lf, VirtualCamera(p), o), Error);
 }
 
 // The CPU renderer keeps the filtered views every m samples where the tent is wide enough
