@@ -87,6 +87,15 @@ double LinearPsnr(const RenderResult& a, const RenderResult& b, bool most_hit = 
   return 10.0 * std::log10(1.0 / std::max(sum / std::max(n, 1), 1e-30));
 }
 
+// Puts view (r, c) of `lf` in a window of its own, `offset(r, c)` samples from the reference grid.
+template <typename Offset>
+void SetViewWindows(LightField& lf, Offset&& offset) {
+  std::vector<StOffset> offsets;
+  for (int r = 0; r < lf.dims().rows; ++r)
+    for (int c = 0; c < lf.dims().cols; ++c) offsets.push_back(offset(r, c));
+  lf.set_st_offsets(std::move(offsets));
+}
+
 struct LimitCase {
   render_test::ConvergenceCamera camera;
   double floor_db;  // what the limit must reach against gamma 256
@@ -139,12 +148,7 @@ TEST(QuadrilinearLimit, IsTheLimitOfLensSamplesWithTheQuadrilinearLookup) {
 TEST(QuadrilinearLimit, ACameraFadesOutAsItsTentLeavesItsWindowAsTheLensSamplesDo) {
   LightField lf = testing::SharedPaperLightField();
   for (const bool windows : {false, true}) {
-    if (windows) {
-      std::vector<StOffset> offsets;
-      for (int r = 0; r < lf.dims().rows; ++r)
-        for (int c = 0; c < lf.dims().cols; ++c) offsets.push_back({3 * c - 14, 2 * r - 9});
-      lf.set_st_offsets(offsets);
-    }
+    if (windows) SetViewWindows(lf, [](int r, int c) { return StOffset{3 * c - 14, 2 * r - 9}; });
     for (const render_test::ConvergenceCamera& c : {
              render_test::ConvergenceCamera{
                  "wide, far focus", {300, 275, 3600}, {300, 275, 0}, 250, 9000, 256, true},
@@ -211,12 +215,8 @@ TEST(QuadrilinearLimit, AStridedCopyRendersAsTheWholeCopyDoes) {
   };
   int even = 0, odd = 0;
   for (const bool windows : {false, true}) {
-    if (windows) {
-      std::vector<StOffset> offsets;
-      for (int r = 0; r < lf.dims().rows; ++r)
-        for (int c = 0; c < lf.dims().cols; ++c) offsets.push_back({(c % 5) - 2, (r % 4) - 1});
-      lf.set_st_offsets(offsets);
-    }
+    if (windows)
+      SetViewWindows(lf, [](int r, int c) { return StOffset{(c % 5) - 2, (r % 4) - 1}; });
     for (const render_test::ConvergenceCamera& c : {
              render_test::ConvergenceCamera{
                  "far focus", {300, 275, 3600}, {300, 275, 0}, 500, 9000, 192, true},

@@ -101,19 +101,15 @@ void AddTerm(const SeparableFrame& f, const RaySetup& s, const SeparableTerm& t,
     };
     // The mask's lines meet the domain all along the row when they do at both ends (the domain
     // is convex and the row's lines meet the st-plane along a segment).
+    // With a taper, the read's own lines at their whole share along the row.
     double l_ma, l_mb;
-    Coordinates(mask, f.st, 0, j, &k_a, &l_ma);
-    Coordinates(mask, f.st, last, j, &k_b, &l_mb);
+    Coordinates(s.taper ? read : mask, f.st, 0, j, &k_a, &l_ma);
+    Coordinates(s.taper ? read : mask, f.st, last, j, &k_b, &l_mb);
     const auto in = [&](double k, double l) {
       return k >= s.domain[0] && k <= s.domain[2] && l >= s.domain[1] && l <= s.domain[3];
     };
-    bool all_inside = in(k_a, l_ma) && in(k_b, l_mb);
-    if (s.taper) {
-      double k_ra, l_ra, k_rb, l_rb;
-      Coordinates(read, f.st, 0, j, &k_ra, &l_ra);
-      Coordinates(read, f.st, last, j, &k_rb, &l_rb);
-      all_inside = WholeShareAlong(s, t.view, k_ra, l_ra, k_rb, l_rb);
-    }
+    const bool all_inside =
+        s.taper ? WholeShareAlong(s, t.view, k_a, l_ma, k_b, l_mb) : in(k_a, l_ma) && in(k_b, l_mb);
     const int base = row_base(l_a);
     if (base == row_base(l_b) && all_inside) {
       // One pair of sample rows for the whole row, each pixel with its own weights.
