@@ -209,9 +209,17 @@ TEST_F(ArrayCalibrationTest, ImagesOfMixedSizesAreRefusedNamingTheFile) {
   SimulateCapture(MakePaperScene(), o, other);
   fs::copy_file(other / "calib/world/cam_00_00.jpg", s / "calib/world/cam_01_01.jpg",
                 fs::copy_options::overwrite_existing);
-  const std::string message = testing::ErrorOf([&] { CalibrateArray(s, ReadManifest(s), {}); });
-  EXPECT_NE(message.find("cam_01_01.jpg"), std::string::npos) << message;
-  EXPECT_NE(message.find("mixed sizes"), std::string::npos) << message;
+  // Refused from the images' headers, before any image is searched.
+  CalibrationOptions options;
+  int searched = 0;
+  options.image_done = [&] { ++searched; };
+  const std::string message =
+      testing::ErrorOf([&] { CalibrateArray(s, ReadManifest(s), options); });
+  EXPECT_NE(message.find("cam_01_01.jpg (camera (1, 1)): the image is 320x240, but the session's "
+                         "sensor is 648x486 (images of mixed sizes)"),
+            std::string::npos)
+      << message;
+  EXPECT_EQ(searched, 0);
   fs::remove_all(other.parent_path());
 }
 

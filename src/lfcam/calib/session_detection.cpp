@@ -10,6 +10,17 @@
 #include "lfcam/core/image_io.h"
 
 namespace lfcam {
+namespace {
+
+Error MixedSizes(const std::filesystem::path& path, const ShotImage& image, int width, int height,
+                 int sensor_width, int sensor_height) {
+  return Error(fmt::format(
+      "{} ({}): the image is {}x{}, but the session's sensor is {}x{} (images of mixed sizes)",
+      path.string(), CameraLabel(image.row, image.col), width, height, sensor_width,
+      sensor_height));
+}
+
+}  // namespace
 
 SessionDetections DetectSessionBoards(const std::filesystem::path& dir,
                                       const CaptureManifest& manifest,
@@ -40,12 +51,26 @@ SessionDetections DetectSessionBoards(const std::filesystem::path& dir,
   for (const Shot* shot : manifest.shots_of(ShotKind::kWorld))
     for (const ShotImage& image : shot->images) jobs.push_back({&image, -1, shot->name});
 
+  // Every image's size from its header first (a few hundred bytes each): a session of mixed sizes
+  // is refused before minutes of searching, naming the first such image in the manifest's order.
+  // An image whose header cannot be read is left to the search, which warns on its camera.
+  for (const Job& job : jobs) {
+    const auto path = dir / job.image->file;
+    ImageHeader header;
+    try {
+      header = ProbeImageFile(path);
+    } catch (const Error&) {
+      continue;
+    }
+    if (header.width != out.width || header.height != out.height)
+      throw MixedSizes(path, *job.image, header.width, header.height, out.width, out.height);
+  }
+
   std::mutex mutex;
   std::optional<Error> mixed_sizes;
   // Searches one image; returns whether its board was found.
   auto search = [&](const Job& job, bool thorough) {
     const auto path = dir / job.image->file;
-    const std::string who = CameraLabel(job.image->row, job.image->col);
     std::optional<std::vector<cv::Point2f>> corners;
     std::string warning;
     bool not_found = false;
@@ -54,10 +79,7 @@ SessionDetections DetectSessionBoards(const std::filesystem::path& dir,
       if (gray.cols != out.width || gray.rows != out.height) {
         std::lock_guard lock(mutex);
         if (!mixed_sizes)
-          mixed_sizes = Error(fmt::format(
-              "{} ({}): the image is {}x{}, but the session's sensor is {}x{} (images of mixed "
-              "sizes)",
-              path.string(), who, gray.cols, gray.rows, out.width, out.height));
+          mixed_sizes = MixedSizes(path, *job.image, gray.cols, gray.rows, out.width, out.height);
       } else {
         const BoardSpec& board = job.intrinsics_shot >= 0 ? intrinsics_board : world_board;
         BoardDetectionOptions options;

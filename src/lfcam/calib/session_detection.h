@@ -36,7 +36,8 @@ struct SessionDetections {
 
 // Reads and searches every intrinsics and world image of the session. An image that cannot be
 // read, or whose board is not found, becomes a warning on its camera; an image whose size is not
-// the manifest's sensor size throws lfcam::Error naming the file (a session of mixed sizes).
+// the manifest's sensor size throws lfcam::Error naming the file (a session of mixed sizes),
+// before any image is searched (the sizes come from the images' headers).
 // `image_done` is called once per image (serialised).
 //
 // Every image is searched with the plain detector first; the thorough one (adaptive thresholds,

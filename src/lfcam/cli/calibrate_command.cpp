@@ -83,16 +83,24 @@ void AddIntrinsicsSubcommand(CLI::App& calibrate) {
     RequireWritableOutput(flags->out, "--out");
     std::vector<std::vector<cv::Point2f>> views;
     std::vector<std::string> used, not_found;
+    // Every image's size from its header before any is searched (mixed sizes are refused first).
     int width = 0, height = 0;
+    const auto same_size = [&](const std::string& path, int image_width, int image_height) {
+      if (width == 0) {
+        width = image_width;
+        height = image_height;
+      } else if (image_width != width || image_height != height) {
+        throw Error(fmt::format("{}: the image is {}x{}, the first was {}x{} (mixed sizes)", path,
+                                image_width, image_height, width, height));
+      }
+    };
+    for (const auto& path : flags->images) {
+      const ImageHeader header = ProbeImageFile(path);
+      same_size(path, header.width, header.height);
+    }
     for (const auto& path : flags->images) {
       const cv::Mat gray = ReadImageGray8(path);
-      if (width == 0) {
-        width = gray.cols;
-        height = gray.rows;
-      } else if (gray.cols != width || gray.rows != height) {
-        throw Error(fmt::format("{}: the image is {}x{}, the first was {}x{} (mixed sizes)", path,
-                                gray.cols, gray.rows, width, height));
-      }
+      same_size(path, gray.cols, gray.rows);
       BoardDetectionOptions thorough;
       thorough.thorough = true;
       if (auto corners = DetectBoard(gray, board, thorough)) {
