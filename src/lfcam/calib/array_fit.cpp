@@ -2,11 +2,12 @@
 
 #include <fmt/format.h>
 
-#include <Eigen/Dense>
+#include <Eigen/Core>
 #include <Eigen/Eigenvalues>
 #include <cmath>
 
 #include "lfcam/core/error.h"
+#include "lfcam/core/least_squares.h"
 
 namespace lfcam {
 
@@ -123,7 +124,7 @@ GridOrientation GridAgainstBoard(const std::vector<GridCamera>& cameras) {
   columns.col(0) = design.col(0);
   if (have_cols) columns.col(1) = design.col(1);
   if (have_rows) columns.col(columns.cols() - 1) = design.col(2);
-  const Eigen::MatrixXd coef = columns.colPivHouseholderQr().solve(centers);
+  const Eigen::MatrixXd coef = SolveLeastSquares(columns, centers);
   // The columns' direction in the board's plane; from the rows' (a quarter turn back) when the
   // grid is a single column.
   const Vec2 u = have_cols ? Vec2(coef(1, 0), coef(1, 1)) : Vec2::Zero();

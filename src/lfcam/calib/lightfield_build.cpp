@@ -4,7 +4,7 @@
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
-#include <Eigen/Dense>
+#include <Eigen/Core>
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -22,6 +22,7 @@
 #include "lfcam/core/image_io.h"
 #include "lfcam/core/input_file.h"
 #include "lfcam/core/jpeg_region.h"
+#include "lfcam/core/least_squares.h"
 #include "lfcam/core/limits.h"
 #include "lfcam/core/view_filling.h"
 
@@ -419,9 +420,8 @@ LightField BuildLightFieldFromImages(const CalibrationFile& cal,
       a.row(Eigen::Index(j)) << 1.0, jobs[j].col, jobs[j].row;
       b.row(Eigen::Index(j)) << offsets[i].k, offsets[i].l;
     }
-    const bool plane = Eigen::FullPivLU<Eigen::MatrixXd>(a).rank() == 3;
-    const Eigen::MatrixXd fit =
-        plane ? Eigen::MatrixXd(a.colPivHouseholderQr().solve(b)) : Eigen::MatrixXd();
+    const bool plane = MatrixRank(a) == 3;
+    const Eigen::MatrixXd fit = plane ? SolveLeastSquares(a, b) : Eigen::MatrixXd();
     for (int r = 0; r < rows; ++r)
       for (int c = 0; c < cols; ++c) {
         const std::size_t i = std::size_t(r * cols + c);

@@ -5,7 +5,7 @@
 #include <fmt/ranges.h>
 #include <tbb/parallel_for.h>
 
-#include <Eigen/Dense>
+#include <Eigen/Core>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -15,6 +15,7 @@
 
 #include "lfcam/core/error.h"
 #include "lfcam/core/image_io.h"
+#include "lfcam/core/least_squares.h"
 #include "lfcam/core/view_filling.h"
 
 namespace lfcam {
@@ -159,7 +160,7 @@ RectifiedGeometry ResolveRectifiedGeometry(const ImportedGrid& g, const ImportOp
       rhs(2 * long(i)) = g.views[i].principal_point->x();
       rhs(2 * long(i) + 1) = g.views[i].principal_point->y();
     }
-    const Eigen::Vector3d x = A.colPivHouseholderQr().solve(rhs);
+    const Eigen::Vector3d x = SolveLeastSquares(A, rhs);
     const Eigen::VectorXd residual = A * x - rhs;
     long worst = 0;
     const double worst_px = residual.cwiseAbs().maxCoeff(&worst);
