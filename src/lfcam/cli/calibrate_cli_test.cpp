@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "lfcam/cli/cli_test_support.h"
 #include "lfcam/sim/test_capture.h"
@@ -36,18 +37,22 @@ class CalibrateCli : public ::testing::Test {
   static void TearDownTestSuite() {
     fs::remove_all(*dir_);
     delete dir_;
+    calibrated_.reset();
   }
   static std::string Path(const std::string& name) { return (*dir_ / name).string(); }
-  // `calibrate` of the session, run once a process by whichever test needs it first (the slowest
+  // `calibrate` of the session, run once a suite by whichever test needs it first (the slowest
   // step here: 20 s under the sanitizers), writing cal.json and cal.png.
   static const CommandResult& Calibrated() {
-    static const CommandResult run =
-        Lfcam("calibrate " + Path("session") + " --quiet --json --out " + Path("cal.json"));
-    return run;
+    if (!calibrated_)
+      calibrated_ =
+          Lfcam("calibrate " + Path("session") + " --quiet --json --out " + Path("cal.json"));
+    return *calibrated_;
   }
   static fs::path* dir_;
+  static std::optional<CommandResult> calibrated_;
 };
 fs::path* CalibrateCli::dir_ = nullptr;
+std::optional<CommandResult> CalibrateCli::calibrated_;
 
 TEST_F(CalibrateCli, WritesTheCalibrationAndItsPicture) {
   const CommandResult& run = Calibrated();
