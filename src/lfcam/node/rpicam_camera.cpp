@@ -18,6 +18,7 @@
 #include "lfcam/core/error.h"
 #include "lfcam/core/input_file.h"
 #include "lfcam/node/jpeg_preview.h"
+#include "lfcam/node/program_output.h"
 #include "lfcam/node/rpicam_video.h"
 
 extern char** environ;
@@ -27,19 +28,6 @@ namespace lfcam {
 namespace {
 
 namespace fs = std::filesystem;
-
-// The first of `names` found on PATH, or empty.
-std::string FindOnPath(std::initializer_list<const char*> names) {
-  const char* path = std::getenv("PATH");
-  std::stringstream dirs(path ? path : "/usr/bin:/bin");
-  std::vector<std::string> folders;
-  for (std::string dir; std::getline(dirs, dir, ':');)
-    if (!dir.empty()) folders.push_back(dir);
-  for (const char* name : names)
-    for (const std::string& dir : folders)
-      if (::access((fs::path(dir) / name).c_str(), X_OK) == 0) return name;
-  return {};
-}
 
 class RpicamCamera final : public CameraBackend {
  public:

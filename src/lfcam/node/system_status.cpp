@@ -5,30 +5,14 @@
 #include <sys/utsname.h>
 
 #include <chrono>
-#include <cstdio>
 #include <fstream>
 #include <mutex>
 #include <sstream>
 #include <vector>
 
+#include "lfcam/node/program_output.h"
+
 namespace lfcam {
-
-namespace {
-
-// The first line a command prints (stderr discarded), or nullopt when it cannot run.
-std::optional<std::string> FirstLineOf(const char* command) {
-  std::FILE* pipe = ::popen(command, "r");
-  if (pipe == nullptr) return std::nullopt;
-  char buffer[512] = {};
-  const bool got = std::fgets(buffer, sizeof buffer, pipe) != nullptr;
-  const int status = ::pclose(pipe);
-  if (!got || status != 0) return std::nullopt;
-  std::string line(buffer);
-  while (!line.empty() && (line.back() == '\n' || line.back() == '\r')) line.pop_back();
-  return line;
-}
-
-}  // namespace
 
 std::optional<ClockOffset> ParseChronyTracking(const std::string& line) {
   // Reference ID, name, stratum, reference time, system time offset (s), last offset (s), ...
@@ -56,7 +40,11 @@ std::optional<ClockOffset> ChronyClockOffset(std::chrono::steady_clock::duration
   std::lock_guard lock(mutex);
   const auto now = std::chrono::steady_clock::now();
   if (!ever || now - read_at > max_age) {
-    const auto line = FirstLineOf("chronyc -c tracking 2>/dev/null");
+    // Looked for once: where chrony is not installed no process starts (a status request on a
+    // machine of a hundred agents started a hundred shells that each found nothing).
+    static const bool has_chronyc = !FindOnPath({"chronyc"}).empty();
+    const auto line =
+        has_chronyc ? FirstLineOfProgram({"chronyc", "-c", "tracking"}) : std::nullopt;
     cached = line ? ParseChronyTracking(*line) : std::nullopt;
     read_at = now;
     ever = true;
@@ -71,9 +59,9 @@ SystemStatus ReadSystemStatus(const std::filesystem::path& folder) {
     double milli = 0;
     if (t >> milli) s.cpu_temperature_c = milli / 1000.0;
   }
-  static const bool has_vcgencmd = FirstLineOf("command -v vcgencmd").has_value();
+  static const bool has_vcgencmd = !FindOnPath({"vcgencmd"}).empty();
   if (has_vcgencmd)
-    if (auto line = FirstLineOf("vcgencmd get_throttled 2>/dev/null")) {
+    if (auto line = FirstLineOfProgram({"vcgencmd", "get_throttled"})) {
       const auto eq = line->find('=');
       s.throttled = eq == std::string::npos ? *line : line->substr(eq + 1);
     }

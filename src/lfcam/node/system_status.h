@@ -28,8 +28,10 @@ struct SystemStatus {
 // `folder`: the capture folder, whose file system's free space counts.
 SystemStatus ReadSystemStatus(const std::filesystem::path& folder);
 
-// chrony's view of this clock (`chronyc -c tracking`, a process of its own), read again when the
-// last reading is older than `max_age`; nullopt when chrony is not running or not synchronised.
+// chrony's view of this clock (`chronyc -c tracking`, a process of its own, started without a
+// shell), read again when the last reading is older than `max_age`; nullopt when chrony is not
+// running or not synchronised, and at once, starting nothing, when the agent found no chronyc on
+// its PATH as it started (install chrony, then restart the agent).
 std::optional<ClockOffset> ChronyClockOffset(std::chrono::steady_clock::duration max_age);
 // A status request reads the clock afresh (ReadSystemStatus). A capture request, between its
 // arrival and its trigger time, takes the reading the host's status request just before it made
