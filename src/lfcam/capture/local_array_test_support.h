@@ -22,8 +22,10 @@ extern char** environ;
 
 namespace lfcam::testing {
 
-// GCC says AddressSanitizer with __SANITIZE_ADDRESS__, clang with __has_feature.
-#if defined(__SANITIZE_ADDRESS__)
+// GCC says AddressSanitizer with __SANITIZE_ADDRESS__, clang with __has_feature; a sanitizer
+// build whose tests' own code is not instrumented says it with LFCAM_TEST_UNDER_ASAN (CMakeLists).
+#if defined(LFCAM_TEST_UNDER_ASAN)
+#elif defined(__SANITIZE_ADDRESS__)
 #define LFCAM_TEST_UNDER_ASAN 1
 #elif defined(__has_feature)
 #if __has_feature(address_sanitizer)
