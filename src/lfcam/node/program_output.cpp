@@ -26,15 +26,19 @@ std::string FindOnPath(std::initializer_list<const char*> names) {
   return {};
 }
 
-std::optional<std::string> FirstLineOfProgram(const std::vector<std::string>& argv) {
-  if (argv.empty()) return std::nullopt;
+ProgramRun RunProgram(const std::vector<std::string>& argv, bool with_stderr) {
+  ProgramRun run;
+  if (argv.empty()) return run;
   int fds[2];
   // Close-on-exec, so that a program another thread starts meanwhile does not hold the pipe open.
-  if (::pipe2(fds, O_CLOEXEC) != 0) return std::nullopt;
+  if (::pipe2(fds, O_CLOEXEC) != 0) return run;
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_adddup2(&actions, fds[1], STDOUT_FILENO);
-  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, "/dev/null", O_WRONLY, 0);
+  if (with_stderr)
+    posix_spawn_file_actions_adddup2(&actions, fds[1], STDERR_FILENO);
+  else
+    posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, "/dev/null", O_WRONLY, 0);
   std::vector<char*> args;
   for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
   args.push_back(nullptr);
@@ -44,26 +48,32 @@ std::optional<std::string> FirstLineOfProgram(const std::vector<std::string>& ar
   ::close(fds[1]);
   if (rc != 0) {
     ::close(fds[0]);
-    return std::nullopt;
+    return run;
   }
-  // Read to the end (a program blocked on a full pipe would never exit), keeping the first line.
-  std::string out;
-  char buffer[512];
+  run.started = true;
+  // Read to the end: a program blocked on a full pipe would never exit.
+  char buffer[4096];
   for (;;) {
     const ssize_t n = ::read(fds[0], buffer, sizeof buffer);
     if (n < 0 && errno == EINTR) continue;
     if (n <= 0) break;
-    if (out.find('\n') == std::string::npos) out.append(buffer, std::size_t(n));
+    run.output.append(buffer, std::size_t(n));
   }
   ::close(fds[0]);
   int status = 0;
   while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) return std::nullopt;
-  out = out.substr(0, out.find('\n'));
-  if (!out.empty() && out.back() == '\r') out.pop_back();
-  if (out.empty()) return std::nullopt;
-  return out;
+  if (WIFEXITED(status)) run.exit_status = WEXITSTATUS(status);
+  return run;
+}
+
+std::optional<std::string> FirstLineOfProgram(const std::vector<std::string>& argv) {
+  const ProgramRun run = RunProgram(argv);
+  if (run.exit_status != 0) return std::nullopt;
+  std::string line = run.output.substr(0, run.output.find('\n'));
+  if (!line.empty() && line.back() == '\r') line.pop_back();
+  if (line.empty()) return std::nullopt;
+  return line;
 }
 
 }  // namespace lfcam

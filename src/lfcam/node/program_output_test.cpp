@@ -25,5 +25,18 @@ TEST(ProgramOutput, IsTheFirstLineOfWhatTheProgramPrintsWithoutAShell) {
   EXPECT_FALSE(FirstLineOfProgram({}));
 }
 
+TEST(ProgramOutput, ARunKeepsAllItPrintedAndHowItEnded) {
+  const ProgramRun both = RunProgram({"sh", "-c", "echo out; echo err >&2; exit 4"}, true);
+  EXPECT_TRUE(both.started);
+  EXPECT_EQ(both.exit_status, 4);
+  EXPECT_EQ(both.output, "out\nerr\n");
+  EXPECT_EQ(RunProgram({"sh", "-c", "echo out; echo err >&2"}).output, "out\n");
+  EXPECT_EQ(RunProgram({"sh", "-c", "head -c 200000 /dev/zero"}).output.size(), 200000u);
+  const ProgramRun missing = RunProgram({"lfcam-no-such-program", "--help"}, true);
+  EXPECT_FALSE(missing.started);
+  EXPECT_EQ(missing.output, "");
+  EXPECT_EQ(RunProgram({"sh", "-c", "kill -9 $$"}).exit_status, -1);  // killed: no status
+}
+
 }  // namespace
 }  // namespace lfcam

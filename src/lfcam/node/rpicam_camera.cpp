@@ -8,7 +8,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <cstring>
 #include <optional>
 #include <set>
@@ -69,14 +68,8 @@ class RpicamCamera final : public CameraBackend {
   // Whether the video program knows --sync (asked once: its --help).
   bool SyncSupported() {
     if (!sync_supported_) {
-      std::string help;
-      const std::string command = "'" + options_.video_program + "' --help 2>&1";
-      if (std::FILE* pipe = ::popen(command.c_str(), "r")) {
-        char buffer[4096];
-        for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;)
-          help.append(buffer, n);
-        ::pclose(pipe);
-      }
+      const std::string help =
+          RunProgram({options_.video_program, "--help"}, /*with_stderr=*/true).output;
       sync_supported_ = help.find("--sync") != std::string::npos;
     }
     return *sync_supported_;
