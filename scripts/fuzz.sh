@@ -7,8 +7,10 @@
 #   --preset fuzz (the default)        the fuzz preset: clang, ASan, UBSan, the library
 #                                      instrumented for coverage (coverage-guided fuzzing)
 #   --preset asan                      the targets of the asan preset's tree, over its library
-#                                      without coverage feedback: CI's smoke run (.ci/run), which
-#                                      needs no build of its own
+#                                      without coverage feedback (no build of their own where
+#                                      scripts/test.sh --preset asan has built that tree)
+#
+# CI's smoke run (.ci/run) is `scripts/fuzz.sh --preset fuzz 3`.
 #
 # New inputs libFuzzer finds go to build/PRESET/corpus/TARGET (not into the tree); a crash is
 # saved as build/PRESET/artifacts/TARGET/crash-* and fails the run. Every crash found becomes a

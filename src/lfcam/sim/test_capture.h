@@ -4,9 +4,9 @@
 // session, so each would otherwise simulate it. The session lives in the temporary directory under
 // a name made of `name` and the test binary's identity (size and time), so a rebuilt binary
 // simulates afresh; sessions of other builds are removed. LFCAM_TEST_ARTIFACTS_KEY, when set,
-// names the build instead: CI sets it so that its sanitizer pass reads the sessions and
-// calibrations its release pass made and checked (.ci/run; the simulator and the calibration
-// still run under the sanitizers in the suites that test them). Processes that need it at once take
+// names the build instead: set for both passes, the sanitizer pass reads the sessions and
+// calibrations the release pass made and checked (the simulator and the calibration still run
+// under the sanitizers in the suites that test them). Processes that need it at once take
 // turns (a lock file): the first simulates it, the others wait and use it. Anything else made from
 // a session (its calibration) can be shared the same way.
 #include <fcntl.h>
