@@ -1,10 +1,7 @@
 #include "lfcam/depth/depth_set.h"
 
 #include <fmt/format.h>
-#include <tbb/parallel_for.h>
 
-#include <atomic>
-#include <mutex>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -14,7 +11,6 @@
 #include "lfcam/core/input_file.h"
 #include "lfcam/core/json_input.h"
 #include "lfcam/core/limits.h"
-#include "lfcam/depth/plane_sweep.h"
 
 namespace lfcam {
 
@@ -49,39 +45,6 @@ DepthRange DepthSet::range() const {
   for (const auto& m : maps_)
     if (m) r = {std::min(r.near_mm, m->range.near_mm), std::max(r.far_mm, m->range.far_mm)};
   return r.valid() ? r : DepthRange{};
-}
-
-void EstimateDepthSet(const LightField& lf, DepthSet& set,
-                      const std::function<bool(int, int)>& needed, const PlaneSweepOptions& options,
-                      const std::function<void(int, int)>& progress) {
-  const auto& d = lf.dims();
-  std::vector<std::pair<int, int>> todo;
-  for (int r = 0; r < d.rows; ++r)
-    for (int c = 0; c < d.cols; ++c)
-      if (!set.has(r, c) && needed(r, c)) todo.emplace_back(r, c);
-  if (todo.empty()) return;
-  PlaneSweepOptions o = options;
-  // The range from the central view with the options as given (a single view's reach), then
-  // every view with the set's.
-  if (!o.range) {
-    o.range = set.count() > 0 ? set.range()
-                              : EstimateDepthRange(lf, (d.rows - 1) / 2, (d.cols - 1) / 2, o);
-  }
-  // Each view's neighbours alone (8 views), unless they see the scene so narrowly apart that
-  // disparities of a fraction of a sample need the views two steps away to resolve (docs/depth.md,
-  // "The set's reach at narrow baselines").
-  if (o.reach <= 0)
-    o.reach = SeesTheSceneNarrowly(lf, (d.rows - 1) / 2, (d.cols - 1) / 2, *o.range)
-                  ? kNarrowSetReach
-                  : 1;
-  std::mutex mutex;
-  std::atomic<int> done{0};
-  tbb::parallel_for(std::size_t(0), todo.size(), [&](std::size_t i) {
-    DepthMap map = EstimateDepth(lf, todo[i].first, todo[i].second, o);
-    std::lock_guard lock(mutex);
-    set.set(std::move(map));
-    if (progress) progress(++done, int(todo.size()));
-  });
 }
 
 std::string DepthFileName(int row, int col) {

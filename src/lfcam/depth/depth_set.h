@@ -1,13 +1,13 @@
 #pragma once
 // The depth maps of a light field's views, all in one depth range: what depth-aware rendering
-// reads (`lfcam render --interpolation depth --depth DIR`), written by `lfcam depth --all`.
+// reads (`lfcam render --interpolation depth --depth DIR`), written by `lfcam depth --all`;
+// EstimateDepthSet (depth/plane_sweep.h) fills one in.
 //
 // On disk, a folder: depth.json (format "lfcam-depth-set", version 1: the light field's grid
 // and st resolution, the range, one entry per view with its file) and per view
 // depth_RR_CC.png with depth_RR_CC.confidence.png (depth/depth_map.h's files), plus
 // preview.png, the central view's colour preview.
 #include <filesystem>
-#include <functional>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -36,20 +36,6 @@ class DepthSet {
   LightFieldDims dims_;
   std::vector<std::optional<DepthMap>> maps_;
 };
-
-// The reach of a depth set's maps where the views see the scene narrowly apart
-// (SeesTheSceneNarrowly); elsewhere 1.
-inline constexpr int kNarrowSetReach = 2;
-
-// Fills in the views for which `needed(row, col)` is true and that have no map yet, by the
-// plane sweep (depth/plane_sweep.h) over one range (estimated once, from the central view,
-// when `range` is empty), in parallel, each map at `options.reach` or, where that is 0, at 1 or
-// kNarrowSetReach. `progress` is told each view as it is done.
-struct PlaneSweepOptions;
-void EstimateDepthSet(const LightField& lf, DepthSet& set,
-                      const std::function<bool(int row, int col)>& needed,
-                      const PlaneSweepOptions& options,
-                      const std::function<void(int done, int total)>& progress = {});
 
 // Writes the set's folder; `length_unit` (WorldLengthUnit of its light field) goes into
 // depth.json, each map's text chunk and the preview's scale.

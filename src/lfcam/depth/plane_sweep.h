@@ -21,10 +21,12 @@
 // the surroundings) or where the minimum is on the first or last plane; in the map returned, a
 // quarter of that within 2 samples of a depth edge, whose place is known to a sample or two only
 // (docs/depth.md, "Confidence at depth edges").
+#include <functional>
 #include <optional>
 
 #include "lfcam/core/lightfield.h"
 #include "lfcam/depth/depth_map.h"
+#include "lfcam/depth/depth_set.h"
 
 namespace lfcam {
 
@@ -67,6 +69,19 @@ DepthMap EstimateDepth(const LightField& lf, int row, int col, const PlaneSweepO
 // grid. There the views' brightness is made alike, and a depth set reaches two views each way
 // (docs/depth.md, "An eighth round", "The set's reach at narrow baselines").
 bool SeesTheSceneNarrowly(const LightField& lf, int row, int col, const DepthRange& range);
+
+// The reach of a depth set's maps where the views see the scene narrowly apart
+// (SeesTheSceneNarrowly); elsewhere 1.
+inline constexpr int kNarrowSetReach = 2;
+
+// Fills in the views of a depth set (depth/depth_set.h) for which `needed(row, col)` is true and
+// that have no map yet, by EstimateDepth over one range (estimated once, from the central view,
+// when `range` is empty), in parallel, each map at `options.reach` or, where that is 0, at 1 or
+// kNarrowSetReach. `progress` is told each view as it is done.
+void EstimateDepthSet(const LightField& lf, DepthSet& set,
+                      const std::function<bool(int row, int col)>& needed,
+                      const PlaneSweepOptions& options,
+                      const std::function<void(int done, int total)>& progress = {});
 
 // The depth range worth sweeping, from a coarse sweep of view (row, col) at a quarter of its
 // resolution over 0.5 to 20 times the st-plane's distance: the 1st to 99th percentile of its
