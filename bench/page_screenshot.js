@@ -35,7 +35,12 @@ for (let i = 0; i < args.length; ++i) {
 }
 if (!options.url) usage('a URL is required');
 
-const profile = fs.mkdtempSync(path.join(os.tmpdir(), 'lfcam-chromium-'));
+// Chromium makes its singleton socket at TMPDIR/org.chromium.Chromium.XXXXXX/SingletonSocket, TMPDIR
+// being the profile below, and a Unix socket's path is at most 107 bytes: where the temporary
+// folder's own path is longer than 40, the profile goes in /tmp (Chromium refuses to start
+// otherwise: "Socket path too long").
+const temporary = os.tmpdir().length <= 40 ? os.tmpdir() : '/tmp';
+const profile = fs.mkdtempSync(path.join(temporary, 'lfcam-chromium-'));
 const chrome = spawn('chromium', [
   '--headless', '--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader',
   '--no-first-run', '--disable-background-networking', '--disable-component-update',
@@ -45,12 +50,17 @@ const chrome = spawn('chromium', [
   stdio: ['ignore', 'ignore', 'pipe', 'pipe', 'pipe'],
   // Chromium's own temporary folders (org.chromium.Chromium.*) inside the profile, which goes.
   env: {...process.env, TMPDIR: profile},
+  // A process group of its own (its zygote, renderers, GPU and network processes join it), so
+  // that the end below can stop every one of them.
+  detached: true,
 });
 let stderr = '';
 chrome.stderr.on('data', (d) => { stderr += d; });
 
 // The protocol: JSON messages, each ended by a NUL, to fd 3 and from fd 4.
 const toChrome = chrome.stdio[3], fromChrome = chrome.stdio[4];
+// A write after Chromium has gone (the close asked for at the end) is no failure.
+toChrome.on('error', () => {});
 let nextId = 1, buffer = '';
 const pending = new Map();
 fromChrome.on('data', (chunk) => {
@@ -79,17 +89,31 @@ function finish(status, message) {
   if (finishing) return;
   finishing = true;
   if (message) process.stderr.write(`page_screenshot.js: ${message}\n`);
-  // The profile goes once Chromium is gone (it writes there until it exits).
-  const done = () => {
+  // Chromium's helpers (network, storage, GPU) write into the profile until they exit, and on a
+  // loaded machine they outlived a killed browser process long enough to leave a third of the
+  // profiles behind. So: Chromium is asked to close (it ends its helpers), the whole group is
+  // then killed whatever happened, and the profile is removed, and once more a moment later for
+  // what a dying helper wrote last.
+  const killGroup = () => {
+    try { process.kill(-chrome.pid, 'SIGKILL'); } catch (e) { /* already gone */ }
+  };
+  const removeProfile = () => {
     try {
       fs.rmSync(profile, {recursive: true, force: true, maxRetries: 5});
     } catch (e) { /* a temporary folder left behind is no failure of the page */ }
-    process.exit(status);
+  };
+  let ending = false;
+  const done = () => {
+    if (ending) return;
+    ending = true;
+    killGroup();
+    removeProfile();
+    setTimeout(() => { removeProfile(); process.exit(status); }, 300);
   };
   if (chrome.exitCode !== null || chrome.signalCode !== null) return done();
   chrome.once('exit', done);
-  setTimeout(done, 5000);
-  try { chrome.kill('SIGKILL'); } catch (e) { done(); }
+  setTimeout(done, 3000);
+  send('Browser.close').catch(() => {});
 }
 
 (async () => {

@@ -78,16 +78,29 @@ class WebPageBrowser : public ::testing::Test {
   // The shared light field (paper.lf) and its page (page/).
   static std::string Shared(const std::string& name) { return (*shared_ / name).string(); }
 
+  // bench/page_screenshot.js with `arguments`, its temporary folder one of the test's own: the
+  // Chromium profile it makes there must be gone when it returns (on a loaded machine Chromium's
+  // helper processes once outlived it and left a third of the profiles behind). The folder's
+  // name is short: the script puts the profile in /tmp where TMPDIR is over 40 bytes long.
+  static testing::CommandResult RunScript(const std::string& arguments) {
+    const fs::path tmp = *dir_ / "t";
+    fs::create_directories(tmp);
+    const auto run =
+        testing::RunOnce(fmt::format("TMPDIR={} node {}/bench/page_screenshot.js {} 2>&1",
+                                     tmp.string(), LFCAM_SOURCE_DIR, arguments));
+    EXPECT_TRUE(fs::is_empty(tmp))
+        << "page_screenshot.js left " << fs::begin(fs::directory_iterator(tmp))->path();
+    return run;
+  }
   // Headless Chromium's screenshot of `page` (a folder) with the URL's `query`, at w x h, taken
   // once the page says its first picture is drawn (bench/page_screenshot.js: the DevTools
   // protocol over a pipe, waiting in real time, so a loaded machine only makes it slower).
   static cv::Mat Screenshot(const std::string& page, const std::string& query, int w, int h,
                             const std::string& name) {
     const std::string shot = Path(name + ".png");
-    const auto run = testing::RunOnce(fmt::format(
-        "node {}/bench/page_screenshot.js 'file://{}/index.html?ui=0&size={}x{}&{}' --size {}x{} "
-        "--png {} 2>&1",
-        LFCAM_SOURCE_DIR, fs::absolute(page).string(), w, h, query, w, h, shot));
+    const auto run =
+        RunScript(fmt::format("'file://{}/index.html?ui=0&size={}x{}&{}' --size {}x{} --png {}",
+                              fs::absolute(page).string(), w, h, query, w, h, shot));
     EXPECT_EQ(run.status, 0) << run.output;
     EXPECT_TRUE(fs::is_regular_file(shot)) << run.output;
     return fs::is_regular_file(shot) ? ReadImageSrgb8(shot) : cv::Mat();
@@ -162,10 +175,8 @@ TEST_F(WebPageBrowser, ThePageSaysWhenItIsReadyAndWhatItWasNotGiven) {
   // The page's DOM once it is ready: its first picture timed, and a bad URL value named (the
   // script exits 1 for a page that reports an error).
   const std::string dom = Path("dom.html");
-  const auto run = testing::RunOnce(
-      fmt::format("node {}/bench/page_screenshot.js 'file://{}/index.html?f=abc' --size 320x240 "
-                  "--dom {} 2>&1",
-                  LFCAM_SOURCE_DIR, fs::absolute(Shared("page")).string(), dom));
+  const auto run = RunScript(fmt::format("'file://{}/index.html?f=abc' --size 320x240 --dom {}",
+                                         fs::absolute(Shared("page")).string(), dom));
   EXPECT_EQ(run.status, 1) << run.output;
   EXPECT_NE(run.output.find("the page says: URL parameters not understood: f"), std::string::npos)
       << run.output;
