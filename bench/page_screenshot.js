@@ -35,10 +35,10 @@ for (let i = 0; i < args.length; ++i) {
 }
 if (!options.url) usage('a URL is required');
 
-// Chromium makes its singleton socket at TMPDIR/org.chromium.Chromium.XXXXXX/SingletonSocket, TMPDIR
-// being the profile below, and a Unix socket's path is at most 107 bytes: where the temporary
-// folder's own path is longer than 40, the profile goes in /tmp (Chromium refuses to start
-// otherwise: "Socket path too long").
+// Chromium makes its singleton socket at TMPDIR/org.chromium.Chromium.XXXXXX/SingletonSocket,
+// TMPDIR being the profile below, and a Unix socket's path is at most 107 bytes: where the
+// temporary folder's own path is longer than 40, the profile goes in /tmp (Chromium refuses to
+// start otherwise: "Socket path too long").
 const temporary = os.tmpdir().length <= 40 ? os.tmpdir() : '/tmp';
 const profile = fs.mkdtempSync(path.join(temporary, 'lfcam-chromium-'));
 const chrome = spawn('chromium', [
@@ -151,5 +151,10 @@ function finish(status, message) {
 })().catch((e) => finish(1, `${e.message}\n${stderr.slice(-2000)}`));
 
 chrome.on('exit', (code) => {
-  if (pending.size && !finishing) finish(1, `Chromium exited (${code}) early:\n${stderr.slice(-2000)}`);
+  if (pending.size && !finishing) {
+    finish(1, `Chromium exited (${code}) early:\n${stderr.slice(-2000)}`);
+  }
+});
+chrome.on('error', (e) => {
+  finish(1, `cannot start chromium (${e.message}): install Debian's package chromium`);
 });
