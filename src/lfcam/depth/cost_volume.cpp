@@ -125,7 +125,7 @@ void CompareRow(const float* __restrict s0, const float* __restrict s1, const fl
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
 __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
 #endif
-void AccumulateShiftedRow(const std::vector<std::int16_t>& src, const float* ref, int w, int h,
+void AccumulateShiftedRow(const PackedPlanes& src, const float* ref, int w, int h,
                           int y, const Shift& shift, const CostTerms& terms,
                           std::vector<float>& rows, float* sum_row) {
   if (y < shift.y_lo || y > shift.y_hi || shift.x_lo > shift.x_hi) return;

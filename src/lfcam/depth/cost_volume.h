@@ -116,6 +116,9 @@ struct UninitialisedAllocator : std::allocator<T> {
   }
 };
 
+// A view's planes as the sweep reads them (SweepViews: 16-bit fixed point).
+using PackedPlanes = std::vector<std::int16_t, UninitialisedAllocator<std::int16_t>>;
+
 // The cost of every plane at every sample, as 16-bit integers (kCostUnit a unit of cost; at
 // most 2 ((1 - a) color_cap + a gradient_cap) * kCostUnit, a the gradient term's share: see
 // SweepViews::Sweep), stored label-fastest: cost(x, y)[i].
@@ -227,8 +230,9 @@ class SweepViews {
     // kChannels planes of width x height, sRGB and gradients: as floats for the reference, as
     // 16-bit fixed point (kPacked) for the others (the sweep reads every view at every plane:
     // half the bytes, and the sweep is bound by reading them).
-    std::vector<float> channels;
-    std::vector<std::int16_t> packed;
+    // (Allocated uninitialised on huge pages: every element is written as the view is loaded.)
+    std::vector<float, UninitialisedAllocator<float>> channels;
+    PackedPlanes packed;
     Vec3 center;
     StSampling sampling;
     // Bit g < 8: in the half-array of direction g * 45 degrees; bit g + 8: in its quarter-array.

@@ -17,9 +17,9 @@ namespace {
 // A sample on the near side of a depth edge, and the two depths it is judged between.
 struct EdgeSample {
   int x = 0, y = 0;
-  float near = 0, far = 0;          // labels (near: the smaller)
-  std::array<double, 2> sum{0, 0};  // the views' costs: [0] near, [1] far
-  std::array<int, 2> seen{0, 0};    // the views that see the point there
+  float near = 0, far = 0;        // labels (near: the smaller)
+  std::array<CostSum, 2> sum{};   // the views' costs: [0] near, [1] far
+  std::array<int, 2> seen{0, 0};  // the views that see the point there
 };
 
 }  // namespace
@@ -75,12 +75,12 @@ int RefineSilhouettesByVisibility(const SweepViews& views, const std::vector<dou
     if (candidates.empty()) break;
     // Each view on its own (in parallel): its z-buffer, then the candidates' costs read in it.
     struct Sums {
-      std::vector<std::array<double, 2>> sum;
+      std::vector<std::array<CostSum, 2>> sum;
       std::vector<std::array<int, 2>> seen;
       cv::Mat hidden_by;  // the nearest label splatted there
     };
     tbb::enumerable_thread_specific<Sums> per_thread([&] {
-      return Sums{std::vector<std::array<double, 2>>(candidates.size(), {0, 0}),
+      return Sums{std::vector<std::array<CostSum, 2>>(candidates.size()),
                   std::vector<std::array<int, 2>>(candidates.size(), {0, 0}),
                   cv::Mat(h, w, CV_32F)};
     });
@@ -134,7 +134,7 @@ int RefineSilhouettesByVisibility(const SweepViews& views, const std::vector<dou
               ++counted;
             }
           if (counted == 0) continue;
-          sums.sum[k][std::size_t(side)] += cost / counted;
+          sums.sum[k][std::size_t(side)].Add(cost / counted);
           ++sums.seen[k][std::size_t(side)];
         }
       }
@@ -149,7 +149,7 @@ int RefineSilhouettesByVisibility(const SweepViews& views, const std::vector<dou
     moved_here.setTo(0);
     for (const EdgeSample& c : candidates)
       if (c.seen[0] >= fewest_views && c.seen[1] >= fewest_views &&
-          c.sum[1] / c.seen[1] < c.sum[0] / c.seen[0]) {
+          c.sum[1].value() / c.seen[1] < c.sum[0].value() / c.seen[0]) {
         label.at<float>(c.y, c.x) = c.far;
         moved_here.at<unsigned char>(c.y, c.x) = 1;
         ++moved;
