@@ -230,7 +230,8 @@ class SweepViews {
     // kChannels planes of width x height, sRGB and gradients: as floats for the reference, as
     // 16-bit fixed point (kPacked) for the others (the sweep reads every view at every plane:
     // half the bytes, and the sweep is bound by reading them).
-    // (Allocated uninitialised on huge pages: every element is written as the view is loaded.)
+    // (Allocated uninitialised, large ones on huge pages: every element is written as the view is
+    // loaded.)
     std::vector<float, UninitialisedAllocator<float>> channels;
     PackedPlanes packed;
     Vec3 center;
