@@ -105,6 +105,7 @@ class LightField {
   std::uint8_t* mutable_view_data(int row, int col);
   const std::uint8_t* data() const { return samples_.data(); }
   std::uint64_t samples_serial() const { return samples_.serial(); }  // SampleBuffer::serial
+  const SampleBuffer& samples() const { return samples_; }            // shares them
 
   // Each view's measured camera pose (a calibrated capture), row-major; empty when the views sit
   // on the slab's ideal grid (a simulated light field, a format version 1 file).

@@ -17,6 +17,7 @@
 #include "lfcam/render/camera_integrator.h"
 #include "lfcam/render/depth_aware_sampler.h"
 #include "lfcam/render/prefilter_cache.h"
+#include "lfcam/render/prefilter_memory.h"
 #include "lfcam/render/quadrilinear_limit.h"
 #include "lfcam/render/ray_setup.h"
 #include "lfcam/render/separable_frame.h"
@@ -464,19 +465,24 @@ RenderResult RenderLightFieldCpu(const LightField& lf, const VirtualCamera& came
     // grid of cameras, so the cameras' weights serve its render too.
     const CameraIntegratorFrame cameras(lf, camera);
     LightField own;
+    SampleBuffer memory;
     const LightField* filtered = &own;
     bool kept = false;
     if (options.prefilter_cache) {
       filtered = &options.prefilter_cache->Filtered(lf, prefilter, camera, cameras.CamerasRead());
       kept = options.prefilter_cache->last_filtered_samples() == 0;
     } else {
-      own = PrefilteredCopy(lf, prefilter.stride_s, prefilter.stride_t);
+      if (options.prefilter_memory) memory = options.prefilter_memory->Take();
+      own = PrefilteredCopy(lf, prefilter.stride_s, prefilter.stride_t, memory);
       PrefilterViews(lf, prefilter, ViewRegionsRead(own, camera, cameras.CamerasRead()), &own);
     }
     // Each camera fades out as its tent leaves its view's window, as the lens samples do.
     const WindowTaper taper = QuadrilinearLimitTaper(lf, *filtered, prefilter);
     focal.window_taper = &taper;
     RenderResult result = RenderEither(*filtered, camera, focal, &cameras);
+    // The memory back once the frame is done with it (not on an error: then it goes).
+    if (options.prefilter_memory && !options.prefilter_cache)
+      options.prefilter_memory->Give(memory.size() >= own.total_bytes() ? memory : own.samples());
     result.path =
         fmt::format("{}, views prefiltered ({:.2f} x {:.2f} samples, kept every {} x {}{})",
                     result.path, prefilter.h_s, prefilter.h_t, prefilter.stride_s,

@@ -18,6 +18,7 @@
 namespace lfcam {
 
 class PrefilterCache;
+class PrefilterMemory;
 
 // How a pixel integrates over the aperture.
 enum class Integrator {
@@ -49,6 +50,9 @@ struct CpuRenderOptions {
   // The quadrilinear limit's filtered copy kept from frame to frame (render/prefilter_cache.h;
   // the viewer's), or none: each frame filters what it reads.
   PrefilterCache* prefilter_cache = nullptr;
+  // Without it, the memory the filtered copy is made in kept from frame to frame
+  // (render/prefilter_memory.h), or none: each frame's copy in fresh pages.
+  PrefilterMemory* prefilter_memory = nullptr;
   // The cameras integrator: each camera counted by the share of its tent inside its view's
   // window (render/window_taper.h) rather than wholly or not at all. The quadrilinear limit sets
   // it for its filtered copy; none: the hard edges of the focal-plane reads.

@@ -92,6 +92,7 @@ RenderResult FrameRenderer::Render(const LightField& lf, const VirtualCamera& ca
   o.antialias = options.antialias;
   o.depth_blend = options.depth_blend;
   o.prefilter_cache = prefilter_cache_.get();
+  o.prefilter_memory = prefilter_memory_.get();
   return RenderLightFieldCpu(lf, camera, o);
 }
 

@@ -9,6 +9,7 @@
 #include "lfcam/render/cpu_renderer.h"
 #include "lfcam/render/gl_renderer.h"
 #include "lfcam/render/prefilter_cache.h"
+#include "lfcam/render/prefilter_memory.h"
 
 namespace lfcam {
 
@@ -54,6 +55,8 @@ class FrameRenderer {
  private:
   std::unique_ptr<GlRenderer> gl_;
   std::unique_ptr<PrefilterCache> prefilter_cache_;
+  // Without the cache, the filtered copy's memory (render/prefilter_memory.h).
+  std::unique_ptr<PrefilterMemory> prefilter_memory_ = std::make_unique<PrefilterMemory>();
   std::string description_;
 };
 

@@ -50,8 +50,13 @@ const LightField& PrefilterCache::Filtered(const LightField& lf, const StPrefilt
                                 domain_.t1 == domain.t1;
   if (!same_light_field || !SameFilter(prefilter_, prefilter)) {
     serial_ = 0;
-    copy_ = LightField();  // the old copy's memory back before the new one's
-    copy_ = PrefilteredCopy(lf, prefilter.stride_s, prefilter.stride_t);
+    // The new copy in the old one's memory where it fits (pages already mapped and cleared),
+    // else the old memory back before the new is taken.
+    const std::size_t bytes = PrefilteredCopyBytes(lf, prefilter.stride_s, prefilter.stride_t);
+    copy_ = LightField();
+    if (memory_.size() < bytes) memory_ = SampleBuffer();
+    copy_ = PrefilteredCopy(lf, prefilter.stride_s, prefilter.stride_t, memory_);
+    if (memory_.size() < bytes) memory_ = copy_.samples();
     serial_ = lf.samples_serial();
     dims_ = lf.dims();
     offsets_ = lf.st_offsets();

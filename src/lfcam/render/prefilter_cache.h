@@ -36,6 +36,7 @@ class PrefilterCache {
   StDomain domain_;
   StPrefilter prefilter_;
   LightField copy_;
+  SampleBuffer memory_;             // what copy_ lives in: kept when the filter changes
   std::vector<cv::Rect> filtered_;  // each view's filtered rectangle, in the copy's samples
   long long last_filtered_samples_ = 0;
 };

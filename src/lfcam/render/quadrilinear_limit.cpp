@@ -207,7 +207,9 @@ void EncodeRow(const float* linear, int width, int row, int col, int k, int l, L
 
 }  // namespace
 
-LightField PrefilteredCopy(const LightField& lf, int stride_s, int stride_t) {
+namespace {
+
+LightFieldDims PrefilteredCopyDims(const LightField& lf, int stride_s, int stride_t) {
   if (stride_s < 1 || stride_t < 1)
     throw Error(fmt::format("the prefiltered copy's strides must be positive, not {} x {}",
                             stride_s, stride_t));
@@ -224,6 +226,20 @@ LightField PrefilteredCopy(const LightField& lf, int stride_s, int stride_t) {
   LightFieldDims copy = d;
   copy.n_s = extent(d.n_s, stride_s);
   copy.n_t = extent(d.n_t, stride_t);
+  return copy;
+}
+
+}  // namespace
+
+std::size_t PrefilteredCopyBytes(const LightField& lf, int stride_s, int stride_t) {
+  return PrefilteredCopyDims(lf, stride_s, stride_t).samples_per_view() * lf.dims().view_count() *
+         3 * BytesPerChannel(lf.sample_type());
+}
+
+LightField PrefilteredCopy(const LightField& lf, int stride_s, int stride_t,
+                           const SampleBuffer& memory) {
+  const LightFieldDims& d = lf.dims();
+  const LightFieldDims copy = PrefilteredCopyDims(lf, stride_s, stride_t);
   Slab slab = lf.slab();
   StDomain& domain = slab.st_domain;
   const double ds = domain.s_extent() / d.n_s, dt = domain.t_extent() / d.n_t;
@@ -231,15 +247,23 @@ LightField PrefilteredCopy(const LightField& lf, int stride_s, int stride_t) {
   domain.t0 -= stride_t % 2 == 0 ? 0.5 * dt : 0.0;
   domain.s1 = domain.s0 + ds * copy.n_s * stride_s;
   domain.t1 = domain.t0 + dt * copy.n_t * stride_t;
-  RequireMemory(double(copy.samples_per_view()) * double(d.view_count()) * 3 *
-                        double(BytesPerChannel(lf.sample_type())) +
-                    2.0 * 12.0 * double(d.samples_per_view()),
-                "the prefiltered copy of the light field");
-  // Zeros that cost nothing until written: only the regions read are (a third of each view on
-  // the demo's frames).
-  LightField out(copy, lf.sample_type(), slab);
+  const std::size_t bytes = PrefilteredCopyBytes(lf, stride_s, stride_t);
+  LightField out;
+  if (memory.size() >= bytes) {
+    // The copy in the memory's first bytes, which it keeps alive.
+    auto held = std::make_shared<SampleBuffer>(memory);
+    std::uint8_t* data = held->mutable_data();
+    out = LightField(copy, lf.sample_type(), slab,
+                     SampleBuffer::Wrap(std::move(held), data, bytes, true));
+  } else {
+    RequireMemory(double(bytes) + 2.0 * 12.0 * double(d.samples_per_view()),
+                  "the prefiltered copy of the light field");
+    // Zeros that cost nothing until written: only the regions read are (a third of each view on
+    // the demo's frames).
+    out = LightField(copy, lf.sample_type(), slab);
+  }
   out.set_measured_poses(lf.measured_poses());
-  if (windows) {
+  if (lf.has_view_windows()) {
     std::vector<StOffset> offsets;
     for (const StOffset& o : lf.st_offsets())
       offsets.push_back({FloorDiv(o.k, stride_s), FloorDiv(o.l, stride_t)});

@@ -73,8 +73,12 @@ std::vector<cv::Rect> ViewRegionsRead(const LightField& lf, const VirtualCamera&
 // (core/st_sampling.h); the copy's st domain starts where `lf`'s does (half a sample before it
 // for an even stride, whose copy samples sit half a sample before their cells' centres) and ends
 // up to a stride past it: each view's window covers the view's own, its outer samples repeating
-// the edge. Strides 1: `lf`'s layout.
-LightField PrefilteredCopy(const LightField& lf, int stride_s, int stride_t);
+// the edge. Strides 1: `lf`'s layout. With `memory` of at least PrefilteredCopyBytes, the copy
+// lives in its first bytes instead, holding what they held (an earlier frame's copy: the
+// frame's reads stay within the regions PrefilterViews writes, so nothing else is read).
+LightField PrefilteredCopy(const LightField& lf, int stride_s, int stride_t,
+                           const SampleBuffer& memory = {});
+std::size_t PrefilteredCopyBytes(const LightField& lf, int stride_s, int stride_t);
 
 // Writes into `out` (PrefilteredCopy(lf, prefilter.stride_s, prefilter.stride_t)) the views of
 // `lf` filtered by the tent (in linear light, the views' edges replicated) inside
