@@ -83,7 +83,7 @@ std::size_t PrefilteredCopyBytes(const LightField& lf, int stride_s, int stride_
 // Writes into `out` (PrefilteredCopy(lf, prefilter.stride_s, prefilter.stride_t)) the views of
 // `lf` filtered by the tent (in linear light, the views' edges replicated) inside
 // `regions[row * cols + col]` (in `out`'s samples, as ViewRegionsRead(out, ...) gives them);
-// the rest stays black.
+// the rest is left as it was (black in a fresh copy).
 void PrefilterViews(const LightField& lf, const StPrefilter& prefilter,
                     const std::vector<cv::Rect>& regions, LightField* out);
 
