@@ -472,7 +472,11 @@ RenderResult RenderLightFieldCpu(const LightField& lf, const VirtualCamera& came
       filtered = &options.prefilter_cache->Filtered(lf, prefilter, camera, cameras.CamerasRead());
       kept = options.prefilter_cache->last_filtered_samples() == 0;
     } else {
+      // The last frame's memory where the copy fits in it, else none held while the new is
+      // taken (as PrefilterCache does).
       if (options.prefilter_memory) memory = options.prefilter_memory->Take();
+      if (memory.size() < PrefilteredCopyBytes(lf, prefilter.stride_s, prefilter.stride_t))
+        memory = SampleBuffer();
       own = PrefilteredCopy(lf, prefilter.stride_s, prefilter.stride_t, memory);
       PrefilterViews(lf, prefilter, ViewRegionsRead(own, camera, cameras.CamerasRead()), &own);
     }
@@ -482,7 +486,7 @@ RenderResult RenderLightFieldCpu(const LightField& lf, const VirtualCamera& came
     RenderResult result = RenderEither(*filtered, camera, focal, &cameras);
     // The memory back once the frame is done with it (not on an error: then it goes).
     if (options.prefilter_memory && !options.prefilter_cache)
-      options.prefilter_memory->Give(memory.size() >= own.total_bytes() ? memory : own.samples());
+      options.prefilter_memory->Give(memory.size() > 0 ? memory : own.samples());
     result.path =
         fmt::format("{}, views prefiltered ({:.2f} x {:.2f} samples, kept every {} x {}{})",
                     result.path, prefilter.h_s, prefilter.h_t, prefilter.stride_s,
