@@ -39,6 +39,9 @@ constexpr int kFewestCoarseLabels = 16;
 constexpr double kRangeMarginPlanes = 2.0;
 constexpr double kOutlierPixels = 0.4;  // the clean-up's threshold: nearest view's shift, samples
 constexpr double kOutlierColourSigma = 25.5;  // the clean-up's colour weight, 8-bit levels
+// A dark limb the clean-up keeps lies this far below its surroundings' grey, in 8-bit levels, and
+// at least kDarkLimbNoises times the views' noise (docs/depth.md, "Dark limbs kept").
+constexpr double kDarkLimbLevels = 4.0, kDarkLimbNoises = 3.0;
 constexpr double kPlaneGapPixels =
     0.3;                              // the plane fit's neighbours: nearest view's shift, samples
 constexpr int kWidePlaneRadius = 10;  // the second plane fit's radius, samples
@@ -383,9 +386,14 @@ DepthMap EstimateDepth(const LightField& lf, int row, int col, const PlaneSweepO
                              : std::max(2, int(std::lround(std::min(d.n_s, d.n_t) / 70.0)));
       // Outliers: a sample more than the threshold from the weighted median of its neighbours
       // of similar colour (led by the reference view) takes that median.
-      ReplaceOutliersByWeightedMedian(
-          views.reference_rgb8(),
-          {radius, kOutlierColourSigma, std::max(2.0, kOutlierPixels / per_plane)}, choice.label);
+      WeightedMedianOptions clean_up;
+      clean_up.radius = radius;
+      clean_up.sigma_levels = kOutlierColourSigma;
+      clean_up.threshold = std::max(2.0, kOutlierPixels / per_plane);
+      if (options.keep_dark_limbs && narrow)
+        clean_up.dark_limb_levels =
+            std::max(kDarkLimbLevels, kDarkLimbNoises * views.noise_level());
+      ReplaceOutliersByWeightedMedian(views.reference_rgb8(), clean_up, choice.label);
     }
     if (options.fit_local_planes) {
       LocalPlaneOptions fit;

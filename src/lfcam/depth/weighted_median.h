@@ -12,14 +12,26 @@
 // label − threshold, and of those above label + threshold), vectorised across a row with
 // Highway; the median itself is sorted out only where one of them reaches half
 // (docs/depth.md, "The clean-up").
+//
+// Dark limbs: a curved object's outermost samples, lit from the cameras' side, are shaded darker
+// than both the object behind them and the background beside them. Their colour is then nearer
+// the background's than the object's, and the median would move them onto the background (the
+// object thinned by a sample all round). With `dark_limb_levels` > 0, a sample whose median lies
+// farther (a larger label) keeps its own label where its grey (the mean of R, G and B) lies at
+// least that many levels below every sample of the median's side within `dark_limb_radius` and
+// below the mean of its own side there (the other samples whose labels lie within the threshold
+// of its own). A background sample that the sweep fattened onto an object has the background's
+// colour, not a darker one, and is moved as before (docs/depth.md, "Dark limbs kept").
 #include <opencv2/core.hpp>
 
 namespace lfcam {
 
 struct WeightedMedianOptions {
-  int radius = 2;              // the neighbourhood, in samples
-  double sigma_levels = 25.5;  // the colour weight's Gaussian, in 8-bit levels over R, G, B
-  double threshold = 2.0;      // a sample farther than this from its median is an outlier
+  int radius = 2;                 // the neighbourhood, in samples
+  double sigma_levels = 25.5;     // the colour weight's Gaussian, in 8-bit levels over R, G, B
+  double threshold = 2.0;         // a sample farther than this from its median is an outlier
+  double dark_limb_levels = 0.0;  // 0: no sample is kept as a dark limb
+  int dark_limb_radius = 3;       // the neighbourhood the limb is judged in, in samples
 };
 
 // `label`: CV_32FC1 (NaN: unknown, takes no part and stays); `guide_rgb8`: CV_8UC3 of the same

@@ -132,6 +132,45 @@ TEST(WeightedMedian, ReplacesAnIsolatedOutlierAndKeepsAStripOfItsOwnColour) {
   EXPECT_EQ(plain.at<float>(10, 10), 10.0f);
 }
 
+TEST(WeightedMedian, KeepsADarkLimbOnItsObjectAndMovesTheFattenedBackground) {
+  // A wall (grey 80, label 30: far) left of an object (grey 140, label 10: near). Between them,
+  // the object's limb (column 21, grey 67: darker than both) and a column of wall the sweep
+  // fattened onto the object (column 20, the wall's grey), both at the object's label.
+  cv::Mat guide(40, 40, CV_8UC3, cv::Scalar::all(80));
+  guide(cv::Rect(22, 0, 18, 40)).setTo(cv::Scalar::all(140));
+  guide(cv::Rect(21, 0, 1, 40)).setTo(cv::Scalar::all(67));
+  guide.at<cv::Vec3b>(30, 18) = cv::Vec3b(60, 60, 60);  // one sample of the wall as dark
+  cv::Mat label(40, 40, CV_32FC1, cv::Scalar(30));
+  label(cv::Rect(20, 0, 20, 40)).setTo(10);
+  // The median moves both onto the wall: the limb is more like the wall than like the object.
+  cv::Mat plain = label.clone();
+  ReplaceOutliersByWeightedMedian(guide, {7, 25.5, 2.0}, plain);
+  EXPECT_EQ(plain.at<float>(10, 20), 30.0f);
+  EXPECT_EQ(plain.at<float>(10, 21), 30.0f);
+  EXPECT_EQ(plain.at<float>(10, 22), 10.0f);
+  // Kept as a limb where it lies 4 levels below the wall around it and its object's mean; the
+  // fattened wall still moves, and so does the limb where the wall is as dark within 3 samples.
+  WeightedMedianOptions limbs{7, 25.5, 2.0};
+  limbs.dark_limb_levels = 4;
+  cv::Mat kept = label.clone();
+  ReplaceOutliersByWeightedMedian(guide, limbs, kept);
+  EXPECT_EQ(kept.at<float>(10, 20), 30.0f);
+  EXPECT_EQ(kept.at<float>(10, 21), 10.0f);
+  EXPECT_EQ(kept.at<float>(26, 21), 10.0f);
+  for (const int y : {27, 30, 33}) EXPECT_EQ(kept.at<float>(y, 21), 30.0f) << y;
+  // Not kept where it is less than the levels asked below the wall (80 - 67 = 13).
+  limbs.dark_limb_levels = 14;
+  cv::Mat strict = label.clone();
+  ReplaceOutliersByWeightedMedian(guide, limbs, strict);
+  EXPECT_EQ(strict.at<float>(10, 21), 30.0f);
+  // A sample the median leaves nearer is never kept by this rule: the object's far side is not a
+  // limb (the same map read with near and far exchanged moves the strip onto the object).
+  cv::Mat reversed = 40.0f - label;
+  limbs.dark_limb_levels = 4;
+  ReplaceOutliersByWeightedMedian(guide, limbs, reversed);
+  EXPECT_EQ(reversed.at<float>(10, 21), 10.0f);
+}
+
 TEST(WeightedMedian, RefusesMapsOfAnotherKind) {
   cv::Mat guide(8, 8, CV_8UC3, cv::Scalar::all(0)), label(8, 9, CV_32FC1, cv::Scalar(1));
   EXPECT_THROW(ReplaceOutliersByWeightedMedian(guide, {}, label), Error);
@@ -139,6 +178,9 @@ TEST(WeightedMedian, RefusesMapsOfAnotherKind) {
   EXPECT_THROW(ReplaceOutliersByWeightedMedian(guide, {}, ints), Error);
   cv::Mat ok(8, 8, CV_32FC1, cv::Scalar(1));
   EXPECT_THROW(ReplaceOutliersByWeightedMedian(guide, {2, 0.0, 2.0}, ok), Error);
+  WeightedMedianOptions negative;
+  negative.dark_limb_levels = -1;
+  EXPECT_THROW(ReplaceOutliersByWeightedMedian(guide, negative, ok), Error);
 }
 
 }  // namespace
