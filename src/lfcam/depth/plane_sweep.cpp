@@ -372,6 +372,7 @@ DepthMap EstimateDepth(const LightField& lf, int row, int col, const PlaneSweepO
   // The nearest view's shift a plane, in samples.
   const double per_plane = (q_near - q_far) / (labels - 1) * views.nearest_shift_per_q();
   cv::Mat slopes;
+  const double dark_limb_levels = std::max(kDarkLimbLevels, kDarkLimbNoises * views.noise_level());
   const auto estimate = [&](const cv::Mat& expected_step) {
     const CostVolume aggregate = AggregateSemiGlobal(
         volume, grey, {options.smoothness_p1, options.smoothness_p2}, expected_step);
@@ -390,9 +391,7 @@ DepthMap EstimateDepth(const LightField& lf, int row, int col, const PlaneSweepO
       clean_up.radius = radius;
       clean_up.sigma_levels = kOutlierColourSigma;
       clean_up.threshold = std::max(2.0, kOutlierPixels / per_plane);
-      if (options.keep_dark_limbs && narrow)
-        clean_up.dark_limb_levels =
-            std::max(kDarkLimbLevels, kDarkLimbNoises * views.noise_level());
+      if (options.keep_dark_limbs && narrow) clean_up.dark_limb_levels = dark_limb_levels;
       ReplaceOutliersByWeightedMedian(views.reference_rgb8(), clean_up, choice.label);
     }
     if (options.fit_local_planes) {

@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "lfcam/core/error.h"
+#include "lfcam/depth/dark_limb.h"
 #include "lfcam/depth/padded_label_maps.h"
 
 namespace lfcam::weighted_median {
@@ -96,33 +97,6 @@ struct Weighted {
   float label;
   double weight;
 };
-
-// Whether the sample at (x, y), whose weighted median `median` lies farther than its own label,
-// is a dark limb to keep (WeightedMedianOptions::dark_limb_levels).
-bool IsDarkLimb(const PaddedLabelMaps& m, const WeightedMedianOptions& options, float threshold,
-                int x, int y, float median) {
-  const auto grey = [&](std::size_t at) { return (m.red[at] + m.green[at] + m.blue[at]) / 3.0; };
-  const std::size_t centre = m.At(y, x);
-  const float own = m.label[centre];
-  const double limit = grey(centre) + options.dark_limb_levels;
-  const int q = std::max(1, options.dark_limb_radius);
-  double own_side = 0;
-  int own_count = 0, median_count = 0;
-  for (int yy = std::max(0, y - q); yy <= std::min(m.height - 1, y + q); ++yy)
-    for (int xx = std::max(0, x - q); xx <= std::min(m.width - 1, x + q); ++xx) {
-      if (yy == y && xx == x) continue;
-      const std::size_t at = m.At(yy, xx);
-      const float l = m.label[at];
-      if (std::abs(l - median) <= threshold) {  // false for NaN labels
-        if (grey(at) < limit) return false;     // the median's side is as dark somewhere
-        ++median_count;
-      } else if (std::abs(l - own) <= threshold) {
-        own_side += grey(at);
-        ++own_count;
-      }
-    }
-  return median_count > 0 && own_count > 0 && own_side / own_count >= limit;
-}
 
 // The smallest label whose weight, with the weights of every smaller label, reaches `target`
 // (average linear time: a selection that keeps only the side the answer lies on). `items` is
@@ -204,7 +178,8 @@ int ReplaceOutliersByWeightedMedian(const cv::Mat& guide_rgb8, const WeightedMed
         if (!(total > 0)) continue;
         const float median = WeightedSelect(items, 0.5 * total);
         if (options.dark_limb_levels > 0 && median > m.label[centre] + threshold &&
-            IsDarkLimb(m, options, threshold, x, y, median))
+            IsDarkLimb(guide_rgb8, label, x, y, median, threshold,
+                       {options.dark_limb_levels, options.dark_limb_radius}))
           continue;
         if (std::abs(median - m.label[centre]) > threshold) {
           out.at<float>(y, x) = median;

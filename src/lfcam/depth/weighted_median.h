@@ -13,15 +13,9 @@
 // Highway; the median itself is sorted out only where one of them reaches half
 // (docs/depth.md, "The clean-up").
 //
-// Dark limbs: a curved object's outermost samples, lit from the cameras' side, are shaded darker
-// than both the object behind them and the background beside them. Their colour is then nearer
-// the background's than the object's, and the median would move them onto the background (the
-// object thinned by a sample all round). With `dark_limb_levels` > 0, a sample whose median lies
-// farther (a larger label) keeps its own label where its grey (the mean of R, G and B) lies at
-// least that many levels below every sample of the median's side within `dark_limb_radius` and
-// below the mean of its own side there (the other samples whose labels lie within the threshold
-// of its own). A background sample that the sweep fattened onto an object has the background's
-// colour, not a darker one, and is moved as before (docs/depth.md, "Dark limbs kept").
+// With `dark_limb_levels` > 0, a sample whose median lies farther (a larger label) keeps its own
+// label where it is a dark limb (depth/dark_limb.h), judged within `dark_limb_radius` samples,
+// its sides those within the threshold of its own label and of the median.
 #include <opencv2/core.hpp>
 
 namespace lfcam {
