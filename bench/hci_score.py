@@ -3,6 +3,7 @@
 
     bench/hci_score.py ESTIMATE.pfm GT.pfm [--border 15] [--silhouettes] [--json]
     bench/hci_score.py --registration-cost GT.pfm [--border 15] [--json]
+    bench/hci_score.py ESTIMATE.pfm GT.pfm --picture OUT.png [--view CENTRE.png]
 
 Both are PFM files of the centre view's disparity (float32, one channel, rows stored from the
 bottom up as PFM does; the benchmark's gt_disp_lowres.pfm, and `lfcam depth --disparity-pfm`).
@@ -18,6 +19,12 @@ of MSE x 100 (the three add up to the whole) and its big errors (over 0.3 px), c
 that make the near side smaller than the truth has it (thinned: the estimate farther there) and
 the far side's that make it larger (fattened: the estimate nearer). Most of a good map's MSE lies
 in the first two (docs/depth.md, "Where `hci-antinous`' silhouette error is now").
+
+--picture OUT.png also draws the truth, the estimate (the same colours for the same disparity:
+turbo over the truth's 1st to 99th percentile, widened by a tenth) and the error |estimate -
+truth| (black 0, white 0.3 px or more; the border the score leaves out drawn dimmed), side by
+side, with the photograph first when --view gives the centre view (docs/depth.md's picture of
+`hci-antinous`). It needs OpenCV's Python module (python3-opencv).
 
 --registration-cost scores the truth against itself moved by one whole row and by one whole
 column: what a map registered to a pixel grid one sample away from the truth's would lose, all of
@@ -128,6 +135,40 @@ def silhouette_lines(s):
             "errors"]
 
 
+def picture(estimate, truth, border, out, view=None):
+    """The truth, the estimate and the error side by side (and the photograph first), to look at."""
+    import cv2  # only here: scoring needs NumPy alone
+
+    lo, hi = np.percentile(truth[np.isfinite(truth)], [1, 99])
+    lo, hi = lo - 0.1 * (hi - lo), hi + 0.1 * (hi - lo)
+
+    def coloured(d):
+        grey = np.clip((np.nan_to_num(d, nan=lo) - lo) / (hi - lo) * 255, 0, 255)
+        return cv2.applyColorMap(grey.astype(np.uint8), cv2.COLORMAP_TURBO)
+
+    error = np.abs(estimate - truth)
+    error = np.where(np.isfinite(error), error, 0.3)
+    error = cv2.cvtColor((np.clip(error / 0.3, 0, 1) * 255).astype(np.uint8), cv2.COLOR_GRAY2BGR)
+    inside = np.zeros(truth.shape, bool)
+    inside[border:truth.shape[0] - border, border:truth.shape[1] - border] = True
+    error[~inside] //= 3
+    panels = [coloured(truth), coloured(estimate), error]
+    if view is not None:
+        photo = cv2.imread(view, cv2.IMREAD_COLOR)
+        if photo is None:
+            raise ValueError(f"{view}: not an image OpenCV reads")
+        if photo.shape[:2] != truth.shape:
+            raise ValueError(f"{view}: {photo.shape[1]}x{photo.shape[0]}, the maps are "
+                             f"{truth.shape[1]}x{truth.shape[0]}")
+        panels.insert(0, photo)
+    gap = np.full((truth.shape[0], 8, 3), 255, np.uint8)
+    row = [panels[0]]
+    for p in panels[1:]:
+        row += [gap, p]
+    if not cv2.imwrite(out, np.hstack(row)):
+        raise OSError(f"{out}: could not be written")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("maps", nargs="+", metavar="PFM",
@@ -138,13 +179,19 @@ def main():
                         help="also split the error by the side of the truth's depth edges")
     parser.add_argument("--border", type=int, default=15)
     parser.add_argument("--json", action="store_true")
+    parser.add_argument("--picture", metavar="OUT.png",
+                        help="also draw the truth, the estimate and the error side by side")
+    parser.add_argument("--view", metavar="CENTRE.png",
+                        help="with --picture: the centre view's photograph, drawn first")
     args = parser.parse_args()
     wanted = 1 if args.registration_cost else 2
     if len(args.maps) != wanted:
         parser.error(f"expected {'GT.pfm' if wanted == 1 else 'ESTIMATE.pfm GT.pfm'}, "
                      f"got {len(args.maps)} files")
-    if args.silhouettes and args.registration_cost:
-        parser.error("--silhouettes scores an estimate: not with --registration-cost")
+    if (args.silhouettes or args.picture) and args.registration_cost:
+        parser.error("--silhouettes and --picture take an estimate: not with --registration-cost")
+    if args.view and not args.picture:
+        parser.error("--view is drawn in --picture's file: give --picture too")
     try:
         if args.registration_cost:
             truth = read_pfm(args.maps[0])
@@ -155,6 +202,8 @@ def main():
             result = score(estimate, truth, args.border)
             if args.silhouettes:
                 result["silhouettes"] = silhouettes(estimate, truth, args.border)
+            if args.picture:
+                picture(estimate, truth, args.border, args.picture, args.view)
     except (OSError, ValueError) as e:
         print(f"hci_score: {e}", file=sys.stderr)
         return 1

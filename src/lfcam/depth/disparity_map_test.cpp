@@ -212,6 +212,54 @@ TEST(DisparityMap, TheScoringScriptSaysOnWhichSideOfTheSilhouettesTheErrorLies) 
   fs::remove_all(t.parent_path());
 }
 
+// --picture: the truth, the estimate and the error side by side (the photograph first with
+// --view), read back by OpenCV here. The estimate is the truth but for a block 0.5 px off inside
+// the border and a row 5 px off in it.
+TEST(DisparityMap, TheScoringScriptDrawsTheTruthTheEstimateAndTheError) {
+  const std::string python = testing::PythonWith("cv2, numpy");
+  if (python.empty())
+    GTEST_SKIP() << "python3 with numpy and OpenCV is not here (scripts/install-deps.sh installs "
+                    "them)";
+  cv::Mat truth(100, 120, CV_32FC1);
+  for (int y = 0; y < 100; ++y)
+    for (int x = 0; x < 120; ++x) truth.at<float>(y, x) = float(-2.0 + 4.0 * x / 119.0);
+  cv::Mat estimate = truth.clone();
+  estimate(cv::Rect(40, 30, 20, 10)) += 0.5f;
+  estimate.row(98) += 5.0f;  // upright row 1, in the border
+  const fs::path out = Scratch("picture.png"), view = Scratch("view.png");
+  auto run = RunScoringScript(python, "picture", estimate, truth, "--picture " + out.string());
+  ASSERT_EQ(run.status, 0) << run.output;
+  const cv::Mat p = cv::imread(out.string(), cv::IMREAD_COLOR);
+  ASSERT_EQ(p.size(), cv::Size(3 * 120 + 2 * 8, 100));
+  // The truth and the estimate in the same colours where they agree; the gaps white.
+  EXPECT_EQ(p.at<cv::Vec3b>(80, 10), p.at<cv::Vec3b>(80, 128 + 10));
+  EXPECT_NE(p.at<cv::Vec3b>(80, 10), p.at<cv::Vec3b>(80, 110));
+  EXPECT_EQ(p.at<cv::Vec3b>(50, 123), cv::Vec3b(255, 255, 255));
+  // The error: black where they agree, white 0.3 px off or more inside the border, dimmed in it
+  // (the rows upright: the block at upright rows 60-69, the border's row at 1).
+  const int e0 = 2 * 128;
+  EXPECT_EQ(p.at<cv::Vec3b>(50, e0 + 20), cv::Vec3b(0, 0, 0));
+  EXPECT_EQ(p.at<cv::Vec3b>(65, e0 + 50), cv::Vec3b(255, 255, 255));
+  EXPECT_EQ(p.at<cv::Vec3b>(1, e0 + 50), cv::Vec3b(85, 85, 85));
+  // With the photograph first; one of another size is refused, naming both sizes.
+  cv::imwrite(view.string(), cv::Mat(100, 120, CV_8UC3, cv::Scalar(10, 20, 30)));
+  run = RunScoringScript(python, "picture", estimate, truth,
+                         "--picture " + out.string() + " --view " + view.string());
+  ASSERT_EQ(run.status, 0) << run.output;
+  const cv::Mat four = cv::imread(out.string(), cv::IMREAD_COLOR);
+  ASSERT_EQ(four.size(), cv::Size(4 * 120 + 3 * 8, 100));
+  EXPECT_EQ(four.at<cv::Vec3b>(50, 60), cv::Vec3b(10, 20, 30));
+  cv::imwrite(view.string(), cv::Mat(90, 120, CV_8UC3, cv::Scalar::all(0)));
+  run = RunScoringScript(python, "picture", estimate, truth,
+                         "--picture " + out.string() + " --view " + view.string());
+  EXPECT_EQ(run.status, 1) << run.output;
+  EXPECT_NE(run.output.find("120x90, the maps are 120x100"), std::string::npos) << run.output;
+  run = RunScoringScript(python, "picture", estimate, truth, "--view " + view.string());
+  EXPECT_NE(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("give --picture too"), std::string::npos) << run.output;
+  fs::remove_all(out.parent_path());
+}
+
 // --registration-cost: the truth moved one row and one column against itself. A vertical step of
 // 1 px (columns 60 and on) costs nothing moved down a row and one column of 70 pixels (of the 90 x
 // 70 inside the border) moved right.
