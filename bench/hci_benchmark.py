@@ -2,7 +2,7 @@
 """Runs lfcam's depth on every scene of the HCI 4D Light Field Benchmark, as a submission.
 
     bench/hci_benchmark.py BENCHMARK OUT [--lfcam PATH] [--scenes NAME,...]
-                           [--import-args "..."] [--depth-args "..."] [--json]
+                           [--import-args "..."] [--depth-args "..."] [--pictures] [--json]
 
 BENCHMARK is a copy of the benchmark as downloaded: a folder whose sub-folders (training/,
 additional/, stratified/, test/, at any depth up to three) hold one scene each, its views named
@@ -19,7 +19,10 @@ benchmark's evaluation toolkit reads of a method (its submission layout):
                               its BadPix(0.07, 0.03, 0.01) and MSE x 100 scored the way
                               bench/hci_score.py (the toolkit's definitions) scores them
 
-and a table of the scores is printed. A scene that fails (a file lfcam refuses, a truth of another
+With --pictures, each scored scene's centre view, truth, map and error are also drawn side by side
+into OUT/pictures/SCENE.jpg, as `bench/hci_score.py --picture` draws them (python3-opencv).
+
+And a table of the scores is printed. A scene that fails (a file lfcam refuses, a truth of another
 size) is named with lfcam's reason; the other scenes still run, nothing of the failed scene is
 left in OUT, and the script exits 1.
 """
@@ -83,13 +86,21 @@ def last_line(text):
     return lines[-1] if lines else "(no message)"
 
 
-def run_scene(name, folder, lfcam, work, out, import_args, depth_args):
+def centre_view(folder):
+    """The benchmark's centre view: input_CamNNN.png halfway through the grid's files."""
+    views = sorted(f for f in os.listdir(folder)
+                   if f.startswith("input_Cam") and f.endswith(".png"))
+    return os.path.join(folder, views[(len(views) - 1) // 2])
+
+
+def run_scene(name, folder, lfcam, work, out, import_args, depth_args, pictures=False):
     """Imports and estimates one scene into `out`; returns its record (raises RuntimeError)."""
     lf = os.path.join(work, name + ".lf")
     depth_png = os.path.join(work, name + "_depth.png")
     pfm = os.path.join(out, "disp_maps", name + ".pfm")
     runtime = os.path.join(out, "runtimes", name + ".txt")
-    for stale in (pfm, runtime):  # a failed run must not leave an earlier run's files as its own
+    drawn = os.path.join(out, "pictures", name + ".jpg")
+    for stale in (pfm, runtime, drawn):  # a failed run leaves no earlier run's files as its own
         if os.path.exists(stale):
             os.remove(stale)
     truth_path = os.path.join(folder, TRUTH)
@@ -114,10 +125,14 @@ def run_scene(name, folder, lfcam, work, out, import_args, depth_args):
     record = {"folder": folder, "runtime_s": round(seconds, 3)}
     if truth is not None:
         try:
-            record["scores"] = hci_score.score(hci_score.read_pfm(pfm), truth)
+            estimate = hci_score.read_pfm(pfm)
+            record["scores"] = hci_score.score(estimate, truth)
+            if pictures:
+                hci_score.picture(estimate, truth, 15, drawn, centre_view(folder))
         except (OSError, ValueError) as e:
-            os.remove(pfm)
-            os.remove(runtime)
+            for written in (pfm, runtime, drawn):
+                if os.path.exists(written):
+                    os.remove(written)
             raise RuntimeError(f"not scored against {truth_path}: {e}")
     return record
 
@@ -152,8 +167,16 @@ def main():
     parser.add_argument("--scenes", help="only these scenes (comma-separated folder names)")
     parser.add_argument("--import-args", default="", help="more flags for lfcam import")
     parser.add_argument("--depth-args", default="", help="more flags for lfcam depth")
+    parser.add_argument("--pictures", action="store_true",
+                        help="also draw each scored scene's map beside its truth "
+                        "(OUT/pictures/SCENE.jpg)")
     parser.add_argument("--json", action="store_true", help="print scores.json, not the table")
     args = parser.parse_args()
+    if args.pictures:
+        try:
+            import cv2  # noqa: F401  (hci_score.picture draws with it)
+        except ImportError:
+            parser.error("--pictures draws with OpenCV's Python module: install python3-opencv")
 
     lfcam = args.lfcam or default_lfcam()
     if not lfcam or not os.access(lfcam, os.X_OK):
@@ -178,7 +201,7 @@ def main():
                          f"(its scenes: {', '.join(sorted(scenes))})")
         scenes = {s: scenes[s] for s in wanted}
 
-    for sub in ("disp_maps", "runtimes"):
+    for sub in ("disp_maps", "runtimes") + (("pictures",) if args.pictures else ()):
         os.makedirs(os.path.join(args.out, sub), exist_ok=True)
     results, failed = {}, {}
     with tempfile.TemporaryDirectory(prefix="lfcam_hci_") as work:
@@ -187,7 +210,7 @@ def main():
             try:
                 results[name] = run_scene(name, scenes[name], lfcam, work, args.out,
                                           shlex.split(args.import_args),
-                                          shlex.split(args.depth_args))
+                                          shlex.split(args.depth_args), args.pictures)
             except RuntimeError as e:
                 failed[name] = str(e)
                 print(f"hci_benchmark: {name} failed: {e}", file=sys.stderr, flush=True)

@@ -125,13 +125,25 @@ TEST(HciBenchmarkScript, RunsEverySceneAsASubmissionAndScoresThoseWithTruth) {
   EXPECT_LE(badpix, 10.0);
   EXPECT_LE(scores["mse_x100"].get<double>(), 1.6);
 
-  // The table, and a scene asked for that is not there.
-  const auto table =
-      testing::RunOnce(fmt::format("{} {} {} {} --lfcam {} --scenes paper 2>&1", python, script,
-                                   benchmark.string(), out.string(), LFCAM_CLI_PATH));
+  // The table, and a scene asked for that is not there. With OpenCV's Python module, the scored
+  // scene drawn too: its centre view (input_Cam040.png), truth, map and error side by side.
+  const std::string with_cv2 = testing::PythonWith("cv2, numpy");
+  const auto table = testing::RunOnce(fmt::format(
+      "{} {} {} {} --lfcam {} --scenes paper{} 2>&1", with_cv2.empty() ? python : with_cv2, script,
+      benchmark.string(), out.string(), LFCAM_CLI_PATH, with_cv2.empty() ? "" : " --pictures"));
   EXPECT_EQ(table.status, 0) << table.output;
   EXPECT_NE(table.output.find(fmt::format("{:<16} {:>9.2f}%", "paper", badpix)), std::string::npos)
       << table.output;
+  if (!with_cv2.empty()) {
+    const cv::Mat drawn = cv::imread((out / "pictures" / "paper.jpg").string(), cv::IMREAD_COLOR);
+    EXPECT_EQ(drawn.size(), cv::Size(4 * 128 + 3 * 8, 118));
+    // Its first panel is the centre view (JPEG's few levels of loss allowed).
+    const cv::Mat centre = cv::imread((training / "input_Cam040.png").string(), cv::IMREAD_COLOR);
+    if (drawn.cols >= 128 && drawn.rows == 118) {
+      EXPECT_LT(cv::norm(drawn(cv::Rect(0, 0, 128, 118)), centre, cv::NORM_L1) / (128 * 118 * 3),
+                6.0);
+    }
+  }
   const auto unknown = testing::RunOnce(fmt::format("{} {} {} {} --scenes dino 2>&1", python,
                                                     script, benchmark.string(), out.string()));
   EXPECT_EQ(unknown.status, 2) << unknown.output;
