@@ -74,7 +74,11 @@ constexpr double kEqualiseRange = kNarrowRange;
 // passes, the thin gaps between near objects most, and all but the slats from the one-sided cost
 // (noisy rigs lost by it); on the wide `paper` rig the wider window took a point off its grazing
 // table, and the one-sided cost half a point (docs/depth.md, "Visibility at the silhouettes").
+// And a depth edge is a jump of 0.35 samples of the nearest view's shift there, not 0.5: a
+// surface a third of a pixel in front of another (a chin over a neck) was fattened over it by a
+// sample or two that the step never looked at (docs/depth.md, "Small steps").
 constexpr int kNarrowVisibilityWindow = 5, kNarrowVisibilityPasses = 10;
+constexpr double kNarrowVisibilityEdge = 0.35;
 
 double GradientShare(double neighbour_range) {
   const double t =
@@ -430,6 +434,7 @@ DepthMap EstimateDepth(const LightField& lf, int row, int col, const PlaneSweepO
       // Not on noisy views: read through a Gaussian of more than a sample, a sample's colour
       // already holds the other side's, and the one-sided window only averages less noise.
       visibility.same_side_window = views.noise_level() <= kNoisyViewLevels;
+      visibility.edge_samples = kNarrowVisibilityEdge;
     }
     RefineSilhouettesByVisibility(views, q, per_plane, choice.label, visibility);
   }
