@@ -46,8 +46,8 @@ struct PlaneSweepOptions {
   int smoothness_p2 = 160;
   bool refine_edges = true;      // the weighted-median outlier clean-up
   int refine_radius = 0;         // its radius in samples; 0: from the view's size
-  bool keep_dark_limbs = true;   // ... which leaves dark limbs on their objects
-                                 // (depth/weighted_median.h)
+  bool keep_dark_limbs = true;   // ... which, at narrow baselines, leaves dark limbs on their
+                                 // objects (depth/dark_limb.h)
   bool fit_local_planes = true;  // then each sample on the plane through its neighbours' labels
                                  // (depth/local_planes.h)
   // Then, at reach 2 or more, semi-global matching again expecting the fitted planes' slant, kept
