@@ -64,8 +64,9 @@ TEST(DepthOnTheBenchmark, AntinousScoresWhatDocsDepthSays) {
   std::cout << fmt::format(
       "[depth benchmark] antinous: BadPix0.07 {:.2f}%, MSEx100 {:.2f}, {:.1f} s\n", badpix, mse100,
       seconds);
-  // Floors a little above what was measured (docs/depth.md: 2.83% and 2.64; when the clean-up
-  // moved the statue's dark limb onto the wall 2.84% and 2.85, which the MSE floor fails; with
+  // Floors a little above what was measured (docs/depth.md: 2.83% and 2.62 here, 2.82% and 2.61
+  // through `lfcam import`; when the clean-up moved the statue's dark limb onto the wall and the
+  // visibility step took only half-sample jumps, 2.84% and 2.85, which the MSE floor fails; with
   // the visibility step's cost over the whole window at its silhouettes, 2.91% and 3.06; with its
   // window and passes of wide baselines 2.91% and 3.12; without the step 2.97% and 3.83; without
   // the quarter-arrays as well 3.05% and 4.82; with the colour and gradient terms counting alike,
