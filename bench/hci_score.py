@@ -21,7 +21,7 @@ the far side's that make it larger (fattened: the estimate nearer). Most of a go
 in the first two (docs/depth.md, "Where `hci-antinous`' silhouette error is now").
 
 --picture OUT.png also draws the truth, the estimate (the same colours for the same disparity:
-turbo over the truth's 1st to 99th percentile, widened by a tenth) and the error |estimate -
+turbo over the truth's 1st to 99th percentile, widened by a tenth, 0.1 px at least) and the error |estimate -
 truth| (black 0, white 0.3 px or more; the border the score leaves out drawn dimmed), side by
 side, with the photograph first when --view gives the centre view (docs/depth.md's picture of
 `hci-antinous`). It needs OpenCV's Python module (python3-opencv).
@@ -140,7 +140,8 @@ def picture(estimate, truth, border, out, view=None):
     import cv2  # only here: scoring needs NumPy alone
 
     lo, hi = np.percentile(truth[np.isfinite(truth)], [1, 99])
-    lo, hi = lo - 0.1 * (hi - lo), hi + 0.1 * (hi - lo)
+    pad = max(0.1 * (hi - lo), 0.1)  # at least 0.1 px: a flat truth (one depth) has a scale too
+    lo, hi = lo - pad, hi + pad
 
     def coloured(d):
         grey = np.clip((np.nan_to_num(d, nan=lo) - lo) / (hi - lo) * 255, 0, 255)

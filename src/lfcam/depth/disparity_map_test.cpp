@@ -254,6 +254,12 @@ TEST(DisparityMap, TheScoringScriptDrawsTheTruthTheEstimateAndTheError) {
                          "--picture " + out.string() + " --view " + view.string());
   EXPECT_EQ(run.status, 1) << run.output;
   EXPECT_NE(run.output.find("120x90, the maps are 120x100"), std::string::npos) << run.output;
+  // A flat truth (one depth) is drawn too, without a word from NumPy.
+  run =
+      RunScoringScript(python, "flat", cv::Mat(100, 120, CV_32FC1, cv::Scalar(0.5f)),
+                       cv::Mat(100, 120, CV_32FC1, cv::Scalar(0.5f)), "--picture " + out.string());
+  EXPECT_EQ(run.status, 0) << run.output;
+  EXPECT_EQ(run.output.find("Warning"), std::string::npos) << run.output;
   run = RunScoringScript(python, "picture", estimate, truth, "--view " + view.string());
   EXPECT_NE(run.status, 0) << run.output;
   EXPECT_NE(run.output.find("give --picture too"), std::string::npos) << run.output;
