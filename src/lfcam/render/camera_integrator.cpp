@@ -26,6 +26,22 @@ CameraIntegratorFrame::CameraIntegratorFrame(const LightField& lf, const Virtual
   n_ca_ = uv.n_ca;
   exact_ = std::abs(n_ca_.dot(camera.u_c())) < kParallelTolerance &&
            std::abs(n_ca_.dot(camera.v_c())) < kParallelTolerance;
+  // The pixel's direction is affine in (i, j), and so is d = e - p_o = -focus * direction.
+  const double focus = camera.params().focus_distance_mm;
+  const Vec3 d0 = -focus * camera.pixel_direction(0, 0);
+  const Vec3 di = -focus * camera.pixel_direction(1, 0) - d0;
+  const Vec3 dj = -focus * camera.pixel_direction(0, 1) - d0;
+  const auto along = [&](const Vec3& axis) {
+    return Affine{axis.dot(d0), axis.dot(di), axis.dot(dj)};
+  };
+  h_ = along(n_ca_);
+  d_u_ = along(u_ca_);
+  d_v_ = along(v_ca_);
+  d_lens_ = along(camera.u_c().cross(camera.v_c()).normalized());
+  c0_ = n_ca_.dot(p_ca_ - camera.e_c());
+  e_u_ = (camera.e_c() - p_ca_).dot(u_ca_);
+  e_v_ = (camera.e_c() - p_ca_).dot(v_ca_);
+  lens_radius_ = 0.5 * camera.params().aperture_mm;
 
   // The eye on the array's plane with the lens parallel to it: every footprint is the lens.
   if (exact_ && std::abs(n_ca_.dot(camera.e_c() - p_ca_)) < kParallelTolerance * pitch_) {
@@ -114,27 +130,18 @@ std::vector<CameraIntegratorFrame::Level> CameraIntegratorFrame::TableLayout(
 }
 
 Footprint CameraIntegratorFrame::FootprintOf(int i, int j) const {
+  // The lens disk projected from p_o onto the uv-plane: U(x) = p_o + lambda(x) (x - p_o), with
+  // lambda(x) = n.(p_ca - p_o) / n.(x - p_o). Its centre, U(e), is (e - p_ca) + (c0 / h) d in
+  // the array's frame (lambda(e) = 1 + c0 / h); and a central projection from p_o scales areas
+  // by lambda^2 times the cosines' ratio, (n_lens.d) / (n.d), so the disk of the same area has
+  // radius r |lambda| sqrt((n_lens.d) / h).
   Footprint f;
-  const Vec3 direction = camera_.pixel_direction(i, j);
-  const Vec3 p_o = camera_.focus_point(direction);
-  const Vec3 e = camera_.e_c();
-  const double h_e = n_ca_.dot(e - p_o);
-  if (std::abs(h_e) < 1e-12) return f;
-  // U(x) = p_o + lambda(x) (x - p_o), lambda(x) = n.(p_ca - p_o) / n.(x - p_o).
-  const double lambda = n_ca_.dot(p_ca_ - p_o) / h_e;
-  const Vec3 centre = p_o + lambda * (e - p_o) - p_ca_;
-  f.cx = centre.dot(u_ca_) / pitch_ - 0.5;
-  f.cy = centre.dot(v_ca_) / pitch_ - 0.5;
-  // The Jacobian of U over the lens disk at its centre (mm of uv-plane per mm of lens), and the
-  // disk of the same area.
-  const double r = 0.5 * camera_.params().aperture_mm;
-  auto d_u = [&](const Vec3& axis) {
-    const double d_lambda = -lambda * n_ca_.dot(axis) / h_e;
-    return Vec3(lambda * axis + d_lambda * (e - p_o));
-  };
-  const Vec3 du = d_u(camera_.u_c()), dv = d_u(camera_.v_c());
-  const double det = du.dot(u_ca_) * dv.dot(v_ca_) - du.dot(v_ca_) * dv.dot(u_ca_);
-  f.radius = r * std::sqrt(std::abs(det)) / pitch_;
+  const double h = h_.At(i, j);
+  if (std::abs(h) < 1e-12) return f;
+  const double q = c0_ / h;
+  f.cx = (e_u_ + q * d_u_.At(i, j)) / pitch_ - 0.5;
+  f.cy = (e_v_ + q * d_v_.At(i, j)) / pitch_ - 0.5;
+  f.radius = lens_radius_ * std::abs(1.0 + q) * std::sqrt(std::abs(d_lens_.At(i, j) / h)) / pitch_;
   f.valid = std::isfinite(f.cx) && std::isfinite(f.cy) && std::isfinite(f.radius);
   return f;
 }

@@ -91,6 +91,16 @@ class CameraIntegratorFrame {
   double pitch_;
   Vec3 p_ca_, u_ca_, v_ca_, n_ca_;
   bool exact_ = true;
+  // FootprintOf's terms, each affine in the pixel's (i, j): a + b i + c j. With d = e - p_o (the
+  // eye less the pixel's point in focus, affine since the focal plane is a plane), h = n_ca.d,
+  // d.u_ca, d.v_ca and n_lens.d; and the constants c0 = n_ca.(p_ca - e), (e - p_ca).u_ca and
+  // (e - p_ca).v_ca.
+  struct Affine {
+    double a = 0, b = 0, c = 0;
+    double At(int i, int j) const { return a + b * i + c * j; }
+  };
+  Affine h_, d_u_, d_v_, d_lens_;
+  double c0_ = 0, e_u_ = 0, e_v_ = 0, lens_radius_ = 0;
   std::vector<Level> levels_;  // increasing radius
   std::vector<GridCameraWeight> uniform_;
 

@@ -179,6 +179,60 @@ TEST(CameraIntegrator, FootprintsAreTheLensSeenThroughThePointInFocus) {
 namespace lfcam {
 namespace {
 
+// The footprint's closed form (its centre and the radius of the disk of the same area) against
+// the lens disk projected point by point: lens points e + s u_c + t v_c carried through the pixel's
+// point in focus p_o onto the array's plane, the centre their image at s = t = 0, the area the
+// determinant of that map's differences over a micrometre of lens each way. Eyes behind the array,
+// in front of it, turned, far off to the side, and a lens nearly edge-on to the array's plane.
+TEST(CameraIntegrator, TheFootprintIsTheLensProjectedThroughThePointInFocus) {
+  const LightField& lf = render_test::GridPaperLightField();
+  const ArrayPlane& uv = lf.slab().uv;
+  for (const render_test::ConvergenceCamera& c : {
+           render_test::ConvergenceCamera{
+               "behind", {300, 275, 4100}, {300, 275, 0}, 444, 4000, 256, true},
+           render_test::ConvergenceCamera{
+               "in front", {150, 120, 2900}, {150, 120, 0}, 300, 4000, 128, false},
+           render_test::ConvergenceCamera{
+               "turned", {280, 275, 3600}, {300, 275, 2600}, 500, 3400, 192, true},
+           render_test::ConvergenceCamera{
+               "off to the side", {-900, 600, 3000}, {450, 200, 0}, 300, 4700, 64, true},
+           render_test::ConvergenceCamera{
+               "nearly edge-on", {300, 275, 3700}, {300, 3000, 3300}, 400, 2500, 100, false},
+       }) {
+    SCOPED_TRACE(c.name);
+    VirtualCameraParams p = c.Params(0);
+    p.width = 64;
+    p.height = 48;
+    const VirtualCamera camera(p);
+    const CameraIntegratorFrame frame(lf, camera, /*tabulate=*/false);
+    for (const auto& [i, j] : {std::pair{0, 0}, std::pair{63, 0}, std::pair{0, 47},
+                               std::pair{63, 47}, std::pair{31, 20}, std::pair{5, 40}}) {
+      const Vec3 p_o = camera.focus_point(camera.pixel_direction(i, j));
+      // (u, v) in grid units of the line from p_o through x where it meets the array's plane.
+      const auto on_array = [&](const Vec3& x) {
+        const double lambda = uv.n_ca.dot(uv.p_ca - p_o) / uv.n_ca.dot(x - p_o);
+        const Vec3 u = p_o + lambda * (x - p_o) - uv.p_ca;
+        return Vec2(u.dot(uv.u_ca) / uv.pitch_mm - 0.5, u.dot(uv.v_ca) / uv.pitch_mm - 0.5);
+      };
+      const Vec2 centre = on_array(camera.e_c());
+      const double step = 1e-3;  // mm of lens
+      const Vec2 ds = (on_array(camera.e_c() + step * camera.u_c()) -
+                       on_array(camera.e_c() - step * camera.u_c())) /
+                      (2 * step);
+      const Vec2 dt = (on_array(camera.e_c() + step * camera.v_c()) -
+                       on_array(camera.e_c() - step * camera.v_c())) /
+                      (2 * step);
+      const double radius =
+          0.5 * p.aperture_mm * std::sqrt(std::abs(ds.x() * dt.y() - ds.y() * dt.x()));
+      const Footprint f = frame.FootprintOf(i, j);
+      ASSERT_TRUE(f.valid) << i << ", " << j;
+      EXPECT_NEAR(f.cx, centre.x(), 1e-9 * (1 + std::abs(centre.x()))) << i << ", " << j;
+      EXPECT_NEAR(f.cy, centre.y(), 1e-9 * (1 + std::abs(centre.y()))) << i << ", " << j;
+      EXPECT_NEAR(f.radius, radius, 1e-7 * radius) << i << ", " << j;
+    }
+  }
+}
+
 // A row's weights, pixels sharing a table cell weighted together camera by camera, are each
 // pixel's own weights (Weights of its footprint) to the last bit, for an eye behind the array, in
 // front of it and a turned view, one table level or several; and the cameras listed are those

@@ -1,6 +1,7 @@
 // The cameras integrator's footprint of a pixel on the uv-plane (CameraIntegratorFrame::
-// FootprintOf in C++): the lens disk projected through the pixel's point in focus p_o onto the
-// array's plane, as the disk of the same area. Not a shader of its own: the C++ side puts it
+// FootprintOf in C++, which evaluates the same centre and area in a closed form): the lens disk
+// projected through the pixel's point in focus p_o onto the array's plane, as the disk of the
+// same area. Not a shader of its own: the C++ side puts it
 // before the shaders that use it (render_frame.comp's MODE 3, camera_weight_table.comp).
 // Positions are relative to the array's corner p_ca.
 
