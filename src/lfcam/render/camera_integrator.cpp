@@ -272,18 +272,22 @@ void CameraIntegratorFrame::RowWeights(int j, int width, std::size_t stride, flo
           for (int i = i0; i < i1; ++i) used[c] |= out[i] != 0.0f;
         }
       }
-      // Renormalised as Weights renormalises: by the sum over the cameras, in their order.
+      // Renormalised as Weights renormalises: by the sum over the cameras, in their order (a
+      // pixel with no weight divided by 1, which leaves it as it is: the loop has no branch, so
+      // it runs a vector of pixels at a time).
       std::fill(total.begin() + i0, total.begin() + i1, 0.0f);
       for (const int c : run_cameras) {
         const float* out = weights + std::size_t(c) * stride;
         for (int i = i0; i < i1; ++i) total[std::size_t(i)] += out[i];
       }
+      for (int i = i0; i < i1; ++i) {
+        float& t = total[std::size_t(i)];
+        t = t > 0.0f ? t : 1.0f;
+      }
+      const float* divisor = total.data();
       for (const int c : run_cameras) {
         float* out = weights + std::size_t(c) * stride;
-        for (int i = i0; i < i1; ++i) {
-          const float t = total[std::size_t(i)];
-          out[i] = t > 0.0f ? out[i] / t : out[i];
-        }
+        for (int i = i0; i < i1; ++i) out[i] /= divisor[i];
       }
     }
     i0 = i1;
