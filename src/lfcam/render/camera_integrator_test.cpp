@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <iostream>
+#include <vector>
 
 #include "lfcam/render/cpu_renderer.h"
 #include "lfcam/render/render_test_cases.h"
@@ -179,6 +180,13 @@ TEST(CameraIntegrator, FootprintsAreTheLensSeenThroughThePointInFocus) {
 namespace lfcam {
 namespace {
 
+// Eyes off the array's plane: behind it, in front of it, and turned from its normal.
+std::vector<render_test::ConvergenceCamera> OffThePlane() {
+  return {{"behind", {300, 275, 4100}, {300, 275, 0}, 444, 4000, 256, true},
+          {"in front", {150, 120, 2900}, {150, 120, 0}, 300, 4000, 128, false},
+          {"turned", {280, 275, 3600}, {300, 275, 2600}, 500, 3400, 192, true}};
+}
+
 // The footprint's closed form (its centre and the radius of the disk of the same area) against
 // the lens disk projected point by point: lens points e + s u_c + t v_c carried through the pixel's
 // point in focus p_o onto the array's plane, the centre their image at s = t = 0, the area the
@@ -187,18 +195,10 @@ namespace {
 TEST(CameraIntegrator, TheFootprintIsTheLensProjectedThroughThePointInFocus) {
   const LightField& lf = render_test::GridPaperLightField();
   const ArrayPlane& uv = lf.slab().uv;
-  for (const render_test::ConvergenceCamera& c : {
-           render_test::ConvergenceCamera{
-               "behind", {300, 275, 4100}, {300, 275, 0}, 444, 4000, 256, true},
-           render_test::ConvergenceCamera{
-               "in front", {150, 120, 2900}, {150, 120, 0}, 300, 4000, 128, false},
-           render_test::ConvergenceCamera{
-               "turned", {280, 275, 3600}, {300, 275, 2600}, 500, 3400, 192, true},
-           render_test::ConvergenceCamera{
-               "off to the side", {-900, 600, 3000}, {450, 200, 0}, 300, 4700, 64, true},
-           render_test::ConvergenceCamera{
-               "nearly edge-on", {300, 275, 3700}, {300, 3000, 3300}, 400, 2500, 100, false},
-       }) {
+  std::vector<render_test::ConvergenceCamera> cameras = OffThePlane();
+  cameras.push_back({"off to the side", {-900, 600, 3000}, {450, 200, 0}, 300, 4700, 64, true});
+  cameras.push_back({"nearly edge-on", {300, 275, 3700}, {300, 3000, 3300}, 400, 2500, 100, false});
+  for (const render_test::ConvergenceCamera& c : cameras) {
     SCOPED_TRACE(c.name);
     VirtualCameraParams p = c.Params(0);
     p.width = 64;
@@ -240,16 +240,10 @@ TEST(CameraIntegrator, TheFootprintIsTheLensProjectedThroughThePointInFocus) {
 TEST(CameraIntegrator, ARowsWeightsAreEachPixelsOwn) {
   const LightField& lf = render_test::GridPaperLightField();
   const int views = int(lf.dims().view_count());
-  for (const render_test::ConvergenceCamera& c : {
-           render_test::ConvergenceCamera{
-               "behind", {300, 275, 4100}, {300, 275, 0}, 444, 4000, 256, true},
-           render_test::ConvergenceCamera{
-               "in front", {150, 120, 2900}, {150, 120, 0}, 300, 4000, 128, false},
-           render_test::ConvergenceCamera{
-               "turned", {280, 275, 3600}, {300, 275, 2600}, 500, 3400, 192, true},
-           render_test::ConvergenceCamera{
-               "small aperture, turned", {300, 275, 3600}, {450, 200, 0}, 500, 4700, 20, true},
-       }) {
+  std::vector<render_test::ConvergenceCamera> off_the_plane = OffThePlane();
+  off_the_plane.push_back(
+      {"small aperture, turned", {300, 275, 3600}, {450, 200, 0}, 500, 4700, 20, true});
+  for (const render_test::ConvergenceCamera& c : off_the_plane) {
     SCOPED_TRACE(c.name);
     VirtualCameraParams p = c.Params(0);
     p.width = 77;
