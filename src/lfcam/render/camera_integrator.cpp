@@ -90,8 +90,10 @@ CameraIntegratorFrame::CameraIntegratorFrame(const LightField& lf, const Virtual
   }
   const std::size_t cameras = std::size_t(rows_) * std::size_t(cols_);
   levels_ = TableLayout(r_lo, r_hi, x_lo, x_hi, y_lo, y_hi);
-  for (Level& level : levels_)
+  for (Level& level : levels_) {
     level.weights.assign(std::size_t(level.nx) * std::size_t(level.ny) * cameras, 0.0f);
+    level.totals.assign(std::size_t(level.nx) * std::size_t(level.ny), 0.0f);
+  }
   for (Level& level : levels_)
     tbb::parallel_for(0, level.nx * level.ny, [&](int node) {
       const int a = node % level.nx, b = node / level.nx;
@@ -100,6 +102,9 @@ CameraIntegratorFrame::CameraIntegratorFrame(const LightField& lf, const Virtual
       float* out = level.weights.data() + std::size_t(node) * cameras;
       for (const GridCameraWeight& w : DiskCameraWeights(level.radius, cx, cy, cols_, rows_))
         out[std::size_t(w.row * cols_ + w.col)] = float(w.weight);
+      float total = 0.0f;
+      for (std::size_t c = 0; c < cameras; ++c) total += out[c];
+      level.totals[std::size_t(node)] = total;
     });
 }
 
@@ -177,17 +182,32 @@ bool CameraIntegratorFrame::CellOf(const Footprint& f, TableCell* cell,
     coefficients[4] = t * (1 - fx) * (1 - fy), coefficients[5] = t * fx * (1 - fy);
     coefficients[6] = t * (1 - fx) * fy, coefficients[7] = t * fx * fy;
   }
+  // Renormalised: next to the window's edge a lattice neighbour may miss the window (no
+  // weights) while the footprint itself meets it. The blend's sum is the nodes' sums blended.
+  float total = 0.0f;
+  for (int n = 0; n < NodesPerCell(); ++n) total += coefficients[n] * NodeTotal(*cell, n);
+  if (total > 0.0f) {
+    const float scale = 1.0f / total;
+    for (int n = 0; n < NodesPerCell(); ++n) coefficients[n] *= scale;
+  }
   return true;
+}
+
+std::size_t CameraIntegratorFrame::NodeIndex(const TableCell& cell, int n) const {
+  const Level& level = levels_[std::size_t(cell.k + n / 4)];
+  const int a = std::clamp(cell.a + n % 2, 0, level.nx - 1);
+  const int b = std::clamp(cell.b + (n / 2) % 2, 0, level.ny - 1);
+  return std::size_t(b) * std::size_t(level.nx) + std::size_t(a);
+}
+
+float CameraIntegratorFrame::NodeTotal(const TableCell& cell, int n) const {
+  return levels_[std::size_t(cell.k + n / 4)].totals[NodeIndex(cell, n)];
 }
 
 void CameraIntegratorFrame::NodesOf(const TableCell& cell, const float* nodes[8]) const {
   const std::size_t cameras = std::size_t(rows_) * std::size_t(cols_);
-  for (int n = 0; n < NodesPerCell(); ++n) {
-    const Level& level = levels_[std::size_t(cell.k + n / 4)];
-    const int a = std::clamp(cell.a + n % 2, 0, level.nx - 1);
-    const int b = std::clamp(cell.b + (n / 2) % 2, 0, level.ny - 1);
-    nodes[n] = level.weights.data() + (std::size_t(b) * level.nx + a) * cameras;
-  }
+  for (int n = 0; n < NodesPerCell(); ++n)
+    nodes[n] = levels_[std::size_t(cell.k + n / 4)].weights.data() + NodeIndex(cell, n) * cameras;
 }
 
 void CameraIntegratorFrame::Weights(const Footprint& f, float* weights) const {
@@ -206,12 +226,6 @@ void CameraIntegratorFrame::Weights(const Footprint& f, float* weights) const {
   NodesOf(cell, nodes);
   for (int n = 0; n < NodesPerCell(); ++n)
     for (std::size_t c = 0; c < cameras; ++c) weights[c] += coefficients[n] * nodes[n][c];
-  // Renormalised: next to the window's edge a lattice neighbour may miss the window (no
-  // weights) while the footprint itself meets it.
-  float total = 0.0f;
-  for (std::size_t c = 0; c < cameras; ++c) total += weights[c];
-  if (total > 0.0f)
-    for (std::size_t c = 0; c < cameras; ++c) weights[c] /= total;
 }
 
 void CameraIntegratorFrame::RowWeights(int j, int width, std::size_t stride, float* weights,
@@ -232,9 +246,7 @@ void CameraIntegratorFrame::RowWeights(int j, int width, std::size_t stride, flo
     for (int n = 0; n < nodes; ++n)
       coefficients[std::size_t(n) * std::size_t(width) + std::size_t(i)] = c[n];
   }
-  std::vector<float> total(static_cast<std::size_t>(width));
   std::vector<char> used(cameras, 0);
-  std::vector<int> run_cameras;
   for (int i0 = 0; i0 < width;) {
     int i1 = i0 + 1;
     while (i1 < width && cells[std::size_t(i1)] == cells[std::size_t(i0)]) ++i1;
@@ -242,12 +254,10 @@ void CameraIntegratorFrame::RowWeights(int j, int width, std::size_t stride, flo
     if (cell.k >= 0) {
       const float* node[8];
       NodesOf(cell, node);
-      run_cameras.clear();
       for (std::size_t c = 0; c < cameras; ++c) {
         bool any = false;
         for (int n = 0; n < nodes; ++n) any |= node[n][c] != 0.0f;
         if (!any) continue;
-        run_cameras.push_back(int(c));
         float* out = weights + c * stride;
         const float* k = coefficients.data();
         const std::size_t w = std::size_t(width);
@@ -271,23 +281,6 @@ void CameraIntegratorFrame::RowWeights(int j, int width, std::size_t stride, flo
           }
           for (int i = i0; i < i1; ++i) used[c] |= out[i] != 0.0f;
         }
-      }
-      // Renormalised as Weights renormalises: by the sum over the cameras, in their order (a
-      // pixel with no weight divided by 1, which leaves it as it is: the loop has no branch, so
-      // it runs a vector of pixels at a time).
-      std::fill(total.begin() + i0, total.begin() + i1, 0.0f);
-      for (const int c : run_cameras) {
-        const float* out = weights + std::size_t(c) * stride;
-        for (int i = i0; i < i1; ++i) total[std::size_t(i)] += out[i];
-      }
-      for (int i = i0; i < i1; ++i) {
-        float& t = total[std::size_t(i)];
-        t = t > 0.0f ? t : 1.0f;
-      }
-      const float* divisor = total.data();
-      for (const int c : run_cameras) {
-        float* out = weights + std::size_t(c) * stride;
-        for (int i = i0; i < i1; ++i) out[i] /= divisor[i];
       }
     }
     i0 = i1;

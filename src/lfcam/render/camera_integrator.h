@@ -71,6 +71,8 @@ class CameraIntegratorFrame {
     double radius = 0;
     int x0 = 0, y0 = 0, nx = 0, ny = 0;  // node (a, b) at ((x0 + a), (y0 + b)) / kNodesPerPitch
     std::vector<float> weights;          // [b][a][camera, row-major]: nx * ny * rows * cols
+    std::vector<float> totals;           // [b][a]: each node's weights summed (1, or 0 off the
+                                         // window), in the cameras' order
   };
   const std::vector<Level>& levels() const { return levels_; }
   // The table's layout (levels without weights) for footprints whose radii span [r_lo, r_hi] and
@@ -112,10 +114,15 @@ class CameraIntegratorFrame {
     int k = -1, a = 0, b = 0;
     bool operator==(const TableCell& o) const { return k == o.k && a == o.a && b == o.b; }
   };
+  // The coefficients are normalised: the cell's nodes' weights, added with them, sum to 1 (a
+  // node off the window adds none).
   bool CellOf(const Footprint& footprint, TableCell* cell, float coefficients[8]) const;
   int NodesPerCell() const { return levels_.size() > 1 ? 8 : 4; }
   // The weight vectors of the cell's nodes (clamped to the lattice), in the same order.
   void NodesOf(const TableCell& cell, const float* nodes[8]) const;
+  // Node n of the cell (clamped to the lattice): its index in its level, and its weights' sum.
+  std::size_t NodeIndex(const TableCell& cell, int n) const;
+  float NodeTotal(const TableCell& cell, int n) const;
 };
 
 }  // namespace lfcam
