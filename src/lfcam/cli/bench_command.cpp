@@ -236,7 +236,7 @@ void AddBenchCommand(CLI::App& app) {
     }
     DepthSet depth;
     if (depth_lookup) {
-      depth = ReadDepthSet(flags->depth, lf);
+      depth = ReadDepthSet(flags->depth, lf, DepthsForRendering());
       render_options.depth = &depth;
       if (flags->users_case)
         throw UsageError(

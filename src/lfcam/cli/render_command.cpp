@@ -157,7 +157,8 @@ void AddRenderCommand(CLI::App& app) {
     if (options.interpolation == Interpolation::kDepth) {
       depth = flags->render.depth.empty()
                   ? EstimateDepthForFrames(lf, {camera}, flags->input, flags->quiet)
-                  : ReadDepthSet(flags->render.depth, lf);
+                  : ReadDepthSet(flags->render.depth, lf,
+                                 DepthsForRendering(DepthViewsNeeded(lf, camera)));
       options.depth = &depth;
       options.antialias = flags->render.antialias;
     }

@@ -171,7 +171,7 @@ void RenderVideoCommand(const VideoRenderInput& input, const VideoFlags& video,
       for (int k = 0; k < frames; ++k) cameras.emplace_back(path.AtFrame(k, frames));
       depth = EstimateDepthForFrames(first, cameras, input.lightfield, input.quiet);
     } else {
-      depth = ReadDepthSet(input.depth, first);
+      depth = ReadDepthSet(input.depth, first, DepthsForRendering());
     }
     options.depth = &depth;
     options.antialias = input.antialias;

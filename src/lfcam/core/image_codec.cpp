@@ -14,17 +14,20 @@
 namespace lfcam {
 namespace {
 
-// What a decode leaves behind: pixels from malloc (the decoders' error paths jump over
-// destructors, so nothing between their setjmp and the jump may need one), wrapped afterwards.
-struct RawPixels {
-  int width = 0, height = 0, type = 0;
-  std::uint8_t* data = nullptr;
-};
+// The decoders' error paths jump over destructors (longjmp), so nothing between their setjmp and
+// the jump may need one: the pixels live in a cv::Mat on the heap, held by a plain pointer that
+// the error path deletes, and are moved out once the decode is done (no copy).
+cv::Mat* NewPixels(int height, int width, int type) {
+  try {
+    return new cv::Mat(height, width, type);
+  } catch (const std::exception&) {
+    return nullptr;
+  }
+}
 
-cv::Mat Adopt(RawPixels& raw) {
-  cv::Mat m = cv::Mat(raw.height, raw.width, raw.type, raw.data).clone();
-  std::free(raw.data);
-  raw.data = nullptr;
+cv::Mat Adopt(cv::Mat* pixels) {
+  cv::Mat m = std::move(*pixels);
+  delete pixels;
   return m;
 }
 
@@ -57,7 +60,7 @@ void PngWarning(png_structp, png_const_charp) {}  // data libpng decodes around 
 
 // The decode itself; an empty string on success, else libpng's reason.
 std::string DecodePng(const std::uint8_t* data, std::size_t size, ImageDecodeMode mode,
-                      RawPixels* out) {
+                      cv::Mat** out) {
   PngErrors errors;
   errors.message[0] = '\0';
   PngSource source{data, size, 0};
@@ -65,11 +68,11 @@ std::string DecodePng(const std::uint8_t* data, std::size_t size, ImageDecodeMod
   if (!png) return "out of memory";
   png_infop info = png_create_info_struct(png);
   // Changed after setjmp and read after a longjmp: volatile, so the values are not stale.
-  std::uint8_t* volatile pixels = nullptr;
+  cv::Mat* volatile pixels = nullptr;
   png_bytep* volatile rows = nullptr;
   if (setjmp(errors.jump)) {
     png_destroy_read_struct(&png, &info, nullptr);
-    std::free(pixels);
+    delete pixels;
     std::free(rows);
     return errors.message[0] ? errors.message : "decoding failed";
   }
@@ -110,17 +113,14 @@ std::string DecodePng(const std::uint8_t* data, std::size_t size, ImageDecodeMod
   png_read_update_info(png, info);
   const std::size_t stride = std::size_t(width) * std::size_t(channels) * std::size_t(depth / 8);
   if (png_get_rowbytes(png, info) != stride) png_error(png, "an unexpected row layout");
-  pixels = static_cast<std::uint8_t*>(std::malloc(stride * std::size_t(height)));
+  pixels = NewPixels(height, width, CV_MAKETYPE(depth == 16 ? CV_16U : CV_8U, channels));
   rows = static_cast<png_bytep*>(std::malloc(sizeof(png_bytep) * std::size_t(height)));
   if (!pixels || !rows) png_error(png, "out of memory");
-  for (int y = 0; y < height; ++y) rows[y] = pixels + std::size_t(y) * stride;
+  for (int y = 0; y < height; ++y) rows[y] = pixels->ptr<std::uint8_t>(y);
   png_read_image(png, rows);
   png_destroy_read_struct(&png, &info, nullptr);
   std::free(rows);
-  out->width = width;
-  out->height = height;
-  out->type = CV_MAKETYPE(depth == 16 ? CV_16U : CV_8U, channels);
-  out->data = pixels;
+  *out = pixels;
   return "";
 }
 
@@ -175,14 +175,14 @@ std::string EncodePng(const cv::Mat& image, std::vector<std::uint8_t>* bytes) {
 // ---- JPEG ----
 
 std::string DecodeJpeg(const std::uint8_t* data, std::size_t size, ImageDecodeMode mode,
-                       int reduction, RawPixels* out) {
+                       int reduction, cv::Mat** out) {
   jpeg_decompress_struct cinfo;
   LibjpegErrors errors;
   cinfo.err = errors.install();
-  std::uint8_t* volatile pixels = nullptr;
+  cv::Mat* volatile pixels = nullptr;
   if (setjmp(errors.jump)) {
     jpeg_destroy_decompress(&cinfo);
-    std::free(pixels);
+    delete pixels;
     return errors.message[0] ? errors.message : "decoding failed";
   }
   jpeg_create_decompress(&cinfo);
@@ -200,26 +200,22 @@ std::string DecodeJpeg(const std::uint8_t* data, std::size_t size, ImageDecodeMo
   jpeg_start_decompress(&cinfo);
   const int width = int(cinfo.output_width), height = int(cinfo.output_height);
   const int channels = int(cinfo.output_components);
-  const std::size_t stride = std::size_t(width) * std::size_t(channels);
-  pixels = static_cast<std::uint8_t*>(std::malloc(stride * std::size_t(height)));
+  pixels = NewPixels(height, width, CV_MAKETYPE(CV_8U, channels));
   if (!pixels) {
     jpeg_destroy_decompress(&cinfo);
     return "out of memory";
   }
   while (cinfo.output_scanline < cinfo.output_height) {
-    JSAMPROW row = pixels + std::size_t(cinfo.output_scanline) * stride;
+    JSAMPROW row = pixels->ptr<std::uint8_t>(int(cinfo.output_scanline));
     jpeg_read_scanlines(&cinfo, &row, 1);
   }
   jpeg_finish_decompress(&cinfo);
   jpeg_destroy_decompress(&cinfo);
   if (errors.truncated) {
-    std::free(pixels);
+    delete pixels;
     return "the file ends before the image does";
   }
-  out->width = width;
-  out->height = height;
-  out->type = CV_MAKETYPE(CV_8U, channels);
-  out->data = pixels;
+  *out = pixels;
   return "";
 }
 
@@ -267,10 +263,10 @@ void RequireEncodable(const cv::Mat& image, bool png) {
 
 cv::Mat DecodePngBytes(std::span<const std::uint8_t> bytes, ImageDecodeMode mode, int reduction,
                        std::string& error) {
-  RawPixels raw;
-  error = DecodePng(bytes.data(), bytes.size(), mode, &raw);
+  cv::Mat* pixels = nullptr;
+  error = DecodePng(bytes.data(), bytes.size(), mode, &pixels);
   if (!error.empty()) return cv::Mat();
-  cv::Mat m = Adopt(raw);
+  cv::Mat m = Adopt(pixels);
   if (reduction > 1)
     cv::resize(m, m, cv::Size(m.cols / reduction, m.rows / reduction), 0, 0,
                cv::INTER_LINEAR_EXACT);
@@ -279,10 +275,10 @@ cv::Mat DecodePngBytes(std::span<const std::uint8_t> bytes, ImageDecodeMode mode
 
 cv::Mat DecodeJpegBytes(std::span<const std::uint8_t> bytes, ImageDecodeMode mode, int reduction,
                         std::string& error) {
-  RawPixels raw;
-  error = DecodeJpeg(bytes.data(), bytes.size(), mode, reduction, &raw);
+  cv::Mat* pixels = nullptr;
+  error = DecodeJpeg(bytes.data(), bytes.size(), mode, reduction, &pixels);
   if (!error.empty()) return cv::Mat();
-  return Adopt(raw);
+  return Adopt(pixels);
 }
 
 std::vector<std::uint8_t> EncodePngBytes(const cv::Mat& image) {

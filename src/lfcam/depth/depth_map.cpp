@@ -148,13 +148,13 @@ DepthMap DecodeDepthPng(std::span<const std::uint8_t> bytes, const std::string& 
   const cv::Mat coded = DecodeImageBytes(bytes, where);
   if (coded.type() != CV_16UC1)
     throw Error(fmt::format("{}: a depth map must be a 16-bit grey PNG", where));
-  const double near = map.range.near_mm, span = map.range.far_mm - map.range.near_mm;
+  const double near = map.range.near_mm;
+  const double step = (map.range.far_mm - map.range.near_mm) / 65534.0;  // a code's depth
   map.depth.create(coded.size(), CV_32FC1);
   for (int l = 0; l < map.n_t(); ++l) {
     const std::uint16_t* in = coded.ptr<std::uint16_t>(map.n_t() - 1 - l);
     float* d = map.depth.ptr<float>(l);
-    for (int k = 0; k < map.n_s(); ++k)
-      d[k] = in[k] == 0 ? NAN : float(near + (in[k] - 1) / 65534.0 * span);
+    for (int k = 0; k < map.n_s(); ++k) d[k] = in[k] == 0 ? NAN : float(near + (in[k] - 1) * step);
   }
   return map;
 }

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 #include <opencv2/imgcodecs.hpp>
@@ -173,6 +174,56 @@ TEST(DepthSetFolder, RoundTripsAndRefusesAnotherLightFieldsMaps) {
              R"({"format": "lfcam-depth-set", "version": 1, "rows": 2, "cols": 3, "n_s": 40,
                  "n_t": 30, "views": [{"row": 0, "col": 0, "file": "../x.png"}]})");
   EXPECT_NE(testing::ErrorOf([&] { ReadDepthSet(dir / "set", lf); }).find("plain name"),
+            std::string::npos);
+}
+
+TEST(DepthSetFolder, ReadsTheDepthsAloneForRenderersAndNamesTheFirstBadFileWhateverTheThreads) {
+  const fs::path dir = testing::MakeScratchDir("lfcam_depth_set_read");
+  const LightFieldDims dims{3, 4, 40, 30};
+  DepthSet set(dims);
+  for (int r = 0; r < dims.rows; ++r)
+    for (int c = 0; c < dims.cols; ++c) set.set(Ramp(r, c));
+  WriteDepthSet(dir / "set", set, "test.lf");
+  Slab slab;
+  slab.uv.rows = dims.rows;
+  slab.uv.cols = dims.cols;
+  const LightField lf(dims, SampleType::kSrgb8, slab);
+  const DepthSet both = ReadDepthSet(dir / "set", lf);
+  const DepthSet depths = ReadDepthSet(dir / "set", lf, DepthsForRendering());
+  ASSERT_EQ(both.count(), 12);
+  ASSERT_EQ(depths.count(), 12);
+  for (int r = 0; r < dims.rows; ++r)
+    for (int c = 0; c < dims.cols; ++c) {
+      const DepthMap& a = both.at(r, c);
+      const DepthMap& b = depths.at(r, c);
+      ASSERT_TRUE(a.depth.isContinuous() && b.depth.isContinuous());
+      EXPECT_EQ(std::memcmp(a.depth.data, b.depth.data, a.depth.total() * sizeof(float)), 0)
+          << r << ", " << c;  // the same bits, the unknown sample's NaN too
+      EXPECT_TRUE(std::isnan(b.depth.at<float>(2, 3)));
+      EXPECT_NEAR(b.depth.at<float>(29, 30), 3000 + 3000 + 7 * 29, 0.1);
+      ASSERT_FALSE(a.confidence.empty());
+      EXPECT_NEAR(a.confidence.at<float>(29, 0), 1.0, 1.0 / 255);
+      EXPECT_TRUE(b.confidence.empty());  // not read
+    }
+  // Two views' files broken: the error names the first in depth.json's order, every time.
+  const std::string cut = EncodeDepthPng(Ramp(2, 3));
+  WriteBytes(dir / "set" / DepthFileName(2, 3), cut.substr(0, cut.size() / 2));
+  WriteBytes(dir / "set" / DepthFileName(1, 1), EncodeDepthPng(Ramp(0, 2)));  // another view's
+  for (int i = 0; i < 5; ++i) {
+    const std::string error = testing::ErrorOf([&] { ReadDepthSet(dir / "set", lf); });
+    EXPECT_NE(error.find(DepthFileName(1, 1)), std::string::npos) << error;
+    EXPECT_NE(error.find("holds view (0, 2), the index says (1, 1)"), std::string::npos) << error;
+  }
+  // A frame's views alone: the others' files are not opened.
+  std::vector<bool> views(12, false);
+  views[0] = views[2] = views[6] = true;  // (0, 0), (0, 2), (1, 2)
+  const DepthSet some = ReadDepthSet(dir / "set", lf, DepthsForRendering(views));
+  EXPECT_EQ(some.count(), 3);
+  EXPECT_TRUE(some.has(1, 2));
+  EXPECT_FALSE(some.has(1, 1));
+  views[5] = true;  // (1, 1), the broken one
+  EXPECT_NE(testing::ErrorOf([&] { ReadDepthSet(dir / "set", lf, DepthsForRendering(views)); })
+                .find(DepthFileName(1, 1)),
             std::string::npos);
 }
 

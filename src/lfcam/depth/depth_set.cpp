@@ -1,6 +1,7 @@
 #include "lfcam/depth/depth_set.h"
 
 #include <fmt/format.h>
+#include <tbb/parallel_for.h>
 
 #include <nlohmann/json.hpp>
 #include <opencv2/imgproc.hpp>
@@ -126,24 +127,49 @@ std::vector<DepthSetEntry> ParseDepthSetIndex(std::string_view text, const Light
   return entries;
 }
 
-DepthSet ReadDepthSet(const fs::path& dir, const LightField& lf) {
+DepthSetRead DepthsForRendering(std::vector<bool> views) { return {false, std::move(views)}; }
+
+DepthSet ReadDepthSet(const fs::path& dir, const LightField& lf, const DepthSetRead& what) {
   const fs::path index_path = dir / "depth.json";
   const std::string where = index_path.string();
   const auto bytes = ReadFileBytes(index_path, kMaxJsonBytes, "depth set index");
   const auto& d = lf.dims();
-  DepthSet set(d);
-  for (const DepthSetEntry& e : ParseDepthSetIndex(
-           std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), d, where)) {
+  std::vector<DepthSetEntry> entries = ParseDepthSetIndex(
+      std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), d, where);
+  if (!what.views.empty()) {
+    if (what.views.size() != d.view_count())
+      throw Error(fmt::format("{}: internal: a choice of {} views for a grid of {}", where,
+                              what.views.size(), d.view_count()));
+    std::erase_if(entries, [&](const DepthSetEntry& e) {
+      return !what.views[std::size_t(e.row) * d.cols + std::size_t(e.col)];
+    });
+  }
+  // Each view's files on their own thread; a file's error is kept in its entry's place, so that
+  // the one reported is the first in the index's order.
+  std::vector<std::optional<DepthMap>> maps(entries.size());
+  std::vector<std::string> errors(entries.size());
+  tbb::parallel_for(std::size_t(0), entries.size(), [&](std::size_t i) {
+    const DepthSetEntry& e = entries[i];
     const fs::path file = dir / e.file;
-    DepthMap map = ReadDepthPng(file);
-    if (map.row != e.row || map.col != e.col)
-      throw Error(fmt::format("{}: holds view ({}, {}), the index says ({}, {})", file.string(),
-                              map.row, map.col, e.row, e.col));
-    if (map.n_s() != d.n_s || map.n_t() != d.n_t)
-      throw Error(fmt::format("{}: is {}x{}, the light field's views are {}x{}", file.string(),
-                              map.n_s(), map.n_t(), d.n_s, d.n_t));
-    if (fs::exists(ConfidencePathFor(file))) ReadConfidencePng(ConfidencePathFor(file), map);
-    set.set(std::move(map));
+    try {
+      DepthMap map = ReadDepthPng(file);
+      if (map.row != e.row || map.col != e.col)
+        throw Error(fmt::format("{}: holds view ({}, {}), the index says ({}, {})", file.string(),
+                                map.row, map.col, e.row, e.col));
+      if (map.n_s() != d.n_s || map.n_t() != d.n_t)
+        throw Error(fmt::format("{}: is {}x{}, the light field's views are {}x{}", file.string(),
+                                map.n_s(), map.n_t(), d.n_s, d.n_t));
+      if (what.confidence && fs::exists(ConfidencePathFor(file)))
+        ReadConfidencePng(ConfidencePathFor(file), map);
+      maps[i] = std::move(map);
+    } catch (const Error& error) {
+      errors[i] = error.what();
+    }
+  });
+  DepthSet set(d);
+  for (std::size_t i = 0; i < entries.size(); ++i) {
+    if (!errors[i].empty()) throw Error(errors[i]);
+    set.set(std::move(*maps[i]));
   }
   return set;
 }

@@ -51,8 +51,21 @@ struct DepthSetEntry {
 // `where`.
 std::vector<DepthSetEntry> ParseDepthSetIndex(std::string_view text, const LightFieldDims& dims,
                                               const std::string& where);
-// Reads a depth set for `lf`; throws lfcam::Error naming the file when it does not match.
-DepthSet ReadDepthSet(const std::filesystem::path& dir, const LightField& lf);
+// What of a depth set's folder to read.
+struct DepthSetRead {
+  // The confidence maps (depth_RR_CC.confidence.png) too: export's points and the depth
+  // command's statistics read them; the renderers read the depths alone.
+  bool confidence = true;
+  // The views whose maps to read, row-major (a frame's DepthViewsNeeded); empty: every view the
+  // index lists.
+  std::vector<bool> views;
+};
+// Reads a depth set for `lf`, its views' files decoded in parallel; throws lfcam::Error naming
+// the file when one does not match (the first in depth.json's order, whatever the threads did).
+DepthSet ReadDepthSet(const std::filesystem::path& dir, const LightField& lf,
+                      const DepthSetRead& what = {});
+// What a renderer reads: the depths of `views` (empty: all).
+DepthSetRead DepthsForRendering(std::vector<bool> views = {});
 
 std::string DepthFileName(int row, int col);  // depth_RR_CC.png
 

@@ -12,6 +12,7 @@
 #include "lfcam/core/image_io.h"
 #include "lfcam/depth/depth_set.h"
 #include "lfcam/python/bindings.h"
+#include "lfcam/render/depth_aware_sampler.h"
 
 namespace lfcam::python {
 
@@ -50,7 +51,8 @@ void BindRender(py::module_& m) {
           if (options.interpolation == Interpolation::kDepth) {
             depth = request->render.depth.empty()
                         ? cli::EstimateDepthForFrames(*lf, {camera}, "", /*quiet=*/true)
-                        : ReadDepthSet(request->render.depth, *lf);
+                        : ReadDepthSet(request->render.depth, *lf,
+                                       DepthsForRendering(DepthViewsNeeded(*lf, camera)));
             options.depth = &depth;
             options.antialias = request->render.antialias;
           }

@@ -572,7 +572,7 @@ void RunViewer(const ViewerOptions& options) {
           fmt::format("--depth {}: depth maps belong to one light field frame, and {} is a "
                       "video of {} frames",
                       options.depth_dir, options.light_field, playback->frames()));
-    depth = ReadDepthSet(options.depth_dir, *playback->current());
+    depth = ReadDepthSet(options.depth_dir, *playback->current(), DepthsForRendering());
   }
   Viewer viewer(options, std::move(playback), std::move(depth));
   viewer.Run();
