@@ -3,13 +3,15 @@
 //   ctest, which runs one suite a process (cmake/TestSuites.cmake), reports such a suite as
 //   skipped rather than passed;
 // - the scratch directories a test made (testing::MakeScratchDir) removed when it ends without
-//   failing, and named when it fails, for a look at what it left.
+//   failing, and named when it fails, for a look at what it left;
+// - freed memory kept for reuse, as in lfcam itself (core/freed_memory.h).
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <iostream>
 #include <system_error>
 
+#include "lfcam/core/freed_memory.h"
 #include "lfcam/core/test_support.h"
 
 namespace {
@@ -32,6 +34,7 @@ class ScratchDirCleaner : public ::testing::EmptyTestEventListener {
 }  // namespace
 
 int main(int argc, char** argv) {
+  lfcam::KeepFreedMemoryForReuse();  // as lfcam's own main does
   ::testing::InitGoogleTest(&argc, argv);
   ::testing::UnitTest::GetInstance()->listeners().Append(new ScratchDirCleaner);
   const int result = RUN_ALL_TESTS();

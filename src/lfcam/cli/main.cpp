@@ -17,6 +17,7 @@
 
 #include "lfcam/cli/commands.h"
 #include "lfcam/core/error.h"
+#include "lfcam/core/freed_memory.h"
 #include "lfcam/core/json_input.h"
 #include "lfcam/core/signal_cleanup.h"
 
@@ -69,6 +70,7 @@ void AddHelpCommand(CLI::App& app) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  lfcam::KeepFreedMemoryForReuse();
   lfcam::InstallSignalCleanup();
   CLI::App app{"lfcam: capture, calibrate and render 4D light fields (An et al.'s DIY array)",
                "lfcam"};
