@@ -8,9 +8,10 @@
 // block is reused, not added to.
 namespace lfcam {
 
-// Blocks up to 32 MB (glibc's largest threshold) come from the heap, and the heap keeps what is
-// freed. Call once, first thing in main(), before any thread starts; a no-op where malloc is not
-// glibc's (AddressSanitizer's).
+// Every block comes from the heap (malloc maps none of its own; lfcam maps its largest buffers
+// itself: light fields, cost volumes), and the heap keeps what is freed. Call once, first thing
+// in main(), before any thread starts; a no-op where malloc is not glibc's
+// (AddressSanitizer's).
 void KeepFreedMemoryForReuse();
 
 }  // namespace lfcam
