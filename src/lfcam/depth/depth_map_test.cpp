@@ -222,8 +222,9 @@ TEST(DepthSetFolder, ReadsTheDepthsAloneForRenderersAndNamesTheFirstBadFileWhate
   EXPECT_TRUE(some.has(1, 2));
   EXPECT_FALSE(some.has(1, 1));
   views[5] = true;  // (1, 1), the broken one
-  EXPECT_NE(testing::ErrorOf([&] { ReadDepthSet(dir / "set", lf, DepthsForRendering(views)); })
-                .find(DepthFileName(1, 1)),
+  EXPECT_NE(testing::ErrorOf([&] {
+              ReadDepthSet(dir / "set", lf, DepthsForRendering(views));
+            }).find(DepthFileName(1, 1)),
             std::string::npos);
 }
 
