@@ -53,8 +53,8 @@ std::vector<DepthSetEntry> ParseDepthSetIndex(std::string_view text, const Light
                                               const std::string& where);
 // What of a depth set's folder to read.
 struct DepthSetRead {
-  // The confidence maps (depth_RR_CC.confidence.png) too: export's points and the depth
-  // command's statistics read them; the renderers read the depths alone.
+  // The confidence maps (depth_RR_CC.confidence.png) too: export's points leave out
+  // unconfident samples; the renderers read the depths alone.
   bool confidence = true;
   // The views whose maps to read, row-major (a frame's DepthViewsNeeded); empty: every view the
   // index lists.
