@@ -246,44 +246,59 @@ void CameraIntegratorFrame::RowWeights(int j, int width, std::size_t stride, flo
     for (int n = 0; n < nodes; ++n)
       coefficients[std::size_t(n) * std::size_t(width) + std::size_t(i)] = c[n];
   }
-  std::vector<char> used(cameras, 0);
+  // The row's runs of pixels sharing a cell, and the cameras some run's nodes weigh: each of
+  // those is written along the whole row (zeros where its nodes weigh nothing), so a caller
+  // reads no stale weights.
+  std::vector<std::pair<int, int>> runs;
+  std::vector<char> touched(cameras, 0), used(cameras, 0);
   for (int i0 = 0; i0 < width;) {
     int i1 = i0 + 1;
     while (i1 < width && cells[std::size_t(i1)] == cells[std::size_t(i0)]) ++i1;
-    const TableCell cell = cells[std::size_t(i0)];
-    if (cell.k >= 0) {
+    runs.emplace_back(i0, i1);
+    if (cells[std::size_t(i0)].k >= 0) {
       const float* node[8];
-      NodesOf(cell, node);
-      for (std::size_t c = 0; c < cameras; ++c) {
-        bool any = false;
-        for (int n = 0; n < nodes; ++n) any |= node[n][c] != 0.0f;
-        if (!any) continue;
-        float* out = weights + c * stride;
-        const float* k = coefficients.data();
-        const std::size_t w = std::size_t(width);
-        if (two) {
-          const float s0 = node[0][c], s1 = node[1][c], s2 = node[2][c], s3 = node[3][c],
-                      s4 = node[4][c], s5 = node[5][c], s6 = node[6][c], s7 = node[7][c];
-          for (int i = i0; i < i1; ++i) {
-            float v = 0.0f;  // the nodes in Weights' order, each pixel on its own
-            v += k[i] * s0, v += k[w + i] * s1, v += k[2 * w + i] * s2, v += k[3 * w + i] * s3;
-            v += k[4 * w + i] * s4, v += k[5 * w + i] * s5, v += k[6 * w + i] * s6;
-            v += k[7 * w + i] * s7;
-            out[i] = v;
-          }
-          for (int i = i0; i < i1; ++i) used[c] |= out[i] != 0.0f;
-        } else {
-          const float s0 = node[0][c], s1 = node[1][c], s2 = node[2][c], s3 = node[3][c];
-          for (int i = i0; i < i1; ++i) {
-            float v = 0.0f;
-            v += k[i] * s0, v += k[w + i] * s1, v += k[2 * w + i] * s2, v += k[3 * w + i] * s3;
-            out[i] = v;
-          }
-          for (int i = i0; i < i1; ++i) used[c] |= out[i] != 0.0f;
-        }
-      }
+      NodesOf(cells[std::size_t(i0)], node);
+      for (std::size_t c = 0; c < cameras; ++c)
+        for (int n = 0; n < nodes; ++n) touched[c] |= node[n][c] != 0.0f;
     }
     i0 = i1;
+  }
+  for (const auto& [i0, i1] : runs) {
+    const TableCell cell = cells[std::size_t(i0)];
+    const float* node[8] = {};
+    if (cell.k >= 0) NodesOf(cell, node);
+    for (std::size_t c = 0; c < cameras; ++c) {
+      if (!touched[c]) continue;
+      float* out = weights + c * stride;
+      bool any = false;
+      for (int n = 0; cell.k >= 0 && n < nodes; ++n) any |= node[n][c] != 0.0f;
+      if (!any) {
+        std::fill(out + i0, out + i1, 0.0f);
+        continue;
+      }
+      const float* k = coefficients.data();
+      const std::size_t w = std::size_t(width);
+      if (two) {
+        const float s0 = node[0][c], s1 = node[1][c], s2 = node[2][c], s3 = node[3][c],
+                    s4 = node[4][c], s5 = node[5][c], s6 = node[6][c], s7 = node[7][c];
+        for (int i = i0; i < i1; ++i) {
+          float v = 0.0f;  // the nodes in Weights' order, each pixel on its own
+          v += k[i] * s0, v += k[w + i] * s1, v += k[2 * w + i] * s2, v += k[3 * w + i] * s3;
+          v += k[4 * w + i] * s4, v += k[5 * w + i] * s5, v += k[6 * w + i] * s6;
+          v += k[7 * w + i] * s7;
+          out[i] = v;
+        }
+        for (int i = i0; i < i1; ++i) used[c] |= out[i] != 0.0f;
+      } else {
+        const float s0 = node[0][c], s1 = node[1][c], s2 = node[2][c], s3 = node[3][c];
+        for (int i = i0; i < i1; ++i) {
+          float v = 0.0f;
+          v += k[i] * s0, v += k[w + i] * s1, v += k[2 * w + i] * s2, v += k[3 * w + i] * s3;
+          out[i] = v;
+        }
+        for (int i = i0; i < i1; ++i) used[c] |= out[i] != 0.0f;
+      }
+    }
   }
   for (std::size_t c = 0; c < cameras; ++c)
     if (used[c]) cameras_used->push_back(int(c));

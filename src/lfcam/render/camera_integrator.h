@@ -44,10 +44,12 @@ class CameraIntegratorFrame {
   // when the footprint misses the window.
   void Weights(const Footprint& footprint, float* weights) const;
   // The weights of every pixel of row j (0 <= i < width), the numbers Weights gives for each
-  // pixel's footprint, camera-major: camera c's for pixel i at weights[c * stride + i]. Only the
-  // cameras with a weight somewhere in the row are written (listed in `cameras`, ascending); the
-  // caller zeroes the rest. Pixels whose footprints share a table cell are weighted together,
-  // camera by camera across them, where Weights adds each node's whole vector to one pixel.
+  // pixel's footprint, camera-major: camera c's for pixel i at weights[c * stride + i]. A camera
+  // the table weighs anywhere along the row is written over the whole row (zeros where it has no
+  // weight), the others are left as they were; those with a weight somewhere in the row are
+  // listed in `cameras`, ascending. Pixels whose footprints share a table cell are weighted
+  // together, camera by camera across them, where Weights adds each node's whole vector to one
+  // pixel.
   void RowWeights(int j, int width, std::size_t stride, float* weights,
                   std::vector<int>* cameras) const;
 

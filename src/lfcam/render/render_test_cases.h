@@ -108,15 +108,17 @@ inline std::vector<Case> Cases() {
   base.focus_distance_mm = 3900;
   base.lens_rate = 2;
   std::vector<Case> cases;
+  // `cameras_path`, where given, is the cameras integrator's (lens samples take `path`).
   const auto add = [&](const std::string& name, VirtualCameraParams p, const std::string& path,
-                       bool turned = false) {
+                       bool turned = false, const std::string& cameras_path = "") {
     for (const Integrator integrator : {Integrator::kLensSamples, Integrator::kCameras})
       for (const Interpolation interpolation :
            {Interpolation::kQuadrilinear, Interpolation::kFocalPlane}) {
         if (integrator == Integrator::kCameras && interpolation == Interpolation::kQuadrilinear)
           continue;  // the cameras integrator has one lookup
+        const bool own = integrator == Integrator::kCameras && !cameras_path.empty();
         cases.push_back({name + " " + ToString(integrator) + " " + ToString(interpolation), p,
-                         integrator, interpolation, path, turned});
+                         integrator, interpolation, own ? cameras_path : path, turned});
       }
   };
   VirtualCameraParams p = base;
@@ -145,6 +147,18 @@ inline std::vector<Case> Cases() {
   p.eye = centre + Vec3(30, -20, 700);
   p.aperture_mm = 70;
   add("aperture in front of the array", p, "rows");
+  // Off the array's plane but looking along its normal: the cameras integrator's maps stay
+  // separable, each pixel with its own weights (wide, so that footprints leave the window).
+  VirtualCameraParams q = p;
+  q.look_at = q.eye - Vec3(0, 0, 1000);
+  add("aperture in front of the array, looking along its normal", q, "rows", false, "separable");
+  q.eye = centre + Vec3(-50, 35, -600);
+  q.look_at = q.eye - Vec3(0, 0, 1000);
+  q.focal_length_mm = 90;
+  q.aperture_mm = 110;
+  add("wide aperture behind the array, looking along its normal", q, "rows", false, "separable");
+  q.breathing = false;
+  add("the same on the turned st-plane", q, "rows", true, "separable");
   p.look_at = centre + Vec3(250, 150, -3000);
   add("aperture in front of the array, turned", p, "rows");
   p.up = Vec3(std::sin(0.7), std::cos(0.7), 0);  // rolled 40 degrees: l runs along the rows

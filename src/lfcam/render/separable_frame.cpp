@@ -103,21 +103,42 @@ class Builder {
   std::map<int, int> camera_origins_;
 };
 
+// `per_pixel`: the cameras' weights may differ from pixel to pixel (they then come from
+// `cameras` row by row, which must outlive the frame).
 bool BuildCamerasIntegrator(const LightField& lf, const VirtualCamera& camera,
-                            const CameraIntegratorFrame& cameras, Builder& builder) {
+                            const CameraIntegratorFrame& cameras, bool per_pixel,
+                            Builder& builder) {
   const auto& uniform = cameras.uniform_weights();
-  if (uniform.empty()) return false;
   SeparableFrame& frame = builder.frame();
+  const int cols = lf.dims().cols;
+  std::vector<SeparableTerm> terms;
+  if (!uniform.empty()) {
+    for (const GridCameraWeight& c : uniform)
+      terms.push_back({c.row * cols + c.col, 0, 0, float(c.weight)});
+  } else {
+    // Every camera some pixel weighs, each pixel by its own footprint. The weights need the
+    // table, and the lens parallel to the array (else the maps are not separable anyway).
+    if (!per_pixel || !cameras.exact() || cameras.levels().empty()) return false;
+    const std::vector<bool> read = cameras.CamerasRead();
+    for (std::size_t view = 0; view < read.size(); ++view)
+      if (read[view]) terms.push_back({int(view), 0, 0, 1.0f});
+    frame.pixel_weights = &cameras;
+  }
   frame.eye = builder.AddOrigin(camera.e_c());
   if (frame.eye < 0) return false;
-  const int cols = lf.dims().cols;
-  for (const GridCameraWeight& c : uniform) {
-    const int read = builder.CameraOrigin(c.row * cols + c.col);
-    if (read < 0) return false;
+  for (SeparableTerm& t : terms) {
+    t.read = t.mask = builder.CameraOrigin(t.view);
+    if (t.read < 0) return false;
     // Each camera counts where its own line through p_o meets the domain (RenderPixelCameras).
-    frame.terms.push_back({c.row * cols + c.col, read, read, float(c.weight)});
+    frame.terms.push_back(t);
   }
-  frame.reads_per_pixel = int(uniform.size());
+  frame.reads_per_pixel = int(frame.terms.size());
+  if (frame.pixel_weights != nullptr) {
+    // A band's weights are held for all its rows at once: bands of fewer rows where the row's
+    // cameras are many, so that they stay near 4 MB.
+    const double row_bytes = 4.0 * double(lf.dims().view_count()) * PaddedRowWidth(camera.width());
+    frame.band_rows = std::clamp(int((4 << 20) / row_bytes), 4, frame.band_rows);
+  }
   return true;
 }
 
@@ -165,8 +186,8 @@ std::optional<SeparableFrame> MakeSeparableFrame(const LightField& lf, const Vir
   bool built = false;
   if (options.integrator == Integrator::kCameras && !camera.is_pinhole()) {
     std::optional<CameraIntegratorFrame> own;
-    built =
-        BuildCamerasIntegrator(lf, camera, cameras ? *cameras : own.emplace(lf, camera), builder);
+    built = BuildCamerasIntegrator(lf, camera, cameras ? *cameras : own.emplace(lf, camera),
+                                   cameras != nullptr, builder);
   } else {
     built = BuildLensSamples(lf, camera, focal_plane, builder);
   }

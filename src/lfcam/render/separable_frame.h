@@ -56,15 +56,22 @@ struct SeparableFrame {
   std::vector<int> hit_origins;
   int eye = -1;
   int reads_per_pixel = 0;  // the cameras integrator: its cameras (those a pixel can read)
+  // The cameras integrator with the eye off the array's plane (looking along its normal, so the
+  // maps stay separable): each pixel weighs the cameras by its own footprint, and these give the
+  // weights row by row (CameraIntegratorFrame::RowWeights); the terms' `weight` is then 1. It
+  // must outlive the frame.
+  const CameraIntegratorFrame* pixel_weights = nullptr;
   int width = 0, height = 0;
   int band_rows = 32;    // pixel rows rendered together (a task)
   double map_error = 0;  // samples: the most a resampled row's k strays from a pixel's own
 };
 
-// The separable form of the frame, or nothing when the frame is not separable (an eye off the
-// array's plane, a turned camera, an st-plane turned too far) or the light field cannot be read
-// by the fast kernels. `cameras`, when given, is the cameras integrator's frame for `camera` on
-// a light field of `lf`'s slab and grid (its weights are then not worked out again).
+// The separable form of the frame, or nothing when the frame is not separable (lens samples off
+// the array's plane, a turned camera, an st-plane turned too far) or the light field cannot be
+// read by the fast kernels. `cameras`, when given, is the cameras integrator's frame for `camera`
+// on a light field of `lf`'s slab and grid (its weights are then not worked out again); the
+// cameras integrator with the eye off the array's plane is separable only with it (the frame
+// keeps a pointer to it).
 std::optional<SeparableFrame> MakeSeparableFrame(const LightField& lf, const VirtualCamera& camera,
                                                  const CpuRenderOptions& options,
                                                  const CameraIntegratorFrame* cameras = nullptr);

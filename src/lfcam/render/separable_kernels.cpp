@@ -26,9 +26,22 @@ using namespace sample_rows;  // NOLINT: the shared helpers of this instruction 
 // row of the band) where every pixel of the row counts, so that the blend's common path stores
 // nothing but its colour. With a taper (RaySetup::taper, the cameras integrator's) the term counts
 // by the share of its tent inside its view's window, at the read's own coordinates.
+//
+// With per-pixel weights (`per_pixel`, SeparableFrame::pixel_weights) the term weighs each pixel
+// by its own weight. Where its reads are whole along a row it counts nothing and marks itself in
+// `per_pixel.whole` (the row's weights and cameras, summed once, are then the row's counts);
+// elsewhere it counts per pixel, as above, and marks the row in `per_pixel.partial`.
+struct PixelWeights {
+  const float* weights = nullptr;  // [row of the band][view][pixel]
+  const char* listed = nullptr;    // [row of the band][view]: the view weighs some pixel
+  std::size_t views = 0;
+  char* whole = nullptr;    // [row of the band][view]: read whole along the row
+  char* partial = nullptr;  // [row of the band]: some view was not
+};
 void AddTerm(const SeparableFrame& f, const RaySetup& s, const SeparableTerm& t, int j0, int j1,
              std::size_t stride, float* const acc[3], float* hits, bool count_hits, float* held,
-             float* row_hits, float* row_held, Planes& decoded, Planes& resampled, TileMap& k_map) {
+             float* row_hits, float* row_held, const PixelWeights& per_pixel, Planes& decoded,
+             Planes& resampled, TileMap& k_map) {
   const DF d;
   const DI di;
   const int lanes = int(hn::Lanes(d));
@@ -85,6 +98,12 @@ void AddTerm(const SeparableFrame& f, const RaySetup& s, const SeparableTerm& t,
   const double last = f.width - 1, middle = 0.5 * last;
   for (int j = j0; j < j1; ++j) {
     const std::size_t at = std::size_t(j - j0) * stride;
+    const float* own = nullptr;  // this term's weight for each pixel of the row
+    if (per_pixel.weights != nullptr) {
+      const std::size_t slot = std::size_t(j - j0) * per_pixel.views + std::size_t(t.view);
+      if (!per_pixel.listed[slot]) continue;  // no pixel of the row weighs it
+      own = per_pixel.weights + slot * stride;
+    }
     // l along the row, through its values at both ends and the middle: a projective function
     // whose curvature over a row is tiny, so the quadratic is exact to third order.
     double l_a, l_m, l_b, k_a, k_b, unused_k;
@@ -121,12 +140,17 @@ void AddTerm(const SeparableFrame& f, const RaySetup& s, const SeparableTerm& t,
                             resampled.channel(next, 2)};
       const VF va = hn::Set(d, float(qa)), vb = hn::Set(d, float(qb)), vc = hn::Set(d, float(qc));
       const VF vbase = hn::Set(d, float(base));
-      // Every pixel of the row counts: once for the row.
-      if (count_hits) row_hits[j - j0] += 1.0f;
-      if (held != nullptr) row_held[j - j0] += t.weight;
+      // Every pixel of the row counts: once for the row (with per-pixel weights, at the end).
+      if (own != nullptr) {
+        per_pixel.whole[std::size_t(j - j0) * per_pixel.views + std::size_t(t.view)] = 1;
+      } else {
+        if (count_hits) row_hits[j - j0] += 1.0f;
+        if (held != nullptr) row_held[j - j0] += t.weight;
+      }
       for (int i = 0; i < padded; i += lanes) {
         const VF pixel = hn::Iota(d, float(i));
-        const VF w = hn::IfThenElseZero(hn::Lt(pixel, width), weight);
+        const VF w = hn::IfThenElseZero(hn::Lt(pixel, width),
+                                        own != nullptr ? hn::LoadU(d, own + i) : weight);
         const VF l = hn::MulAdd(hn::MulAdd(vc, pixel, vb), pixel, va);
         const VF w1 = hn::Sub(hn::Min(hn::Max(l, zero), l_top), vbase);
         const VF a0 = hn::Mul(w, hn::Sub(one, w1)), a1 = hn::Mul(w, w1);
@@ -139,18 +163,20 @@ void AddTerm(const SeparableFrame& f, const RaySetup& s, const SeparableTerm& t,
     }
     // Near the domain's edge, or where l crosses a sample row along the row: each pixel's own
     // projection, and a tent over three sample rows.
+    if (own != nullptr) per_pixel.partial[j - j0] = 1;
     const RowFunctions row(f.st, j);
     for (int i = 0; i < padded; i += lanes) {
       const VF pixel = hn::Iota(d, float(i));
       const Hit r = Project(read, row, pixel, s.n_s, s.n_t);
+      const VF whole =
+          hn::IfThenElseZero(hn::Lt(pixel, width), own != nullptr ? hn::LoadU(d, own + i) : weight);
       VF w;
       if (s.taper) {
-        w = hn::IfThenElseZero(hn::Lt(pixel, width),
-                               hn::Mul(weight, WindowShare(s, t.view, r.k, r.l)));
+        w = hn::Mul(whole, WindowShare(s, t.view, r.k, r.l));
       } else {
         const auto inside =
             t.mask == t.read ? r.inside : Project(mask, row, pixel, s.domain).inside;
-        w = hn::IfThenElseZero(hn::And(hn::Lt(pixel, width), inside), weight);
+        w = hn::IfThenElseZero(inside, whole);
       }
       const auto counted = hn::Gt(w, zero);
       if (count_hits)
@@ -196,6 +222,42 @@ void RenderSeparableBandT(const SeparableFrame& f, const RaySetup& s, int j0, in
   std::vector<float> hits(band + rows, 0.0f), held(cameras ? band + rows : 0, 0.0f);
   float* const row_hits = hits.data() + band;
   float* const row_held = cameras ? held.data() + band : nullptr;
+  // Per-pixel weights: every row's, each pixel's sum over the views and the views weighing it
+  // (its counts where every view's reads are whole along the row: not summed again then, nor
+  // taken apart again, where a few views' tiny weights would lose their digits).
+  PixelWeights pixel;
+  std::vector<float> row_sums, row_counts;
+  std::vector<char> listed, whole, partial;
+  std::vector<int> row_cameras;
+  if (f.pixel_weights != nullptr) {
+    pixel.views = std::size_t(s.rows) * std::size_t(s.cols);
+    // A few MB a band, kept by each thread from band to band (only the listed views' rows are
+    // written, and read).
+    thread_local std::vector<float> weights;
+    if (weights.size() < rows * pixel.views * stride) weights.resize(rows * pixel.views * stride);
+    listed.assign(rows * pixel.views, 0);
+    whole.assign(rows * pixel.views, 0);
+    partial.assign(rows, 0);
+    row_sums.assign(band, 0.0f);
+    row_counts.assign(band, 0.0f);
+    for (int j = j0; j < j1; ++j) {
+      const std::size_t row = std::size_t(j - j0);
+      float* row_weights = weights.data() + row * pixel.views * stride;
+      f.pixel_weights->RowWeights(j, f.width, stride, row_weights, &row_cameras);
+      for (const int c : row_cameras) {
+        listed[row * pixel.views + std::size_t(c)] = 1;
+        float* w = row_weights + std::size_t(c) * stride;
+        std::fill(w + f.width, w + stride, 0.0f);
+        float* sum = row_sums.data() + row * stride;
+        float* count = row_counts.data() + row * stride;
+        for (int i = 0; i < f.width; ++i) {
+          sum[i] += w[i];
+          count[i] += w[i] > 0.0f ? 1.0f : 0.0f;
+        }
+      }
+    }
+    pixel = {weights.data(), listed.data(), pixel.views, whole.data(), partial.data()};
+  }
   Planes decoded, resampled;
   TileMap k_map;
   int counted_mask = -1;
@@ -203,9 +265,28 @@ void RenderSeparableBandT(const SeparableFrame& f, const RaySetup& s, int j0, in
     // Lens samples: each one's hits are counted once (its terms come together).
     const bool count_hits = cameras || t.mask != counted_mask;
     AddTerm(f, s, t, j0, j1, stride, acc, hits.data(), count_hits, cameras ? held.data() : nullptr,
-            row_hits, row_held, decoded, resampled, k_map);
+            row_hits, row_held, pixel, decoded, resampled, k_map);
     if (count_hits) counted_mask = t.mask;
   }
+  if (f.pixel_weights != nullptr)
+    for (std::size_t row = 0; row < rows; ++row) {
+      float* sum = held.data() + row * stride;
+      float* count = hits.data() + row * stride;
+      if (!partial[row]) {  // every view whole along the row
+        std::copy_n(row_sums.data() + row * stride, stride, sum);
+        std::copy_n(row_counts.data() + row * stride, stride, count);
+        continue;
+      }
+      // The views read whole, added to what the others counted pixel by pixel.
+      for (std::size_t view = 0; view < pixel.views; ++view) {
+        if (!whole[row * pixel.views + view]) continue;
+        const float* w = pixel.weights + (row * pixel.views + view) * stride;
+        for (std::size_t i = 0; i < stride; ++i) {
+          sum[i] += w[i];
+          count[i] += w[i] > 0.0f ? 1.0f : 0.0f;
+        }
+      }
+    }
   const DI di;
   const VF width = hn::Set(d, float(f.width)), zero = hn::Zero(d), one = hn::Set(d, 1.0f);
   for (int j = j0; j < j1; ++j) {
