@@ -396,8 +396,9 @@ RenderResult RenderFast(const LightField& lf, const VirtualCamera& camera,
       if (lens_samples) {
         RenderRowLensSamples(setup, focal_plane, j, buffers.output());
       } else {
-        // The cameras integrator: camera by camera through its few sample rows when they are
-        // few (the camera looks along the array's normal), else by gathers pixel by pixel.
+        // The cameras integrator where the frame is not separable (a turned camera, views in
+        // windows their reads leave): camera by camera through its few sample rows when they
+        // are few, else by gathers pixel by pixel.
         // Either one weight list for every pixel, or per-pixel weights for the listed cameras.
         const auto& uniform = cameras->uniform_weights();
         if (uniform.empty()) FillPixelWeights(*cameras, views, width, j, buffers);

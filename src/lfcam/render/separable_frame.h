@@ -13,6 +13,11 @@
 // and blended into the output rows, with no per-pixel gathers from the whole light field
 // (render/separable_kernels.cpp).
 //
+// With the eye off the array's plane, still looking along its normal, the maps stay separable
+// (the plane of focus is still parallel to the st-plane) and only the cameras integrator's
+// weights vary from pixel to pixel: its terms are then every camera some pixel weighs, each
+// weighing each pixel by that pixel's own footprint (SeparableFrame::pixel_weights).
+//
 // A calibrated light field is separable only nearly: its st-plane (the world board) is turned
 // a little against the array, so k also drifts with the pixel row and l with the column, by a
 // few hundredths of a sample across the frame. Each pixel then still reads its own l (the

@@ -39,9 +39,12 @@ struct PixelWeights {
   char* partial = nullptr;  // [row of the band]: some view was not
 };
 void AddTerm(const SeparableFrame& f, const RaySetup& s, const SeparableTerm& t, int j0, int j1,
-             std::size_t stride, float* const acc[3], float* hits, bool count_hits, float* held,
+             std::size_t stride, float* const sums[3], float* hits, bool count_hits, float* held,
              float* row_hits, float* row_held, const PixelWeights& per_pixel, Planes& decoded,
              Planes& resampled, TileMap& k_map) {
+  // The rows' pointers held here, where no store through them can change them (read through
+  // `sums` they were loaded again at every store).
+  float* const acc[3] = {sums[0], sums[1], sums[2]};
   const DF d;
   const DI di;
   const int lanes = int(hn::Lanes(d));
@@ -147,18 +150,25 @@ void AddTerm(const SeparableFrame& f, const RaySetup& s, const SeparableTerm& t,
         if (count_hits) row_hits[j - j0] += 1.0f;
         if (held != nullptr) row_held[j - j0] += t.weight;
       }
-      for (int i = 0; i < padded; i += lanes) {
-        const VF pixel = hn::Iota(d, float(i));
-        const VF w = hn::IfThenElseZero(hn::Lt(pixel, width),
-                                        own != nullptr ? hn::LoadU(d, own + i) : weight);
-        const VF l = hn::MulAdd(hn::MulAdd(vc, pixel, vb), pixel, va);
-        const VF w1 = hn::Sub(hn::Min(hn::Max(l, zero), l_top), vbase);
-        const VF a0 = hn::Mul(w, hn::Sub(one, w1)), a1 = hn::Mul(w, w1);
-        for (int c = 0; c < 3; ++c) {
-          const VF v = hn::MulAdd(a0, hn::LoadU(d, r0[c] + i), hn::LoadU(d, acc[c] + at + i));
-          hn::StoreU(hn::MulAdd(a1, hn::LoadU(d, r1[c] + i), v), d, acc[c] + at + i);
+      // The loop for each kind of weight on its own: the blend is most of a frame whose views
+      // are magnified, and a choice made in it cost a uniform frame 10-15%.
+      const auto blend = [&](auto weight_at) {
+        for (int i = 0; i < padded; i += lanes) {
+          const VF pixel = hn::Iota(d, float(i));
+          const VF w = hn::IfThenElseZero(hn::Lt(pixel, width), weight_at(i));
+          const VF l = hn::MulAdd(hn::MulAdd(vc, pixel, vb), pixel, va);
+          const VF w1 = hn::Sub(hn::Min(hn::Max(l, zero), l_top), vbase);
+          const VF a0 = hn::Mul(w, hn::Sub(one, w1)), a1 = hn::Mul(w, w1);
+          for (int c = 0; c < 3; ++c) {
+            const VF v = hn::MulAdd(a0, hn::LoadU(d, r0[c] + i), hn::LoadU(d, acc[c] + at + i));
+            hn::StoreU(hn::MulAdd(a1, hn::LoadU(d, r1[c] + i), v), d, acc[c] + at + i);
+          }
         }
-      }
+      };
+      if (own != nullptr)
+        blend([&](int i) { return hn::LoadU(d, own + i); });
+      else
+        blend([&](int) { return weight; });
       continue;
     }
     // Near the domain's edge, or where l crosses a sample row along the row: each pixel's own
