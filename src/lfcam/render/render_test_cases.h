@@ -146,7 +146,8 @@ inline std::vector<Case> Cases() {
   p = base;
   p.eye = centre + Vec3(30, -20, 700);
   p.aperture_mm = 70;
-  add("aperture in front of the array", p, "rows");
+  // Turned a little (a quarter to a third of a degree), within the separable maps' tolerance.
+  add("aperture in front of the array", p, "rows", false, "separable");
   // Off the array's plane but looking along its normal: the cameras integrator's maps stay
   // separable, each pixel with its own weights (wide, so that footprints leave the window).
   VirtualCameraParams q = p;
@@ -159,6 +160,23 @@ inline std::vector<Case> Cases() {
   add("wide aperture behind the array, looking along its normal", q, "rows", false, "separable");
   q.breathing = false;
   add("the same on the turned st-plane", q, "rows", true, "separable");
+  // Turned about the array's vertical axis (an orbit sideways), on the array's plane and in
+  // front of it: l changes along the pixel rows, by more than a sample row across a vector.
+  q = base;
+  q.aperture_mm = 80;
+  q.look_at = centre + Vec3(250, 0, -4000);
+  add("aperture at the centre, turned about the vertical", q, "rows", false, "separable");
+  q.eye = centre + Vec3(30, -20, 700);
+  q.look_at = centre + Vec3(-400, -20, -3000);
+  q.width = 300;
+  add("aperture in front of the array, turned about the vertical", q, "rows", false, "separable");
+  // Wide and turned far: l crosses several sample rows within a vector of pixels.
+  q = base;
+  q.focal_length_mm = 40;
+  q.aperture_mm = 100;
+  q.focus_distance_mm = 1500;
+  q.look_at = centre + Vec3(2300, 0, -4000);
+  add("wide, turned 30 degrees about the vertical", q, "rows", false, "separable");
   p.look_at = centre + Vec3(250, 150, -3000);
   add("aperture in front of the array, turned", p, "rows");
   p.up = Vec3(std::sin(0.7), std::cos(0.7), 0);  // rolled 40 degrees: l runs along the rows

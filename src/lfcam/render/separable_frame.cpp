@@ -116,12 +116,14 @@ bool BuildCamerasIntegrator(const LightField& lf, const VirtualCamera& camera,
     for (const GridCameraWeight& c : uniform)
       terms.push_back({c.row * cols + c.col, 0, 0, float(c.weight)});
   } else {
-    // Every camera some pixel weighs, each pixel by its own footprint. The weights need the
-    // table, and the lens parallel to the array (else the maps are not separable anyway).
-    if (!per_pixel || !cameras.exact() || cameras.levels().empty()) return false;
+    // Every camera some pixel weighs, each pixel by its own footprint (from the table). A turned
+    // camera keeps the maps separable only when turned about the array's vertical axis: the
+    // drift decides.
+    if (!per_pixel || cameras.levels().empty()) return false;
     const std::vector<bool> read = cameras.CamerasRead();
     for (std::size_t view = 0; view < read.size(); ++view)
       if (read[view]) terms.push_back({int(view), 0, 0, 1.0f});
+    if (terms.empty()) return false;  // no pixel reads a camera: nothing to separate
     frame.pixel_weights = &cameras;
   }
   frame.eye = builder.AddOrigin(camera.e_c());

@@ -16,7 +16,10 @@
 // With the eye off the array's plane, still looking along its normal, the maps stay separable
 // (the plane of focus is still parallel to the st-plane) and only the cameras integrator's
 // weights vary from pixel to pixel: its terms are then every camera some pixel weighs, each
-// weighing each pixel by that pixel's own footprint (SeparableFrame::pixel_weights).
+// weighing each pixel by that pixel's own footprint (SeparableFrame::pixel_weights). So does a
+// camera turned about the array's vertical axis (an orbit sideways): the plane of focus then
+// leans along the pixel rows, k still follows the pixel column alone, and l changes along each
+// row as well, which the pixels' own blend of sample rows follows.
 //
 // A calibrated light field is separable only nearly: its st-plane (the world board) is turned
 // a little against the array, so k also drifts with the pixel row and l with the column, by a

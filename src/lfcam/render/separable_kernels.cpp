@@ -195,21 +195,29 @@ void AddTerm(const SeparableFrame& f, const RaySetup& s, const SeparableTerm& t,
       if (held != nullptr) hn::StoreU(hn::Add(hn::LoadU(d, held + at + i), w), d, held + at + i);
       if (hn::AllFalse(d, hn::Gt(w, zero))) continue;
       const VF lc = hn::Min(hn::Max(r.l, zero), l_top);
-      const int low =
-          std::clamp(hn::GetLane(hn::MinOfLanes(di, hn::ConvertTo(di, lc))), l_lo, l_hi);
-      const VF offset = hn::Sub(lc, hn::Set(d, float(low)));
-      // The tent weights of rows low, low + 1, low + 2.
-      const VF c0 = hn::Max(zero, hn::Sub(one, hn::Abs(offset)));
-      const VF c1 = hn::Max(zero, hn::Sub(one, hn::Abs(hn::Sub(offset, one))));
-      const VF c2 = hn::Max(zero, hn::Sub(one, hn::Abs(hn::Sub(offset, hn::Set(d, 2.0f)))));
-      const std::size_t r0 = std::size_t(low - l_lo);
-      const std::size_t r1 = std::size_t(std::min(low + 1, l_hi) - l_lo);
-      const std::size_t r2 = std::size_t(std::min(low + 2, l_hi) - l_lo);
+      // The sample rows the weighed lanes' tents reach: two or three where l changes slowly
+      // along the row, more where it changes fast (a camera turned about the vertical).
+      const auto weighed = hn::Gt(w, zero);
+      const VI rows_of = hn::ConvertTo(di, lc);
+      const int low = std::clamp(
+          hn::GetLane(hn::MinOfLanes(
+              di, hn::IfThenElse(hn::RebindMask(di, weighed), rows_of, hn::Set(di, l_hi)))),
+          l_lo, l_hi);
+      const int high = std::clamp(
+          hn::GetLane(hn::MaxOfLanes(
+              di, hn::IfThenElse(hn::RebindMask(di, weighed), rows_of, hn::Set(di, l_lo)))) +
+              1,
+          low, l_hi);
+      VF v[3] = {zero, zero, zero};
+      for (int sample_row = low; sample_row <= high; ++sample_row) {
+        const VF tent =
+            hn::Max(zero, hn::Sub(one, hn::Abs(hn::Sub(lc, hn::Set(d, float(sample_row))))));
+        const std::size_t row_at = std::size_t(sample_row - l_lo);
+        for (int c = 0; c < 3; ++c)
+          v[c] = hn::MulAdd(tent, hn::LoadU(d, resampled.channel(row_at, c) + i), v[c]);
+      }
       for (int c = 0; c < 3; ++c) {
-        VF v = hn::Mul(c0, hn::LoadU(d, resampled.channel(r0, c) + i));
-        v = hn::MulAdd(c1, hn::LoadU(d, resampled.channel(r1, c) + i), v);
-        v = hn::MulAdd(c2, hn::LoadU(d, resampled.channel(r2, c) + i), v);
-        hn::StoreU(hn::MulAdd(w, v, hn::LoadU(d, acc[c] + at + i)), d, acc[c] + at + i);
+        hn::StoreU(hn::MulAdd(w, v[c], hn::LoadU(d, acc[c] + at + i)), d, acc[c] + at + i);
       }
     }
   }
