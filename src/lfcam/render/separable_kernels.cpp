@@ -172,7 +172,7 @@ void AddTerm(const SeparableFrame& f, const RaySetup& s, const SeparableTerm& t,
       continue;
     }
     // Near the domain's edge, or where l crosses a sample row along the row: each pixel's own
-    // projection, and a tent over three sample rows.
+    // projection, and a tent over the sample rows around its own l.
     if (own != nullptr) per_pixel.partial[j - j0] = 1;
     const RowFunctions row(f.st, j);
     for (int i = 0; i < padded; i += lanes) {
