@@ -229,9 +229,11 @@ void CameraIntegratorFrame::Weights(const Footprint& f, float* weights) const {
 }
 
 void CameraIntegratorFrame::RowWeights(int j, int width, std::size_t stride, float* weights,
-                                       std::vector<int>* cameras_used) const {
+                                       std::vector<int>* cameras_used,
+                                       std::vector<std::pair<int, int>>* spans) const {
   const std::size_t cameras = std::size_t(rows_) * std::size_t(cols_);
   cameras_used->clear();
+  if (spans != nullptr) spans->clear();
   if (levels_.empty()) return;
   // Each pixel's table cell (k = -1: no weights) and its nodes' coefficients, node n's for
   // pixel i at coefficients[n * width + i], so that the loops over the pixels run along
@@ -246,29 +248,38 @@ void CameraIntegratorFrame::RowWeights(int j, int width, std::size_t stride, flo
     for (int n = 0; n < nodes; ++n)
       coefficients[std::size_t(n) * std::size_t(width) + std::size_t(i)] = c[n];
   }
-  // The row's runs of pixels sharing a cell, and the cameras some run's nodes weigh: each of
-  // those is written along the whole row (zeros where its nodes weigh nothing), so a caller
-  // reads no stale weights.
+  // The row's runs of pixels sharing a cell, and for each camera the first and last run whose
+  // nodes weigh it: it is written over those runs and every run between them (zeros where its
+  // nodes weigh nothing), so a caller reads no stale weights there.
   std::vector<std::pair<int, int>> runs;
-  std::vector<char> touched(cameras, 0), used(cameras, 0);
+  constexpr int kNone = -1;
+  std::vector<int> first_run(cameras, kNone), last_run(cameras, kNone);
+  std::vector<char> used(cameras, 0);
   for (int i0 = 0; i0 < width;) {
     int i1 = i0 + 1;
     while (i1 < width && cells[std::size_t(i1)] == cells[std::size_t(i0)]) ++i1;
+    const int run = int(runs.size());
     runs.emplace_back(i0, i1);
     if (cells[std::size_t(i0)].k >= 0) {
       const float* node[8];
       NodesOf(cells[std::size_t(i0)], node);
-      for (std::size_t c = 0; c < cameras; ++c)
-        for (int n = 0; n < nodes; ++n) touched[c] |= node[n][c] != 0.0f;
+      for (std::size_t c = 0; c < cameras; ++c) {
+        bool any = false;
+        for (int n = 0; n < nodes; ++n) any |= node[n][c] != 0.0f;
+        if (!any) continue;
+        if (first_run[c] == kNone) first_run[c] = run;
+        last_run[c] = run;
+      }
     }
     i0 = i1;
   }
-  for (const auto& [i0, i1] : runs) {
+  for (int run = 0; run < int(runs.size()); ++run) {
+    const auto [i0, i1] = runs[std::size_t(run)];
     const TableCell cell = cells[std::size_t(i0)];
     const float* node[8] = {};
     if (cell.k >= 0) NodesOf(cell, node);
     for (std::size_t c = 0; c < cameras; ++c) {
-      if (!touched[c]) continue;
+      if (first_run[c] == kNone || run < first_run[c] || run > last_run[c]) continue;
       float* out = weights + c * stride;
       bool any = false;
       for (int n = 0; cell.k >= 0 && n < nodes; ++n) any |= node[n][c] != 0.0f;
@@ -300,8 +311,13 @@ void CameraIntegratorFrame::RowWeights(int j, int width, std::size_t stride, flo
       }
     }
   }
-  for (std::size_t c = 0; c < cameras; ++c)
-    if (used[c]) cameras_used->push_back(int(c));
+  for (std::size_t c = 0; c < cameras; ++c) {
+    if (!used[c]) continue;
+    cameras_used->push_back(int(c));
+    if (spans != nullptr)
+      spans->emplace_back(runs[std::size_t(first_run[c])].first,
+                          runs[std::size_t(last_run[c])].second);
+  }
 }
 
 std::vector<bool> CameraIntegratorFrame::CamerasRead() const {

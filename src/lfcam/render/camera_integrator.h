@@ -15,6 +15,7 @@
 //
 // The weights are tabulated once per frame on a lattice of footprint centres (8 a pitch) and
 // radii, over the part of the lattice the frame's pixels reach, and interpolated between.
+#include <utility>
 #include <vector>
 
 #include "lfcam/core/lightfield.h"
@@ -44,14 +45,14 @@ class CameraIntegratorFrame {
   // when the footprint misses the window.
   void Weights(const Footprint& footprint, float* weights) const;
   // The weights of every pixel of row j (0 <= i < width), the numbers Weights gives for each
-  // pixel's footprint, camera-major: camera c's for pixel i at weights[c * stride + i]. A camera
-  // the table weighs anywhere along the row is written over the whole row (zeros where it has no
-  // weight), the others are left as they were; those with a weight somewhere in the row are
-  // listed in `cameras`, ascending. Pixels whose footprints share a table cell are weighted
-  // together, camera by camera across them, where Weights adds each node's whole vector to one
-  // pixel.
-  void RowWeights(int j, int width, std::size_t stride, float* weights,
-                  std::vector<int>* cameras) const;
+  // pixel's footprint, camera-major: camera c's for pixel i at weights[c * stride + i]. Only the
+  // cameras with a weight somewhere in the row are listed in `cameras`, ascending, and with
+  // `spans`, the pixels [begin, end) written for each (every pixel it has a weight at, and zeros
+  // between); the rest of the row is left as it was. Pixels whose footprints share a table cell
+  // are weighted together, camera by camera across them, where Weights adds each node's whole
+  // vector to one pixel.
+  void RowWeights(int j, int width, std::size_t stride, float* weights, std::vector<int>* cameras,
+                  std::vector<std::pair<int, int>>* spans = nullptr) const;
 
   bool exact() const { return exact_; }  // the lens is parallel to the array
   // The frame's footprints differ from pixel to pixel, so its weights come from a table (built

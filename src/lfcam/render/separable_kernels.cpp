@@ -34,6 +34,9 @@ using namespace sample_rows;  // NOLINT: the shared helpers of this instruction 
 struct PixelWeights {
   const float* weights = nullptr;  // [row of the band][view][pixel]
   const char* listed = nullptr;    // [row of the band][view]: the view weighs some pixel
+  // [row of the band][view][2]: the pixels [begin, end) that hold its weights, whole vectors
+  // (a footprint that sweeps across the array along the row weighs each camera over a part).
+  const int* spans = nullptr;
   std::size_t views = 0;
   char* whole = nullptr;    // [row of the band][view]: read whole along the row
   char* partial = nullptr;  // [row of the band]: some view was not
@@ -102,10 +105,13 @@ void AddTerm(const SeparableFrame& f, const RaySetup& s, const SeparableTerm& t,
   for (int j = j0; j < j1; ++j) {
     const std::size_t at = std::size_t(j - j0) * stride;
     const float* own = nullptr;  // this term's weight for each pixel of the row
+    int i_begin = 0, i_end = padded;
     if (per_pixel.weights != nullptr) {
       const std::size_t slot = std::size_t(j - j0) * per_pixel.views + std::size_t(t.view);
       if (!per_pixel.listed[slot]) continue;  // no pixel of the row weighs it
       own = per_pixel.weights + slot * stride;
+      i_begin = per_pixel.spans[2 * slot];
+      i_end = per_pixel.spans[2 * slot + 1];
     }
     // l along the row, through its values at both ends and the middle: a projective function
     // whose curvature over a row is tiny, so the quadratic is exact to third order.
@@ -153,7 +159,7 @@ void AddTerm(const SeparableFrame& f, const RaySetup& s, const SeparableTerm& t,
       // The loop for each kind of weight on its own: the blend is most of a frame whose views
       // are magnified, and a choice made in it cost a uniform frame 10-15%.
       const auto blend = [&](auto weight_at) {
-        for (int i = 0; i < padded; i += lanes) {
+        for (int i = i_begin; i < i_end; i += lanes) {
           const VF pixel = hn::Iota(d, float(i));
           const VF w = hn::IfThenElseZero(hn::Lt(pixel, width), weight_at(i));
           const VF l = hn::MulAdd(hn::MulAdd(vc, pixel, vb), pixel, va);
@@ -175,7 +181,7 @@ void AddTerm(const SeparableFrame& f, const RaySetup& s, const SeparableTerm& t,
     // projection, and a tent over the sample rows around its own l.
     if (own != nullptr) per_pixel.partial[j - j0] = 1;
     const RowFunctions row(f.st, j);
-    for (int i = 0; i < padded; i += lanes) {
+    for (int i = i_begin; i < i_end; i += lanes) {
       const VF pixel = hn::Iota(d, float(i));
       const Hit r = Project(read, row, pixel, s.n_s, s.n_t);
       const VF whole =
@@ -246,14 +252,16 @@ void RenderSeparableBandT(const SeparableFrame& f, const RaySetup& s, int j0, in
   PixelWeights pixel;
   std::vector<float> row_sums, row_counts;
   std::vector<char> listed, whole, partial;
-  std::vector<int> row_cameras;
+  std::vector<int> row_cameras, spans;
+  std::vector<std::pair<int, int>> row_spans;
   if (f.pixel_weights != nullptr) {
     pixel.views = std::size_t(s.rows) * std::size_t(s.cols);
-    // A few MB a band, kept by each thread from band to band (only the listed views' rows are
+    // A few MB a band, kept by each thread from band to band (only the listed views' spans are
     // written, and read).
     thread_local std::vector<float> weights;
     if (weights.size() < rows * pixel.views * stride) weights.resize(rows * pixel.views * stride);
     listed.assign(rows * pixel.views, 0);
+    spans.assign(2 * rows * pixel.views, 0);
     whole.assign(rows * pixel.views, 0);
     partial.assign(rows, 0);
     row_sums.assign(band, 0.0f);
@@ -261,20 +269,30 @@ void RenderSeparableBandT(const SeparableFrame& f, const RaySetup& s, int j0, in
     for (int j = j0; j < j1; ++j) {
       const std::size_t row = std::size_t(j - j0);
       float* row_weights = weights.data() + row * pixel.views * stride;
-      f.pixel_weights->RowWeights(j, f.width, stride, row_weights, &row_cameras);
-      for (const int c : row_cameras) {
-        listed[row * pixel.views + std::size_t(c)] = 1;
-        float* w = row_weights + std::size_t(c) * stride;
-        std::fill(w + f.width, w + stride, 0.0f);
+      f.pixel_weights->RowWeights(j, f.width, stride, row_weights, &row_cameras, &row_spans);
+      const int lanes = int(hn::Lanes(d));
+      for (std::size_t n = 0; n < row_cameras.size(); ++n) {
+        const std::size_t slot = row * pixel.views + std::size_t(row_cameras[n]);
+        listed[slot] = 1;
+        // The written pixels, widened to whole vectors with zeros.
+        const auto [begin, end] = row_spans[n];
+        const int vector_begin = begin / lanes * lanes;
+        const int vector_end = std::min(padded, (end + lanes - 1) / lanes * lanes);
+        float* w = row_weights + std::size_t(row_cameras[n]) * stride;
+        std::fill(w + vector_begin, w + begin, 0.0f);
+        std::fill(w + end, w + vector_end, 0.0f);
+        spans[2 * slot] = vector_begin;
+        spans[2 * slot + 1] = vector_end;
         float* sum = row_sums.data() + row * stride;
         float* count = row_counts.data() + row * stride;
-        for (int i = 0; i < f.width; ++i) {
+        for (int i = begin; i < end; ++i) {
           sum[i] += w[i];
           count[i] += w[i] > 0.0f ? 1.0f : 0.0f;
         }
       }
     }
-    pixel = {weights.data(), listed.data(), pixel.views, whole.data(), partial.data()};
+    pixel = {weights.data(), listed.data(), spans.data(),
+             pixel.views,    whole.data(),  partial.data()};
   }
   Planes decoded, resampled;
   TileMap k_map;
@@ -297,9 +315,10 @@ void RenderSeparableBandT(const SeparableFrame& f, const RaySetup& s, int j0, in
       }
       // The views read whole, added to what the others counted pixel by pixel.
       for (std::size_t view = 0; view < pixel.views; ++view) {
-        if (!whole[row * pixel.views + view]) continue;
-        const float* w = pixel.weights + (row * pixel.views + view) * stride;
-        for (std::size_t i = 0; i < stride; ++i) {
+        const std::size_t slot = row * pixel.views + view;
+        if (!whole[slot]) continue;
+        const float* w = pixel.weights + slot * stride;
+        for (int i = spans[2 * slot]; i < spans[2 * slot + 1]; ++i) {
           sum[i] += w[i];
           count[i] += w[i] > 0.0f ? 1.0f : 0.0f;
         }
