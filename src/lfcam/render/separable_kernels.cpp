@@ -33,9 +33,9 @@ using namespace sample_rows;  // NOLINT: the shared helpers of this instruction 
 // elsewhere it counts per pixel, as above, and marks the row in `per_pixel.partial`.
 struct PixelWeights {
   const float* weights = nullptr;  // [row of the band][view][pixel]
-  const char* listed = nullptr;    // [row of the band][view]: the view weighs some pixel
   // [row of the band][view][2]: the pixels [begin, end) that hold its weights, whole vectors
-  // (a footprint that sweeps across the array along the row weighs each camera over a part).
+  // (a footprint that sweeps across the array along the row weighs each camera over a part);
+  // empty where the view weighs no pixel of the row.
   const int* spans = nullptr;
   std::size_t views = 0;
   char* whole = nullptr;    // [row of the band][view]: read whole along the row
@@ -108,10 +108,10 @@ void AddTerm(const SeparableFrame& f, const RaySetup& s, const SeparableTerm& t,
     int i_begin = 0, i_end = padded;
     if (per_pixel.weights != nullptr) {
       const std::size_t slot = std::size_t(j - j0) * per_pixel.views + std::size_t(t.view);
-      if (!per_pixel.listed[slot]) continue;  // no pixel of the row weighs it
-      own = per_pixel.weights + slot * stride;
       i_begin = per_pixel.spans[2 * slot];
       i_end = per_pixel.spans[2 * slot + 1];
+      if (i_begin >= i_end) continue;  // no pixel of the row weighs it
+      own = per_pixel.weights + slot * stride;
     }
     // l along the row, through its values at both ends and the middle: a projective function
     // whose curvature over a row is tiny, so the quadratic is exact to third order.
@@ -251,7 +251,7 @@ void RenderSeparableBandT(const SeparableFrame& f, const RaySetup& s, int j0, in
   // taken apart again, where a few views' tiny weights would lose their digits).
   PixelWeights pixel;
   std::vector<float> row_sums, row_counts;
-  std::vector<char> listed, whole, partial;
+  std::vector<char> whole, partial;
   std::vector<int> row_cameras, spans;
   std::vector<std::pair<int, int>> row_spans;
   if (f.pixel_weights != nullptr) {
@@ -260,7 +260,6 @@ void RenderSeparableBandT(const SeparableFrame& f, const RaySetup& s, int j0, in
     // written, and read).
     thread_local std::vector<float> weights;
     if (weights.size() < rows * pixel.views * stride) weights.resize(rows * pixel.views * stride);
-    listed.assign(rows * pixel.views, 0);
     spans.assign(2 * rows * pixel.views, 0);
     whole.assign(rows * pixel.views, 0);
     partial.assign(rows, 0);
@@ -273,7 +272,6 @@ void RenderSeparableBandT(const SeparableFrame& f, const RaySetup& s, int j0, in
       const int lanes = int(hn::Lanes(d));
       for (std::size_t n = 0; n < row_cameras.size(); ++n) {
         const std::size_t slot = row * pixel.views + std::size_t(row_cameras[n]);
-        listed[slot] = 1;
         // The written pixels, widened to whole vectors with zeros.
         const auto [begin, end] = row_spans[n];
         const int vector_begin = begin / lanes * lanes;
@@ -291,8 +289,7 @@ void RenderSeparableBandT(const SeparableFrame& f, const RaySetup& s, int j0, in
         }
       }
     }
-    pixel = {weights.data(), listed.data(), spans.data(),
-             pixel.views,    whole.data(),  partial.data()};
+    pixel = {weights.data(), spans.data(), pixel.views, whole.data(), partial.data()};
   }
   Planes decoded, resampled;
   TileMap k_map;
