@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "lfcam/render/table_node_blend.h"
+
 namespace lfcam {
 namespace {
 
@@ -151,8 +153,8 @@ Footprint CameraIntegratorFrame::FootprintOf(int i, int j) const {
   return f;
 }
 
-bool CameraIntegratorFrame::CellOf(const Footprint& f, TableCell* cell,
-                                   float coefficients[8]) const {
+bool CameraIntegratorFrame::CellUnnormalised(const Footprint& f, TableCell* cell,
+                                             float coefficients[8]) const {
   if (!f.valid || levels_.empty()) return false;
   // A footprint that does not meet the window has no weights (its lattice neighbours may).
   const double dx = std::max({-0.5 - f.cx, f.cx - (cols_ - 0.5), 0.0});
@@ -182,14 +184,26 @@ bool CameraIntegratorFrame::CellOf(const Footprint& f, TableCell* cell,
     coefficients[4] = t * (1 - fx) * (1 - fy), coefficients[5] = t * fx * (1 - fy);
     coefficients[6] = t * (1 - fx) * fy, coefficients[7] = t * fx * fy;
   }
-  // Renormalised: next to the window's edge a lattice neighbour may miss the window (no
-  // weights) while the footprint itself meets it. The blend's sum is the nodes' sums blended.
+  return true;
+}
+
+void CameraIntegratorFrame::Renormalise(const float totals[8], float coefficients[8]) const {
+  // Next to the window's edge a lattice neighbour may miss the window (no weights) while the
+  // footprint itself meets it. The blend's sum is the nodes' sums blended.
   float total = 0.0f;
-  for (int n = 0; n < NodesPerCell(); ++n) total += coefficients[n] * NodeTotal(*cell, n);
+  for (int n = 0; n < NodesPerCell(); ++n) total += coefficients[n] * totals[n];
   if (total > 0.0f) {
     const float scale = 1.0f / total;
     for (int n = 0; n < NodesPerCell(); ++n) coefficients[n] *= scale;
   }
+}
+
+bool CameraIntegratorFrame::CellOf(const Footprint& f, TableCell* cell,
+                                   float coefficients[8]) const {
+  if (!CellUnnormalised(f, cell, coefficients)) return false;
+  float totals[8];
+  for (int n = 0; n < NodesPerCell(); ++n) totals[n] = NodeTotal(*cell, n);
+  Renormalise(totals, coefficients);
   return true;
 }
 
@@ -236,87 +250,80 @@ void CameraIntegratorFrame::RowWeights(int j, int width, std::size_t stride, flo
   if (spans != nullptr) spans->clear();
   if (levels_.empty()) return;
   // Each pixel's table cell (k = -1: no weights) and its nodes' coefficients, node n's for
-  // pixel i at coefficients[n * width + i], so that the loops over the pixels run along
-  // contiguous memory.
-  const bool two = levels_.size() > 1;
+  // pixel i at coefficients[n * w + i], so that the loops over the pixels run along contiguous
+  // memory (a vector of padding past the last node's row for the blend's loads).
   const int nodes = NodesPerCell();
-  std::vector<TableCell> cells(static_cast<std::size_t>(width));
-  std::vector<float> coefficients(std::size_t(width) * 8);
+  const std::size_t w = std::size_t(width);
+  // (CellOf's, its nodes' sums read once for each run of pixels in one cell.)
+  std::vector<TableCell> cells(w);
+  std::vector<float> coefficients(w * std::size_t(nodes) + kTableNodeRowPadding);
+  TableCell totals_cell;  // k = -1: none yet
+  float totals[8] = {};
   for (int i = 0; i < width; ++i) {
     float c[8];
-    if (!CellOf(FootprintOf(i, j), &cells[std::size_t(i)], c)) continue;
-    for (int n = 0; n < nodes; ++n)
-      coefficients[std::size_t(n) * std::size_t(width) + std::size_t(i)] = c[n];
+    TableCell& cell = cells[std::size_t(i)];
+    if (!CellUnnormalised(FootprintOf(i, j), &cell, c)) continue;
+    if (!(cell == totals_cell)) {
+      for (int n = 0; n < nodes; ++n) totals[n] = NodeTotal(cell, n);
+      totals_cell = cell;
+    }
+    Renormalise(totals, c);
+    for (int n = 0; n < nodes; ++n) coefficients[std::size_t(n) * w + std::size_t(i)] = c[n];
   }
-  // The row's runs of pixels sharing a cell, and for each camera the first and last run whose
-  // nodes weigh it: it is written over those runs and every run between them (zeros where its
-  // nodes weigh nothing), so a caller reads no stale weights there.
-  std::vector<std::pair<int, int>> runs;
+  // The row's runs of pixels sharing a cell.
+  std::vector<int> run_begin;
+  for (int i = 0; i < width; ++i)
+    if (i == 0 || !(cells[std::size_t(i)] == cells[std::size_t(i - 1)])) run_begin.push_back(i);
+  const int runs = int(run_begin.size());
+  run_begin.push_back(width);
+  // Each camera's nodes' weights in each run, and its first and last run whose nodes weigh it:
+  // it is written over those runs and every run between them (zeros where its nodes weigh
+  // nothing), so a caller reads no stale weights there. A camera is listed where a node that
+  // weighs it has a coefficient above 0 at some pixel of the run (the blend's sum of products,
+  // none negative, is then above 0).
   constexpr int kNone = -1;
   std::vector<int> first_run(cameras, kNone), last_run(cameras, kNone);
   std::vector<char> used(cameras, 0);
-  for (int i0 = 0; i0 < width;) {
-    int i1 = i0 + 1;
-    while (i1 < width && cells[std::size_t(i1)] == cells[std::size_t(i0)]) ++i1;
-    const int run = int(runs.size());
-    runs.emplace_back(i0, i1);
-    if (cells[std::size_t(i0)].k >= 0) {
-      const float* node[8];
-      NodesOf(cells[std::size_t(i0)], node);
-      for (std::size_t c = 0; c < cameras; ++c) {
-        bool any = false;
-        for (int n = 0; n < nodes; ++n) any |= node[n][c] != 0.0f;
-        if (!any) continue;
-        if (first_run[c] == kNone) first_run[c] = run;
-        last_run[c] = run;
-      }
-    }
-    i0 = i1;
-  }
-  for (int run = 0; run < int(runs.size()); ++run) {
-    const auto [i0, i1] = runs[std::size_t(run)];
-    const TableCell cell = cells[std::size_t(i0)];
-    const float* node[8] = {};
-    if (cell.k >= 0) NodesOf(cell, node);
+  std::vector<float> values(cameras * std::size_t(runs) * std::size_t(nodes), 0.0f);
+  for (int run = 0; run < runs; ++run) {
+    const TableCell cell = cells[std::size_t(run_begin[std::size_t(run)])];
+    if (cell.k < 0) continue;
+    bool weighs[8] = {};
+    for (int n = 0; n < nodes; ++n)
+      for (int i = run_begin[std::size_t(run)]; i < run_begin[std::size_t(run) + 1]; ++i)
+        weighs[n] |= coefficients[std::size_t(n) * w + std::size_t(i)] != 0.0f;
+    const float* node[8];
+    NodesOf(cell, node);
     for (std::size_t c = 0; c < cameras; ++c) {
-      if (first_run[c] == kNone || run < first_run[c] || run > last_run[c]) continue;
-      float* out = weights + c * stride;
+      float* v = values.data() + (c * std::size_t(runs) + std::size_t(run)) * std::size_t(nodes);
       bool any = false;
-      for (int n = 0; cell.k >= 0 && n < nodes; ++n) any |= node[n][c] != 0.0f;
-      if (!any) {
-        std::fill(out + i0, out + i1, 0.0f);
-        continue;
+      for (int n = 0; n < nodes; ++n) {
+        v[n] = node[n][c];
+        any |= v[n] != 0.0f;
+        used[c] |= v[n] != 0.0f && weighs[n];
       }
-      const float* k = coefficients.data();
-      const std::size_t w = std::size_t(width);
-      if (two) {
-        const float s0 = node[0][c], s1 = node[1][c], s2 = node[2][c], s3 = node[3][c],
-                    s4 = node[4][c], s5 = node[5][c], s6 = node[6][c], s7 = node[7][c];
-        for (int i = i0; i < i1; ++i) {
-          float v = 0.0f;  // the nodes in Weights' order, each pixel on its own
-          v += k[i] * s0, v += k[w + i] * s1, v += k[2 * w + i] * s2, v += k[3 * w + i] * s3;
-          v += k[4 * w + i] * s4, v += k[5 * w + i] * s5, v += k[6 * w + i] * s6;
-          v += k[7 * w + i] * s7;
-          out[i] = v;
-        }
-        for (int i = i0; i < i1; ++i) used[c] |= out[i] != 0.0f;
-      } else {
-        const float s0 = node[0][c], s1 = node[1][c], s2 = node[2][c], s3 = node[3][c];
-        for (int i = i0; i < i1; ++i) {
-          float v = 0.0f;
-          v += k[i] * s0, v += k[w + i] * s1, v += k[2 * w + i] * s2, v += k[3 * w + i] * s3;
-          out[i] = v;
-        }
-        for (int i = i0; i < i1; ++i) used[c] |= out[i] != 0.0f;
-      }
+      if (!any) continue;
+      if (first_run[c] == kNone) first_run[c] = run;
+      last_run[c] = run;
     }
   }
+  TableNodeRow row;
+  row.cameras = int(cameras);
+  row.runs = runs;
+  row.nodes = nodes;
+  row.run_begin = run_begin.data();
+  row.first_run = first_run.data();
+  row.last_run = last_run.data();
+  row.values = values.data();
+  row.coefficients = coefficients.data();
+  row.coefficient_stride = w;
+  BlendTableNodes(row, weights, stride);
   for (std::size_t c = 0; c < cameras; ++c) {
     if (!used[c]) continue;
     cameras_used->push_back(int(c));
     if (spans != nullptr)
-      spans->emplace_back(runs[std::size_t(first_run[c])].first,
-                          runs[std::size_t(last_run[c])].second);
+      spans->emplace_back(run_begin[std::size_t(first_run[c])],
+                          run_begin[std::size_t(last_run[c]) + 1]);
   }
 }
 

@@ -120,6 +120,10 @@ class CameraIntegratorFrame {
   // The coefficients are normalised: the cell's nodes' weights, added with them, sum to 1 (a
   // node off the window adds none).
   bool CellOf(const Footprint& footprint, TableCell* cell, float coefficients[8]) const;
+  // CellOf in two steps: the cell and its coefficients as the lattice gives them, then scaled
+  // by the cell's nodes' sums (`totals`, NodeTotal's in the nodes' order).
+  bool CellUnnormalised(const Footprint& footprint, TableCell* cell, float coefficients[8]) const;
+  void Renormalise(const float totals[8], float coefficients[8]) const;
   int NodesPerCell() const { return levels_.size() > 1 ? 8 : 4; }
   // The weight vectors of the cell's nodes (clamped to the lattice), in the same order.
   void NodesOf(const TableCell& cell, const float* nodes[8]) const;
