@@ -177,6 +177,10 @@ inline std::vector<Case> Cases() {
   q.focus_distance_mm = 1500;
   q.look_at = centre + Vec3(2300, 0, -4000);
   add("wide, turned 30 degrees about the vertical", q, "rows", false, "separable");
+  // Turned about both axes: not separable, and along a pixel row a camera's reads cross up to
+  // eight sample rows (the cameras integrator's row kernel resamples them; beyond, gathers).
+  q.look_at = centre + Vec3(1500, 400, -4000);
+  add("wide, turned about both axes", q, "rows");
   p.look_at = centre + Vec3(250, 150, -3000);
   add("aperture in front of the array, turned", p, "rows");
   p.up = Vec3(std::sin(0.7), std::cos(0.7), 0);  // rolled 40 degrees: l runs along the rows

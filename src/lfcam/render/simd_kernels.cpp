@@ -410,10 +410,21 @@ bool RenderRowCamerasResampledT(const RaySetup& s, const GridCameraWeight* unifo
       hn::StoreU(hn::Add(hn::LoadU(d, reads.data() + i), hn::IfThenElseZero(read, one)), d,
                  reads.data() + i);
       hn::StoreU(hn::Add(hn::LoadU(d, held.data() + i), w), d, held.data() + i);
-      // A tent over the sample rows around each pixel's own l.
+      // A tent over the sample rows around each pixel's own l: those the read lanes' tents
+      // reach (two or three where l changes slowly along the row, more where a camera turned
+      // about the vertical makes it change fast).
       const VF lc = hn::Min(hn::Max(line.l, zero), l_top);
+      const auto read_lanes = hn::RebindMask(di, read);
+      const VI rows_of = hn::ConvertTo(di, lc);
+      const int low = std::clamp(
+          hn::GetLane(hn::MinOfLanes(di, hn::IfThenElse(read_lanes, rows_of, hn::Set(di, l_hi)))),
+          l_lo, l_hi);
+      const int high = std::clamp(
+          hn::GetLane(hn::MaxOfLanes(di, hn::IfThenElse(read_lanes, rows_of, hn::Set(di, l_lo)))) +
+              1,
+          low, l_hi);
       VF sum[3] = {zero, zero, zero};
-      for (int l = l_lo; l <= l_hi; ++l) {
+      for (int l = low; l <= high; ++l) {
         const VF tent = hn::Max(zero, hn::Sub(one, hn::Abs(hn::Sub(lc, hn::Set(d, float(l))))));
         for (int ch = 0; ch < 3; ++ch)
           sum[ch] = hn::MulAdd(tent, hn::LoadU(d, resampled.channel(std::size_t(l - l_lo), ch) + i),
@@ -432,7 +443,6 @@ bool RenderRowCamerasResampledT(const RaySetup& s, const GridCameraWeight* unifo
     out.b[i] *= scale;
     out.count[i] = h > 0 ? std::int32_t(reads[std::size_t(i)]) : 0;
   }
-  (void)di;
   return true;
 }
 

@@ -39,8 +39,10 @@ void RenderRowCameras(const RaySetup& setup, const GridCameraWeight* uniform, in
                       const RowOutput& out);
 
 // The most sample rows one camera's reads may span along a pixel row for
-// RenderRowCamerasResampled (a camera turned against the array spans more).
-inline constexpr int kMaxResampledRows = 4;
+// RenderRowCamerasResampled (a camera turned against the array spans more). Each pixel blends
+// only the rows its vector's tents reach, so the span costs the decode and resampling of its
+// rows: beyond eight, the pixels' own reads cost less (docs/benchmarks.md, 2026-12-06).
+inline constexpr int kMaxResampledRows = 8;
 
 // Pixel row j of the cameras integrator, as RenderRowCameras, camera by camera with the
 // separable frame's machinery (render/sample_rows-inl.h): the few sample rows a
