@@ -410,19 +410,22 @@ bool RenderRowCamerasResampledT(const RaySetup& s, const GridCameraWeight* unifo
       hn::StoreU(hn::Add(hn::LoadU(d, reads.data() + i), hn::IfThenElseZero(read, one)), d,
                  reads.data() + i);
       hn::StoreU(hn::Add(hn::LoadU(d, held.data() + i), w), d, held.data() + i);
-      // A tent over the sample rows around each pixel's own l: those the read lanes' tents
-      // reach (two or three where l changes slowly along the row, more where a camera turned
-      // about the vertical makes it change fast).
+      // A tent over the sample rows around each pixel's own l: where the camera's reads span
+      // more than three along the row (a camera turned about the vertical), those the read
+      // lanes' tents reach.
       const VF lc = hn::Min(hn::Max(line.l, zero), l_top);
-      const auto read_lanes = hn::RebindMask(di, read);
-      const VI rows_of = hn::ConvertTo(di, lc);
-      const int low = std::clamp(
-          hn::GetLane(hn::MinOfLanes(di, hn::IfThenElse(read_lanes, rows_of, hn::Set(di, l_hi)))),
-          l_lo, l_hi);
-      const int high = std::clamp(
-          hn::GetLane(hn::MaxOfLanes(di, hn::IfThenElse(read_lanes, rows_of, hn::Set(di, l_lo)))) +
-              1,
-          low, l_hi);
+      int low = l_lo, high = l_hi;
+      if (l_hi - l_lo > 2) {
+        const auto read_lanes = hn::RebindMask(di, read);
+        const VI rows_of = hn::ConvertTo(di, lc);
+        low = std::clamp(
+            hn::GetLane(hn::MinOfLanes(di, hn::IfThenElse(read_lanes, rows_of, hn::Set(di, l_hi)))),
+            l_lo, l_hi);
+        high = std::clamp(hn::GetLane(hn::MaxOfLanes(
+                              di, hn::IfThenElse(read_lanes, rows_of, hn::Set(di, l_lo)))) +
+                              1,
+                          low, l_hi);
+      }
       VF sum[3] = {zero, zero, zero};
       for (int l = low; l <= high; ++l) {
         const VF tent = hn::Max(zero, hn::Sub(one, hn::Abs(hn::Sub(lc, hn::Set(d, float(l))))));
