@@ -18,7 +18,13 @@ constexpr double kPlaneTolerance = 1e-9;
 struct Drift {
   double dk_dj = 0;      // the most
   double dl_dj = 1e300;  // the least: how fast the sample rows go by
+  double dl_row = 0;     // the most l changes along a pixel row (the first or the last)
 };
+
+// The most l may change along a pixel row for a frame whose k drifts past the tolerance to stay
+// separable: each pixel row then resamples the sample rows it reads, up to eight (as the
+// cameras integrator's row kernel, kMaxResampledRows).
+constexpr double kMaxRowsAlongADriftingRow = kMaxResampledRows - 2;
 
 class Builder {
  public:
@@ -33,6 +39,8 @@ class Builder {
   int AddOrigin(const Vec3& origin) {
     const int w = camera_.width() - 1, h = camera_.height() - 1;
     double den_lo = 1e300, den_hi = -1e300;
+    double l_at[4] = {};
+    int corner = 0;
     for (const auto& [i, j] : {std::pair{0, 0}, {w, 0}, {0, h}, {w, h}}) {
       const Vec3 p = camera_.focus_point(camera_.pixel_direction(i, j));
       const double den = st_.n.dot(p - origin);
@@ -44,7 +52,10 @@ class Builder {
         return -1;
       drift_.dk_dj = std::max(drift_.dk_dj, std::abs(k_down - k));
       drift_.dl_dj = std::min(drift_.dl_dj, std::abs(l_down - l));
+      l_at[corner++] = l;
     }
+    drift_.dl_row =
+        std::max({drift_.dl_row, std::abs(l_at[1] - l_at[0]), std::abs(l_at[3] - l_at[2])});
     // The denominator keeps one sign, well away from zero, over the frame.
     if (!(den_lo > 0 || den_hi < 0) || std::min(std::abs(den_lo), std::abs(den_hi)) < 1e-6)
       return -1;
@@ -58,11 +69,17 @@ class Builder {
     return it->second;
   }
 
-  // The most a resampled row's k strays from a pixel's own; false beyond the tolerance.
+  // The most a resampled row's k strays from a pixel's own; beyond the tolerance, how often
+  // each sample row is resampled again (false where a pixel row crosses too many).
   bool WithinTolerance() {
     const double rows = drift_.dl_dj > 0 ? 1.0 / drift_.dl_dj : 1e300;
     frame_.map_error = drift_.dk_dj * rows;
-    return frame_.map_error <= kSeparableTolerance;
+    if (frame_.map_error <= kSeparableTolerance) return true;
+    if (!(drift_.dl_row <= kMaxRowsAlongADriftingRow)) return false;
+    const double groups = std::floor(kSeparableTolerance / drift_.dk_dj);
+    frame_.resample_every = 1 + 2 * int(std::min(groups, 64.0));
+    frame_.map_error = drift_.dk_dj * 0.5 * (frame_.resample_every - 1);
+    return true;
   }
   SeparableFrame& frame() { return frame_; }
 

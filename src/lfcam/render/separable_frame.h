@@ -27,7 +27,10 @@
 // blend across sample rows is per pixel), and each sample row is resampled along k once, as
 // the pixel row that reads it needs it; the other rows that read it lie within 1 / |dl/dj| of
 // that one, so their k is off by at most the drift over that many rows. Where that exceeds
-// kSeparableTolerance samples, the frame is rendered row by row instead.
+// kSeparableTolerance samples (a camera turned up or down: k then drifts by a few thousandths
+// of a sample a row), each band decodes its sample rows once and resamples each again for every
+// few pixel rows that read it (SeparableFrame::resample_every), as long as a pixel row's reads
+// cross few sample rows; beyond, the frame is rendered row by row.
 #include <optional>
 #include <vector>
 
@@ -72,6 +75,11 @@ struct SeparableFrame {
   int width = 0, height = 0;
   int band_rows = 32;    // pixel rows rendered together (a task)
   double map_error = 0;  // samples: the most a resampled row's k strays from a pixel's own
+  // 0: each sample row is resampled once a band, for the pixel row nearest where l crosses it.
+  // n > 0: k drifts with the pixel row too fast for that, and each sample row is resampled for
+  // each group of n pixel rows that reads it (n = 1 + 2 floor(tolerance / the drift a row)), at
+  // the group's middle row; the band decodes each of its sample rows once.
+  int resample_every = 0;
 };
 
 // The separable form of the frame, or nothing when the frame is not separable (lens samples off

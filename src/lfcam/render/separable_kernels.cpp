@@ -44,7 +44,8 @@ struct PixelWeights {
 void AddTerm(const SeparableFrame& f, const RaySetup& s, const SeparableTerm& t, int j0, int j1,
              std::size_t stride, float* const sums[3], float* hits, bool count_hits, float* held,
              float* row_hits, float* row_held, const PixelWeights& per_pixel, Planes& decoded,
-             Planes& resampled, TileMap& k_map) {
+             Planes& band_decoded, Planes& resampled, TileMap& k_map,
+             std::vector<int>& resampled_for) {
   // The rows' pointers held here, where no store through them can change them (read through
   // `sums` they were loaded again at every store).
   float* const acc[3] = {sums[0], sums[1], sums[2]};
@@ -78,7 +79,59 @@ void AddTerm(const SeparableFrame& f, const RaySetup& s, const SeparableTerm& t,
   // to where l crosses it): the rows that read it lie within 1 / |dl/dj| of there, and k drifts
   // with the row by at most SeparableFrame::map_error over that.
   resampled.Resize(std::size_t(l_hi - l_lo + 1), std::size_t(padded));
-  for (int l = l_lo; l <= l_hi; ++l) {
+  // k drifting with the pixel row (SeparableFrame::resample_every): each sample row decoded once
+  // for the band, over the samples the band's first and last rows' maps reach (with a sample
+  // of margin), and resampled for each group of rows that reads it, when one first does.
+  const int every = f.resample_every;
+  int band_k_lo = 0, band_k_hi = -1, map_group = -1;
+  if (every > 0) {
+    for (const int j : {j0, j1 - 1}) {
+      ComputeMap(read, f.st.n.at(0, j), f.st.n.di, f.st.x.at(0, j), f.st.x.di, f.width, padded,
+                 s.n_s, k_map);
+      band_k_lo = j == j0 ? k_map.lo : std::min(band_k_lo, k_map.lo);
+      band_k_hi = j == j0 ? k_map.hi : std::max(band_k_hi, k_map.hi);
+    }
+    band_k_lo = std::max(0, band_k_lo - 1);
+    band_k_hi = std::min(s.n_s - 1, band_k_hi + 1);
+    const int count = band_k_hi - band_k_lo + 1;
+    band_decoded.Resize(std::size_t(l_hi - l_lo + 1), std::size_t(count + lanes));
+    for (int l = l_lo; l <= l_hi; ++l) {
+      const std::size_t at = std::size_t(l - l_lo);
+      ReadSampleRow(s, t.view, l, band_k_lo, count, l < l_hi, band_decoded.channel(at, 0),
+                    band_decoded.channel(at, 1), band_decoded.channel(at, 2));
+    }
+    resampled_for.assign(std::size_t(l_hi - l_lo + 1), -1);
+  }
+  // Sample row l resampled for pixel row j's group, unless it is already.
+  const auto ensure = [&](int l, int j) {
+    if (every == 0) return;
+    const int group = (j - j0) / every;
+    int& made = resampled_for[std::size_t(l - l_lo)];
+    if (made == group) return;
+    if (map_group != group) {
+      const int first = j0 + group * every, last = std::min(first + every, j1) - 1;
+      const double j_c = 0.5 * (first + last);
+      ComputeMap(read, f.st.n.at(0, j_c), f.st.n.di, f.st.x.at(0, j_c), f.st.x.di, f.width, padded,
+                 s.n_s, k_map);
+      map_group = group;
+    }
+    const std::size_t at = std::size_t(l - l_lo);
+    const float* in[3];
+    if (k_map.lo >= band_k_lo && k_map.hi <= band_k_hi) {
+      for (int c = 0; c < 3; ++c) in[c] = band_decoded.channel(at, c) + (k_map.lo - band_k_lo);
+    } else {  // beyond the band's decoded samples (float rounding): this row's own
+      const int k_count = k_map.hi - k_map.lo + 1;
+      decoded.Resize(1, std::size_t(k_count + lanes));
+      ReadSampleRow(s, t.view, l, k_map.lo, k_count, false, decoded.channel(0, 0),
+                    decoded.channel(0, 1), decoded.channel(0, 2));
+      for (int c = 0; c < 3; ++c) in[c] = decoded.channel(0, c);
+    }
+    float* const out[3] = {resampled.channel(at, 0), resampled.channel(at, 1),
+                           resampled.channel(at, 2)};
+    ResampleRow(k_map, in, out, padded);
+    made = group;
+  };
+  for (int l = l_lo; every == 0 && l <= l_hi; ++l) {
     double j_l = 0.5 * (j0 + j1 - 1);
     if (std::abs(l_last - l_first) > 1e-12)
       j_l = std::clamp(j0 + (l - l_first) / (l_last - l_first) * (j1 - 1 - j0), double(j0),
@@ -140,6 +193,8 @@ void AddTerm(const SeparableFrame& f, const RaySetup& s, const SeparableTerm& t,
         s.taper ? WholeShareAlong(s, t.view, k_a, l_ma, k_b, l_mb) : in(k_a, l_ma) && in(k_b, l_mb);
     const int base = row_base(l_a);
     if (base == row_base(l_b) && all_inside) {
+      ensure(base, j);
+      ensure(std::min(base + 1, l_hi), j);
       // One pair of sample rows for the whole row, each pixel with its own weights.
       const float* r0[3] = {resampled.channel(std::size_t(base - l_lo), 0),
                             resampled.channel(std::size_t(base - l_lo), 1),
@@ -216,6 +271,7 @@ void AddTerm(const SeparableFrame& f, const RaySetup& s, const SeparableTerm& t,
           low, l_hi);
       VF v[3] = {zero, zero, zero};
       for (int sample_row = low; sample_row <= high; ++sample_row) {
+        ensure(sample_row, j);
         const VF tent =
             hn::Max(zero, hn::Sub(one, hn::Abs(hn::Sub(lc, hn::Set(d, float(sample_row))))));
         const std::size_t row_at = std::size_t(sample_row - l_lo);
@@ -291,14 +347,15 @@ void RenderSeparableBandT(const SeparableFrame& f, const RaySetup& s, int j0, in
     }
     pixel = {weights.data(), spans.data(), pixel.views, whole.data(), partial.data()};
   }
-  Planes decoded, resampled;
+  Planes decoded, band_decoded, resampled;
   TileMap k_map;
+  std::vector<int> resampled_for;
   int counted_mask = -1;
   for (const SeparableTerm& t : f.terms) {
     // Lens samples: each one's hits are counted once (its terms come together).
     const bool count_hits = cameras || t.mask != counted_mask;
     AddTerm(f, s, t, j0, j1, stride, acc, hits.data(), count_hits, cameras ? held.data() : nullptr,
-            row_hits, row_held, pixel, decoded, resampled, k_map);
+            row_hits, row_held, pixel, decoded, band_decoded, resampled, k_map, resampled_for);
     if (count_hits) counted_mask = t.mask;
   }
   if (f.pixel_weights != nullptr)
