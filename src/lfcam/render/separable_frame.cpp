@@ -19,12 +19,11 @@ struct Drift {
   double dk_dj = 0;      // the most
   double dl_dj = 1e300;  // the least: how fast the sample rows go by
   double dl_row = 0;     // the most l changes along a pixel row (the first or the last)
+  // The most l at a row's ends strays from l at its middle column (where the band resamples
+  // each sample row for the pixel row that reads it there): the rows that read a sample row at
+  // a row's ends lie that much farther off.
+  double dl_mid = 0;
 };
-
-// The most l may change along a pixel row for a frame whose k drifts past the tolerance to stay
-// separable: each pixel row then resamples the sample rows it reads, up to eight (as the
-// cameras integrator's row kernel, kMaxResampledRows).
-constexpr double kMaxRowsAlongADriftingRow = kMaxResampledRows - 2;
 
 class Builder {
  public:
@@ -56,6 +55,16 @@ class Builder {
     }
     drift_.dl_row =
         std::max({drift_.dl_row, std::abs(l_at[1] - l_at[0]), std::abs(l_at[3] - l_at[2])});
+    for (const int j : {0, h}) {
+      // Between the pixel centres either side of the middle (the band's is at w / 2).
+      for (const int i : {w / 2, (w + 1) / 2}) {
+        double k, l;
+        if (!st_.Coordinates(origin, camera_.focus_point(camera_.pixel_direction(i, j)), &k, &l))
+          return -1;
+        const double* ends = j == 0 ? l_at : l_at + 2;
+        drift_.dl_mid = std::max({drift_.dl_mid, std::abs(ends[0] - l), std::abs(ends[1] - l)});
+      }
+    }
     // The denominator keeps one sign, well away from zero, over the frame.
     if (!(den_lo > 0 || den_hi < 0) || std::min(std::abs(den_lo), std::abs(den_hi)) < 1e-6)
       return -1;
@@ -70,14 +79,18 @@ class Builder {
   }
 
   // The most a resampled row's k strays from a pixel's own; beyond the tolerance, how often
-  // each sample row is resampled again (false where a pixel row crosses too many).
+  // each sample row is resampled again (false where that would cost a pixel row more sample
+  // rows resampled than the cameras integrator's row kernel takes, kMaxResampledRows).
   bool WithinTolerance() {
-    const double rows = drift_.dl_dj > 0 ? 1.0 / drift_.dl_dj : 1e300;
+    // The rows that read a sample row lie within 1 / |dl/dj| of where l crosses it at the
+    // middle column, and farther by how much l changes from there along the row.
+    const double rows = drift_.dl_dj > 0 ? (1.0 + drift_.dl_mid) / drift_.dl_dj : 1e300;
     frame_.map_error = drift_.dk_dj * rows;
     if (frame_.map_error <= kSeparableTolerance) return true;
-    if (!(drift_.dl_row <= kMaxRowsAlongADriftingRow)) return false;
     const double groups = std::floor(kSeparableTolerance / drift_.dk_dj);
     frame_.resample_every = 1 + 2 * int(std::min(groups, 64.0));
+    // A group of pixel rows resamples the sample rows it crosses, about dl_row + 2 a row.
+    if (!((drift_.dl_row + 2) / frame_.resample_every <= kMaxResampledRows)) return false;
     frame_.map_error = drift_.dk_dj * 0.5 * (frame_.resample_every - 1);
     return true;
   }

@@ -270,8 +270,11 @@ void AddTerm(const SeparableFrame& f, const RaySetup& s, const SeparableTerm& t,
               1,
           low, l_hi);
       VF v[3] = {zero, zero, zero};
-      for (int sample_row = low; sample_row <= high; ++sample_row) {
+      // (Made ready in a loop of their own: a call in the blend's loop cost frames whose rows
+      // are resampled once a band 7%.)
+      for (int sample_row = low; every > 0 && sample_row <= high; ++sample_row)
         ensure(sample_row, j);
+      for (int sample_row = low; sample_row <= high; ++sample_row) {
         const VF tent =
             hn::Max(zero, hn::Sub(one, hn::Abs(hn::Sub(lc, hn::Set(d, float(sample_row))))));
         const std::size_t row_at = std::size_t(sample_row - l_lo);
