@@ -25,8 +25,9 @@
 // a little against the array, so k also drifts with the pixel row and l with the column, by a
 // few hundredths of a sample across the frame. Each pixel then still reads its own l (the
 // blend across sample rows is per pixel), and each sample row is resampled along k once, as
-// the pixel row that reads it needs it; the other rows that read it lie within 1 / |dl/dj| of
-// that one, so their k is off by at most the drift over that many rows. Where that exceeds
+// the pixel row that reads it at the middle column needs it; the other rows that read it lie
+// within 1 / |dl/dj| of that one (farther by how much l changes along a row from its middle, for
+// a camera also turned sideways), so their k is off by at most the drift over that many rows. Where that exceeds
 // kSeparableTolerance samples (a camera turned up or down: k then drifts by a few thousandths
 // of a sample a row), each band decodes its sample rows once and resamples each again for every
 // few pixel rows that read it (SeparableFrame::resample_every), as long as a pixel row's reads
