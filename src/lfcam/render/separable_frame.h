@@ -27,11 +27,11 @@
 // blend across sample rows is per pixel), and each sample row is resampled along k once, as
 // the pixel row that reads it at the middle column needs it; the other rows that read it lie
 // within 1 / |dl/dj| of that one (farther by how much l changes along a row from its middle, for
-// a camera also turned sideways), so their k is off by at most the drift over that many rows. Where that exceeds
-// kSeparableTolerance samples (a camera turned up or down: k then drifts by a few thousandths
-// of a sample a row), each band decodes its sample rows once and resamples each again for every
-// few pixel rows that read it (SeparableFrame::resample_every), as long as a pixel row's reads
-// cross few sample rows; beyond, the frame is rendered row by row.
+// a camera also turned sideways), so their k is off by at most the drift over that many rows. Where
+// that exceeds kSeparableTolerance samples (a camera turned up or down: k then drifts by a few
+// thousandths of a sample a row), each band decodes its sample rows once and resamples each again
+// for every few pixel rows that read it (SeparableFrame::resample_every), as long as a pixel row's
+// reads cross few sample rows; beyond, the frame is rendered row by row.
 #include <optional>
 #include <vector>
 
