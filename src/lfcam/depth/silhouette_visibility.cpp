@@ -22,6 +22,14 @@ struct EdgeSample {
   std::array<int, 2> seen{0, 0};  // the views that see the point there
 };
 
+// std::lround's rounding (half away from zero) inline, for coordinates well within int: the
+// library call was 4% of `lfcam depth --all` (docs/benchmarks.md). v less its truncation is exact.
+int RoundHalfAway(double v) {
+  const auto t = static_cast<long long>(v);
+  const double fraction = v - static_cast<double>(t);
+  return static_cast<int>(fraction >= 0.5 ? t + 1 : fraction <= -0.5 ? t - 1 : t);
+}
+
 }  // namespace
 
 int RefineSilhouettesByVisibility(const SweepViews& views, const std::vector<double>& q,
@@ -73,6 +81,25 @@ int RefineSilhouettesByVisibility(const SweepViews& views, const std::vector<dou
           candidates.push_back({x, y, l, b});
       }
     if (candidates.empty()) break;
+    // The samples whose splat can hide a candidate's read: a sample lands, in any view, as far
+    // from its own place as its label puts it, a candidate's read as far as its depths put it,
+    // so within the views' largest change of shift over the map's labels (and a sample for the
+    // rounding, one for the holes' filling below) of a candidate. Later passes have few.
+    double label_lo = 0, label_hi = 0;
+    cv::minMaxLoc(label, &label_lo, &label_hi);
+    double reach_x = 0, reach_y = 0;
+    for (const SweepViews::ReadShift& s : *shifts) {
+      reach_x = std::max(reach_x, std::abs(dq * s.per_q.x) * (label_hi - label_lo));
+      reach_y = std::max(reach_y, std::abs(dq * s.per_q.y) * (label_hi - label_lo));
+    }
+    const int splat_x = int(std::ceil(reach_x)) + 2, splat_y = int(std::ceil(reach_y)) + 2;
+    cv::Mat splatted(h, w, CV_8U, cv::Scalar(0));
+    for (const EdgeSample& c : candidates) splatted.at<unsigned char>(c.y, c.x) = 1;
+    cv::dilate(splatted, splatted,
+               cv::getStructuringElement(cv::MORPH_RECT, {2 * splat_x + 1, 2 * splat_y + 1}));
+    std::vector<char> row_splatted(std::size_t(h), 0);
+    for (int y = 0; y < h; ++y)
+      row_splatted[std::size_t(y)] = cv::countNonZero(splatted.row(y)) > 0;
     // Each view on its own (in parallel): its z-buffer, then the candidates' costs read in it.
     struct Sums {
       std::vector<std::array<CostSum, 2>> sum;
@@ -90,11 +117,14 @@ int RefineSilhouettesByVisibility(const SweepViews& views, const std::vector<dou
       const SweepViews::ReadShift& s = (*shifts)[std::size_t(i)];
       hidden_by.setTo(std::numeric_limits<float>::infinity());
       for (int y = 0; y < h; ++y) {
+        if (!row_splatted[std::size_t(y)]) continue;
         const float* row = label.ptr<float>(y);
+        const unsigned char* needed = splatted.ptr<unsigned char>(y);
         for (int x = 0; x < w; ++x) {
+          if (!needed[x]) continue;
           const double qq = q0 + dq * row[x];
-          const int tx = int(std::lround(x + s.offset.x + qq * s.per_q.x));
-          const int ty = int(std::lround(y + s.offset.y + qq * s.per_q.y));
+          const int tx = RoundHalfAway(x + s.offset.x + qq * s.per_q.x);
+          const int ty = RoundHalfAway(y + s.offset.y + qq * s.per_q.y);
           if (tx < 0 || ty < 0 || tx >= w || ty >= h) continue;
           float& z = hidden_by.at<float>(ty, tx);
           z = std::min(z, row[x]);
@@ -110,7 +140,7 @@ int RefineSilhouettesByVisibility(const SweepViews& views, const std::vector<dou
           const double qq = q0 + dq * hypothesis;
           const double px = c.x + s.offset.x + qq * s.per_q.x;
           const double py = c.y + s.offset.y + qq * s.per_q.y;
-          const int tx = int(std::lround(px)), ty = int(std::lround(py));
+          const int tx = RoundHalfAway(px), ty = RoundHalfAway(py);
           if (tx < 0 || ty < 0 || tx >= w || ty >= h) continue;
           if (hidden_by.at<float>(ty, tx) < hypothesis - tolerance) continue;
           double cost = 0;
