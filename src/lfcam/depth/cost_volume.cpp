@@ -246,7 +246,8 @@ void CountRow(const std::vector<std::pair<std::size_t, Shift>>& shifted,
 __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
 #endif
 void WindowedBest(const PlaneScratch& ps, int y, int w, int h, int ring, int radius,
-                  int sub_arrays, float min_count, float pair_min_count, Scratch& s, float* best) {
+                  int sub_arrays, float min_count, float pair_min_count, bool counts_as_before,
+                  Scratch& s, float* best) {
   const std::size_t sw = std::size_t(w);
   s.window_sum.resize((2 + 2 * std::size_t(sub_arrays)) * sw);
   float* vs = s.window_sum.data();  // sums and counts down the window's rows, per column
@@ -281,18 +282,17 @@ void WindowedBest(const PlaneScratch& ps, int y, int w, int h, int ring, int rad
       const float* rc = ps.ring_count.data() + slot;
       if (dy == -radius) {
         std::copy(rs, rs + sw, vs);
-        std::copy(rc, rc + sw, vc);
+        if (!counts_as_before) std::copy(rc, rc + sw, vc);
         continue;
       }
-      for (std::size_t x = 0; x < sw; ++x) {
-        vs[x] += rs[x];
-        vc[x] += rc[x];
-      }
+      for (std::size_t x = 0; x < sw; ++x) vs[x] += rs[x];
+      if (!counts_as_before)
+        for (std::size_t x = 0; x < sw; ++x) vc[x] += rc[x];
     }
     float* bs = window_sums + std::size_t(g) * sw;
     float* bc = window_counts + std::size_t(g) * sw;
     across(vs, bs);
-    across(vc, bc);
+    if (!counts_as_before) across(vc, bc);
     // min_count > 0, so the division is safe wherever it is taken.
     const float weight = g < kHalves ? 1.0f : kQuarterWeight;
     for (std::size_t x = 0; x < sw; ++x)
@@ -482,6 +482,11 @@ CostVolume SweepViews::Sweep(const std::vector<double>& q, double gradient_share
   const int threads = std::max(1, tbb::this_task_arena::max_concurrency());
   const int group = all_shifts ? std::clamp(n / (2 * threads), 1, kGroupPlanes) : 1;
   const int groups = (n + group - 1) / group;
+  // Every plane's counts are the same where each view counts at a sample at every plane or none
+  // and every view is read shifted: a group's first plane counts for all of them (its rings'
+  // counts and its windowed counts), the others' are not made (docs/benchmarks.md, "The sweep's
+  // counts once a group of planes").
+  const bool counts_shared = all_shifts && options_.same_views_at_every_plane;
   const std::size_t sw = std::size_t(w);
   const int ring = kBandRows + 2 * radius;  // rows kept per plane: a band and its window
   const std::size_t classes = class_sub_arrays_.size();
@@ -557,7 +562,9 @@ CostVolume SweepViews::Sweep(const std::vector<double>& q, double gradient_share
               float* hs = ps.ring_sum.data() + slot;
               float* hc = ps.ring_count.data() + slot;
               std::fill(hs, hs + sw, 0.0f);
-              if (y >= ps.inner_lo && y <= ps.inner_hi) {
+              if (j > 0 && counts_shared) {
+                // (the first plane's counts serve: WindowedBest reads no other's)
+              } else if (y >= ps.inner_lo && y <= ps.inner_hi) {
                 const float* inner = ps.inner_count.data() + std::size_t(g) * sw;
                 std::copy(inner, inner + sw, hc);
               } else {
@@ -582,7 +589,8 @@ CostVolume SweepViews::Sweep(const std::vector<double>& q, double gradient_share
         for (int y = next_out; y <= last; ++y) {
           for (int j = 0; j < planes; ++j)
             WindowedBest(s.planes[std::size_t(j)], y, w, h, ring, radius, sub_arrays, min_count,
-                         pair_min_count, s, s.best.data() + std::size_t(j) * sw);
+                         pair_min_count, j > 0 && counts_shared, s,
+                         s.best.data() + std::size_t(j) * sw);
           std::uint16_t* out = volume.cost.data() + std::size_t(y) * sw * std::size_t(n) + i0;
           for (int x = 0; x < w; ++x, out += n)
             for (int j = 0; j < planes; ++j) {
