@@ -561,7 +561,6 @@ CostVolume SweepViews::Sweep(const std::vector<double>& q, double gradient_share
               const std::size_t slot = (std::size_t(g) * ring + std::size_t(y % ring)) * sw;
               float* hs = ps.ring_sum.data() + slot;
               float* hc = ps.ring_count.data() + slot;
-              std::fill(hs, hs + sw, 0.0f);
               if (j > 0 && counts_shared) {
                 // (the first plane's counts serve: WindowedBest reads no other's)
               } else if (y >= ps.inner_lo && y <= ps.inner_hi) {
@@ -570,10 +569,17 @@ CostVolume SweepViews::Sweep(const std::vector<double>& q, double gradient_share
               } else {
                 CountRow(ps.shifted, view_sub_arrays, g, y, w, s.steps, hc);
               }
+              // The first class's sums written, the others' added: the same floats as adding
+              // every class's to zeros, one pass fewer.
+              bool first = true;
               for (std::size_t k = 0; k < classes; ++k) {
                 if (!(class_sub_arrays_[k] >> g & 1)) continue;
                 const float* cs = band_sum + k * band_size + std::size_t(y - y0) * sw;
-                for (std::size_t x = 0; x < sw; ++x) hs[x] += cs[x];
+                if (first)
+                  std::copy(cs, cs + sw, hs);
+                else
+                  for (std::size_t x = 0; x < sw; ++x) hs[x] += cs[x];
+                first = false;
                 if (ps.class_sum.empty()) continue;
                 const float* ws = ps.class_sum.data() + k * plane + std::size_t(y) * sw;
                 const float* wc = ps.class_count.data() + k * plane + std::size_t(y) * sw;
@@ -582,6 +588,7 @@ CostVolume SweepViews::Sweep(const std::vector<double>& q, double gradient_share
                   hc[x] += wc[x];
                 }
               }
+              if (first) std::fill(hs, hs + sw, 0.0f);  // a sub-array without a view
             }
         }
         // The rows whose window lies within the rows summed so far.
