@@ -125,7 +125,11 @@ Choice Choose(const CostVolume& decide, const CostVolume& match, double truncati
   tbb::parallel_for(0, h, [&](int y) {
     for (int x = 0; x < w; ++x) {
       const std::uint16_t* s = decide.at(x, y);
-      const int i = int(std::min_element(s, s + n) - s);
+      // The first label of the least cost (as std::min_element, in two loops that vectorise).
+      std::uint16_t least = std::numeric_limits<std::uint16_t>::max();
+      for (int j = 0; j < n; ++j) least = std::min(least, s[j]);
+      int i = 0;
+      while (s[i] != least) ++i;
       float offset = 0.0f;
       if (i > 0 && i < n - 1) {
         const float a = s[i - 1], b = s[i], c = s[i + 1], curvature = a + c - 2.0f * b;
@@ -133,13 +137,14 @@ Choice Choose(const CostVolume& decide, const CostVolume& match, double truncati
       }
       out.label.at<float>(y, x) = float(i) + offset;
       const std::uint16_t* m = match.at(x, y);
-      double sum = 0;
+      // The sum in integers (exact, as the double it was), the least cost more than `apart`
+      // labels from i on either side: loops without a branch, that vectorise.
+      std::uint64_t sum = 0;
+      for (int j = 0; j < n; ++j) sum += m[j];
       int second = std::numeric_limits<int>::max();
-      for (int j = 0; j < n; ++j) {
-        sum += m[j];
-        if (std::abs(j - i) > apart) second = std::min<int>(second, m[j]);
-      }
-      const float mean = float(sum / n), best = m[i];
+      for (int j = 0; j < i - apart; ++j) second = std::min<int>(second, m[j]);
+      for (int j = std::max(0, i + apart + 1); j < n; ++j) second = std::min<int>(second, m[j]);
+      const float mean = float(double(sum) / n), best = m[i];
       const float peak = std::clamp((mean - best) / (mean + floor), 0.0f, 1.0f);
       const float unique =
           second == std::numeric_limits<int>::max()
