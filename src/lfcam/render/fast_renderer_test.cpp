@@ -6,6 +6,7 @@
 #include <hwy/targets.h>
 
 #include <cmath>
+#include <functional>
 #include <iostream>
 #include <opencv2/core.hpp>
 #include <string>
@@ -25,6 +26,19 @@ using render_test::TurnedStPlaneLightField;
 
 // A case's options for the scalar reference (one thread), and for the vectorised renderer (every
 // core).
+// `base`'s views and geometry, each sample's linear colour `colour(r, c, k, l)`, stored as `type`.
+LightField WithSamples(const LightField& base, SampleType type,
+                       const std::function<Eigen::Vector3f(int, int, int, int)>& colour) {
+  LightField out(base.dims(), type, base.slab());
+  out.set_measured_poses(base.measured_poses());
+  const LightFieldDims& d = base.dims();
+  for (int r = 0; r < d.rows; ++r)
+    for (int c = 0; c < d.cols; ++c)
+      for (int l = 0; l < d.n_t; ++l)
+        for (int k = 0; k < d.n_s; ++k) out.set_linear_rgb(r, c, k, l, colour(r, c, k, l));
+  return out;
+}
+
 CpuRenderOptions CaseOptions(const render_test::Case& c, bool reference) {
   CpuRenderOptions o;
   o.integrator = c.integrator;
@@ -78,14 +92,9 @@ TEST(FastRenderer, AgreesWithTheScalarReferenceOnEveryInstructionSet) {
 // agree with the scalar reference to within the tolerance's share of a level.
 TEST(FastRenderer, FramesTurnedUpOrDownResampleTheirRowsOftenEnough) {
   const LightField& paper = SmallPaperLightField();
-  LightField stripes(paper.dims(), paper.sample_type(), paper.slab());
-  stripes.set_measured_poses(paper.measured_poses());
-  const LightFieldDims& d = paper.dims();
-  for (int r = 0; r < d.rows; ++r)
-    for (int c = 0; c < d.cols; ++c)
-      for (int l = 0; l < d.n_t; ++l)
-        for (int k = 0; k < d.n_s; ++k)
-          stripes.set_linear_rgb(r, c, k, l, Eigen::Vector3f::Constant(k % 2 == 0 ? 1.0f : 0.0f));
+  const LightField stripes = WithSamples(paper, paper.sample_type(), [](int, int, int k, int) {
+    return Eigen::Vector3f::Constant(k % 2 == 0 ? 1.0f : 0.0f);
+  });
   int drifting = 0;
   for (const render_test::Case& c : Cases()) {
     if (c.integrator != Integrator::kCameras ||
@@ -113,14 +122,9 @@ TEST(FastRenderer, FramesTurnedUpOrDownResampleTheirRowsOftenEnough) {
 // 8-bit words, and leave such frames to the reference.
 TEST(FastRenderer, ReadsHalfFloatLightFieldsWithTheRowKernels) {
   const LightField& bytes = SmallPaperLightField();
-  LightField halves(bytes.dims(), SampleType::kLinearF16, bytes.slab());
-  halves.set_measured_poses(bytes.measured_poses());
-  const LightFieldDims& d = bytes.dims();
-  for (int r = 0; r < d.rows; ++r)
-    for (int c = 0; c < d.cols; ++c)
-      for (int l = 0; l < d.n_t; ++l)
-        for (int k = 0; k < d.n_s; ++k)
-          halves.set_linear_rgb(r, c, k, l, bytes.linear_rgb(r, c, k, l));
+  const LightField halves =
+      WithSamples(bytes, SampleType::kLinearF16,
+                  [&](int r, int c, int k, int l) { return bytes.linear_rgb(r, c, k, l); });
   const std::vector<std::int64_t> targets = testing::InstructionSetsThisMachineRuns();
   int row_frames = 0;
   for (const render_test::Case& c : Cases()) {
