@@ -440,5 +440,34 @@ TEST(DepthOnABenchmarkLikeScene, KeepsMostOfDarkLimbs) {
   EXPECT_LT(s.mse100, 0.6 * raw.mse100);
 }
 
+// A mesh of upright and level wires 2 mm thick, 8 mm apart (1.4 and 5.6 samples), over 360 x
+// 310 mm at 3.45 m, before the wall at 5 m: the benchmark's "boxes" has a crate of such mesh.
+Scene MeshScene() {
+  Scene scene = testing::WallScene("mesh");
+  const double wire = 2, pitch = 10, x0 = 120, x1 = 480, y0 = 120, y1 = 430, z = 150;
+  const Texture metal{Pattern::kNoise, {0.6, 0.1, 0.05}, {0.95, 0.9, 0.3}, 6, 9u};
+  int i = 0;
+  for (double x = x0; x <= x1; x += pitch, ++i)
+    scene.Add(fmt::format("upright {}", i),
+              std::make_shared<RectangleShape>(Vec3(x, 0.5 * (y0 + y1), z), Vec3::UnitX(),
+                                               Vec3::UnitY(), wire / 2, (y1 - y0) / 2),
+              metal);
+  for (double y = y0; y <= y1; y += pitch, ++i)
+    scene.Add(fmt::format("level {}", i),
+              std::make_shared<RectangleShape>(Vec3(0.5 * (x0 + x1), y, z + 0.01), Vec3::UnitX(),
+                                               Vec3::UnitY(), (x1 - x0) / 2, wire / 2),
+              metal);
+  return scene;
+}
+
+// Not handled (docs/depth.md, "A wire mesh in front of a wall"): the map gives the gaps, the wall
+// seen through them, the wires' depth. Measured 27.7% and MSE x 100 33.5; the floors keep it
+// from getting worse and the scene at hand for whatever handles it (a step that opened the gaps
+// by each sample's cheapest views: 23.5%, at twice the error of the `paper` rig).
+TEST(DepthOnABenchmarkLikeScene, AWireMeshIsNoWorseThanDocsDepthSays) {
+  const SimulatedScore s = ScoreSimulatedRig(MeshScene(), 5.0);
+  EXPECT_LE(s.badpix, 30.0);
+  EXPECT_LE(s.mse100, 36.0);
+}
 }  // namespace
 }  // namespace lfcam::benchmark_depth_test
