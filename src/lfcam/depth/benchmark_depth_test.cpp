@@ -294,6 +294,11 @@ Scene Fainter(Scene scene, double contrast, double scale) {
   return scene;
 }
 
+// The occluders' texture: noise from deep red to pale yellow, features of `scale_mm`.
+Texture RedToYellow(double scale_mm, unsigned seed) {
+  return Texture{Pattern::kNoise, {0.6, 0.1, 0.05}, {0.95, 0.9, 0.3}, scale_mm, seed};
+}
+
 Scene SlopesScene() {
   Scene scene = testing::WallScene("slopes");
   auto turned_y = [](double deg) {
@@ -307,7 +312,7 @@ Scene SlopesScene() {
   scene.Add(
       "ramp y50",
       std::make_shared<RectangleShape>(Vec3(170, 390, -300), turned_y(50), Vec3::UnitY(), 110, 80),
-      Texture{Pattern::kNoise, {0.6, 0.1, 0.05}, {0.95, 0.9, 0.3}, 10, 9});
+      RedToYellow(10, 9));
   scene.Add(
       "ramp x45",
       std::make_shared<RectangleShape>(Vec3(430, 390, 200), Vec3::UnitX(), turned_x(45), 100, 90),
@@ -327,7 +332,7 @@ Scene SlatsScene() {
     scene.Add(fmt::format("slat {}", i),
               std::make_shared<RectangleShape>(Vec3(80 + 55 * i, 275, 150), Vec3::UnitX(),
                                                Vec3::UnitY(), 2.0 + i, 200),
-              Texture{Pattern::kNoise, {0.6, 0.1, 0.05}, {0.95, 0.9, 0.3}, 6, 9u + i});
+              RedToYellow(6, 9u + i));
   return scene;
 }
 
@@ -363,7 +368,7 @@ Scene PocketsScene() {
   scene.objects.front().texture = Faint(scene.objects.front().texture, 0.1, 1.0);
   const double gaps[] = {8, 16, 24, 40};
   for (int i = 0; i < 4; ++i) {
-    const Texture texture{Pattern::kNoise, {0.6, 0.1, 0.05}, {0.95, 0.9, 0.3}, 6, 20u + i};
+    const Texture texture = RedToYellow(6, 20u + i);
     const double g = gaps[i], x = 90 + 130 * i, y = 170, t = 14, height = 110;
     const auto bar = [&](const std::string& name, double cx, double cy, double w, double h) {
       scene.Add(fmt::format("u {} {}", i, name),
@@ -445,7 +450,7 @@ TEST(DepthOnABenchmarkLikeScene, KeepsMostOfDarkLimbs) {
 Scene MeshScene() {
   Scene scene = testing::WallScene("mesh");
   const double wire = 2, pitch = 10, x0 = 120, x1 = 480, y0 = 120, y1 = 430, z = 150;
-  const Texture metal{Pattern::kNoise, {0.6, 0.1, 0.05}, {0.95, 0.9, 0.3}, 6, 9u};
+  const Texture metal = RedToYellow(6, 9u);
   int i = 0;
   for (double x = x0; x <= x1; x += pitch, ++i)
     scene.Add(fmt::format("upright {}", i),
@@ -469,5 +474,6 @@ TEST(DepthOnABenchmarkLikeScene, AWireMeshIsNoWorseThanDocsDepthSays) {
   EXPECT_LE(s.badpix, 30.0);
   EXPECT_LE(s.mse100, 36.0);
 }
+
 }  // namespace
 }  // namespace lfcam::benchmark_depth_test
