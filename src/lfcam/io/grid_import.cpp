@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <map>
 #include <set>
@@ -379,8 +380,67 @@ std::optional<HciParameters> ReadHciParameters(const fs::path& dir) {
                             path.string());
 }
 
+// The runs of digits in a file's name and what lies between them, in order.
+std::vector<std::string> DigitRuns(const std::string& name) {
+  std::vector<std::string> runs;
+  for (std::size_t i = 0; i < name.size();) {
+    const bool digit = std::isdigit(static_cast<unsigned char>(name[i])) != 0;
+    std::size_t end = i;
+    while (end < name.size() && (std::isdigit(static_cast<unsigned char>(name[end])) != 0) == digit)
+      ++end;
+    runs.push_back(name.substr(i, end - i));
+    i = end;
+  }
+  return runs;
+}
+
+// The name a missing view would have, from the views beside it: `in_row` shares its row and
+// `in_col` its column. Only for names that are indices alone (a unit grid's, the HCI
+// benchmark's, a numbered sequence's), and only a name that parses back to the hole's place
+// (a unit grid: `in_row`'s row index and `in_col`'s column index; a number: `in_row`'s moved by
+// the columns between them); nullopt otherwise.
+std::optional<std::string> ExpectedViewName(const ImportedGrid& g, const GridView& hole,
+                                            const GridView& in_row, const GridView& in_col) {
+  if (g.joined_digits > 0) return std::nullopt;  // NAMERRCC: its numbers split by the folder
+  const auto row_named = ParseViewName(in_row.file, g.naming);
+  const auto col_named = ParseViewName(in_col.file, g.naming);
+  if (!row_named || !col_named) return std::nullopt;
+  const std::vector<std::string> a = DigitRuns(in_row.file), b = DigitRuns(in_col.file);
+  std::vector<std::string> candidates;
+  if (g.naming == GridNaming::kUnitGrid) {
+    // in_row's name with one run of digits taken from in_col's (its own padding).
+    if (a.size() != b.size()) return std::nullopt;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      if (a[i] == b[i] || !std::isdigit(static_cast<unsigned char>(a[i][0]))) continue;
+      std::vector<std::string> x = a;
+      x[i] = b[i];
+      candidates.push_back(fmt::format("{}", fmt::join(x, "")));
+    }
+    for (const std::string& x : candidates)
+      if (const auto n = ParseViewName(x, g.naming);
+          n && n->rr == row_named->rr && n->cc == col_named->cc)
+        return x;
+    return std::nullopt;
+  }
+  if (g.naming != GridNaming::kHci && g.naming != GridNaming::kSequence) return std::nullopt;
+  // One number, counted along the rows: in_row's, moved by the columns between them, written
+  // as wide as in_row's (zero padded).
+  const long number = long(row_named->rr) + (hole.col - in_row.col);
+  if (number < 0) return std::nullopt;
+  for (std::size_t i = a.size(); i-- > 0;) {
+    if (!std::isdigit(static_cast<unsigned char>(a[i][0]))) continue;
+    std::vector<std::string> x = a;
+    x[i] = fmt::format("{:0{}}", number, a[i].size());
+    const std::string name = fmt::format("{}", fmt::join(x, ""));
+    if (const auto n = ParseViewName(name, g.naming); n && n->rr == number) return name;
+    break;  // the number is the name's last run of digits
+  }
+  return std::nullopt;
+}
+
 // Where missing view `hole` lies among the views there: the nearest file in its row and in its
-// column, "camera (r, c) lies in the row of A and the column of B".
+// column, "camera (r, c) lies in the row of A and the column of B", and the file's name where
+// the names are indices alone ("camera (r, c) would be NAME: ...").
 std::string WhereTheViewBelongs(const ImportedGrid& g, const GridView& hole) {
   const GridView* in_row = nullptr;
   const GridView* in_col = nullptr;
@@ -398,7 +458,11 @@ std::string WhereTheViewBelongs(const ImportedGrid& g, const GridView& hole) {
   if (in_col) beside.push_back(fmt::format("the column of {}", in_col->file));
   if (beside.empty())
     return fmt::format("{}: no view in its row or column", CameraLabel(hole.row, hole.col));
-  return fmt::format("{} lies in {}", CameraLabel(hole.row, hole.col), fmt::join(beside, " and "));
+  const std::optional<std::string> expected =
+      in_row && in_col ? ExpectedViewName(g, hole, *in_row, *in_col) : std::nullopt;
+  return fmt::format("{}{} lies in {}", CameraLabel(hole.row, hole.col),
+                     expected ? fmt::format(" would be {}: it", *expected) : "",
+                     fmt::join(beside, " and "));
 }
 
 ImportedGrid GridFromNames(const fs::path& dir, std::optional<GridNaming> forced,

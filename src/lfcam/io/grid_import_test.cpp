@@ -233,6 +233,46 @@ TEST(GridImport, StanfordNamesNeedTheFocalLengthAndBadFoldersAreNamed) {
   EXPECT_THROW(ScanGridFolder(dir, false), Error);
 }
 
+// A view missing from a folder whose names are indices alone is named as its file would be:
+// a unit grid's (padded or not, tagged or not), the HCI benchmark's, a numbered sequence's;
+// names that carry measured positions (Stanford's) are not guessed.
+TEST(GridImport, AMissingViewIsNamedAsItsFileWouldBeWhereTheNamesAreIndices) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("lfcam_import_hole_" + std::to_string(::getpid()));
+  const cv::Mat grey(8, 8, CV_8UC3, cv::Scalar(90, 90, 90));
+  // `name(r, c)` for every view of a 3 x 3 grid (rows from the top) but `missing`.
+  const auto refused = [&](const auto& name, int missing, const std::string& what,
+                           std::optional<GridShape> shape = {}) {
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    for (int i = 0; i < 9; ++i)
+      if (i != missing) cv::imwrite((dir / name(i / 3, i % 3)).string(), grey);
+    try {
+      ScanGridFolder(dir, false, std::nullopt, shape);
+      ADD_FAILURE() << "accepted: " << what;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+    }
+  };
+  const auto plenoptic = [](int r, int c) {
+    return fmt::format("2067_{:02d}_{:02d}.png", r + 1, c + 1);
+  };
+  refused(plenoptic, 5, "would be 2067_02_03.png: it lies in the row of 2067_02_02.png");
+  refused(plenoptic, 0, "would be 2067_01_01.png");
+  const auto tagged = [](int r, int c) { return fmt::format("v_r{}_c{}.png", r, c); };
+  refused(tagged, 7, "would be v_r2_c1.png");
+  const auto hci = [](int r, int c) { return fmt::format("input_Cam{:03d}.png", r * 3 + c); };
+  refused(hci, 4, "would be input_Cam004.png", GridShape{3, 3});
+  const auto numbered = [](int r, int c) { return fmt::format("frame{:04d}.png", 7 + r * 3 + c); };
+  refused(numbered, 8, "would be frame0015.png", GridShape{3, 3});
+  // Positions measured by a gantry are not made up: the hole is placed by its neighbours alone.
+  const auto stanford = [](int r, int c) {
+    return fmt::format("out_{:02d}_{:02d}_{}.5_{}.25_.png", r, c, -10 * r, 10 * c);
+  };
+  refused(stanford, 4, "camera (1, 1) lies in the row of out_01_00_-10.5_0.25_.png");
+  fs::remove_all(dir);
+}
+
 TEST(GridImport, ADescribedFolderNeedsNoNames) {
   const fs::path dir = WriteBlenderGrid("lfcam_import_described_", 2, 30.0);
   // Rename the views plainly and describe them: view_ROW_COL.png, lfcam's grid.
