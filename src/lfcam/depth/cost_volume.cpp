@@ -43,6 +43,7 @@ void FreeVolumeMemory(void* block) noexcept { std::free(block); }
 namespace {
 
 // The reads the two halves of the sweep share (depth/sweep_reads.h).
+using sweep::IsScaledShift;
 using sweep::IsShift;
 using sweep::kChannels;
 using sweep::kHalves;
@@ -56,17 +57,46 @@ using sweep::ReadWeights;
 constexpr float kQuarterWeight = 1.75f;
 constexpr int kBandRows = 8;     // the rows the sweep takes through every view at a time
 constexpr int kGroupPlanes = 8;  // the most planes swept together
+// The largest error, in samples, of a scaled view's read along a row (below): a few thousandths
+// of a sample, far below the reads' own interpolation error and the planes' spacing.
+constexpr double kScaledReadError = 1.0 / 256;
+
 // A view read shifted by (tx, ty): at (x + tx, y + ty), cubic, its edge repeated; the samples
-// [x_lo, x_hi] x [y_lo, y_hi] read inside it.
+// [x_lo, x_hi] x [y_lo, y_hi] read inside it. A view whose camera lies nearer to or farther from
+// the st-plane than the reference's (a calibrated array's cameras: a millimetre or two off one
+// plane) is scaled as well, read at (ax x + bx, ay y + by): each row at its own fraction, and
+// along the row in runs of columns (`tiles`) read at one fraction each, the fraction at the run's
+// middle, so that no read is more than kScaledReadError from where it belongs.
 struct Shift {
   int x0 = 0, y0 = 0;
   std::array<float, 4> wx{}, wy{};
   int x_lo = 0, x_hi = -1, y_lo = 0, y_hi = -1;
   int c_lo = 0, c_hi = -1;          // the columns the horizontal taps read
   int inner_lo = 0, inner_hi = -1;  // the samples whose four horizontal taps lie inside the row
+  // A scaled view's mapping, the reads' kernel (ReadWeights), and its runs of columns.
+  bool scaled = false;
+  double ax = 1, bx = 0, ay = 1, by = 0, read_sigma = 0;
+  struct Tile {
+    int x_begin = 0, x_end = -1;  // the columns [x_begin, x_end]
+    int x0 = 0;
+    std::array<float, 4> wx{};
+  };
+  std::vector<Tile> tiles;
 };
 
+// The columns whose four taps at offset x0 lie inside a row of w samples.
+int InnerLo(int x0) { return 1 - x0; }
+int InnerHi(int x0, int w) { return w - 3 - x0; }
+
 // `within`: also keep to these samples (x_lo .. y_hi), where given.
+void KeepWithin(Shift& s, const Shift* within) {
+  if (within == nullptr) return;
+  s.x_lo = std::max(s.x_lo, within->x_lo);
+  s.x_hi = std::min(s.x_hi, within->x_hi);
+  s.y_lo = std::max(s.y_lo, within->y_lo);
+  s.y_hi = std::min(s.y_hi, within->y_hi);
+}
+
 Shift MakeShift(double tx, double ty, int w, int h, double read_sigma,
                 const Shift* within = nullptr) {
   Shift s;
@@ -78,16 +108,48 @@ Shift MakeShift(double tx, double ty, int w, int h, double read_sigma,
   s.x_hi = std::min(w - 1, int(std::floor(w - 1 - tx + 1e-6)));
   s.y_lo = std::max(0, int(std::ceil(-ty - 1e-6)));
   s.y_hi = std::min(h - 1, int(std::floor(h - 1 - ty + 1e-6)));
-  if (within != nullptr) {
-    s.x_lo = std::max(s.x_lo, within->x_lo);
-    s.x_hi = std::min(s.x_hi, within->x_hi);
-    s.y_lo = std::max(s.y_lo, within->y_lo);
-    s.y_hi = std::min(s.y_hi, within->y_hi);
-  }
+  KeepWithin(s, within);
   s.c_lo = std::clamp(s.x_lo + s.x0 - 1, 0, w - 1);
   s.c_hi = std::clamp(s.x_hi + s.x0 + 2, 0, w - 1);
-  s.inner_lo = std::max(s.x_lo, 1 - s.x0);
-  s.inner_hi = std::min(s.x_hi, w - 3 - s.x0);
+  s.inner_lo = std::max(s.x_lo, InnerLo(s.x0));
+  s.inner_hi = std::min(s.x_hi, InnerHi(s.x0, w));
+  return s;
+}
+
+// A view read through the scale and shift m (reference coordinates -> the view's: m(0, 0) x +
+// m(0, 2), m(1, 1) y + m(1, 2)); a shift where it is one.
+Shift MakeScaledShift(const cv::Matx33d& m, int w, int h, double read_sigma,
+                      const Shift* within = nullptr) {
+  if (IsShift(m)) return MakeShift(m(0, 2), m(1, 2), w, h, read_sigma, within);
+  Shift s;
+  s.scaled = true;
+  s.ax = m(0, 0), s.bx = m(0, 2), s.ay = m(1, 1), s.by = m(1, 2);
+  s.read_sigma = read_sigma;
+  // The samples that land inside the view (both scales positive: a camera on the st-plane's
+  // side of the scene).
+  s.x_lo = std::max(0, int(std::ceil(-s.bx / s.ax - 1e-6)));
+  s.x_hi = std::min(w - 1, int(std::floor((w - 1 - s.bx) / s.ax + 1e-6)));
+  s.y_lo = std::max(0, int(std::ceil(-s.by / s.ay - 1e-6)));
+  s.y_hi = std::min(h - 1, int(std::floor((h - 1 - s.by) / s.ay + 1e-6)));
+  KeepWithin(s, within);
+  if (s.x_lo > s.x_hi) return s;
+  // Runs of columns: the read's place drifts by |ax - 1| a column from the run's middle's.
+  const double drift = std::abs(s.ax - 1);
+  const int run = drift > 0 ? int(std::clamp(2 * kScaledReadError / drift, 1.0, double(w))) : w;
+  s.c_lo = w - 1;
+  s.c_hi = 0;
+  for (int x = s.x_lo; x <= s.x_hi; x += run) {
+    Shift::Tile t;
+    t.x_begin = x;
+    t.x_end = std::min(s.x_hi, x + run - 1);
+    const double middle = 0.5 * (t.x_begin + t.x_end);
+    const double offset = s.ax * middle + s.bx - middle;  // the run's shift
+    t.x0 = int(std::floor(offset));
+    t.wx = ReadWeights(offset - t.x0, read_sigma);
+    s.c_lo = std::min(s.c_lo, std::clamp(t.x_begin + t.x0 - 1, 0, w - 1));
+    s.c_hi = std::max(s.c_hi, std::clamp(t.x_end + t.x0 + 2, 0, w - 1));
+    s.tiles.push_back(t);
+  }
   return s;
 }
 
@@ -130,16 +192,23 @@ void AccumulateShiftedRow(const PackedPlanes& src, const float* ref, int w, int 
                           std::vector<float>& rows, float* sum_row) {
   if (y < shift.y_lo || y > shift.y_hi || shift.x_lo > shift.x_hi) return;
   const std::size_t plane = std::size_t(w) * h;
-  const auto& wx = shift.wx;
-  const auto& wy = shift.wy;
-  const int x0 = shift.x0, x_lo = shift.x_lo, x_hi = shift.x_hi;
+  const int x_lo = shift.x_lo, x_hi = shift.x_hi;
+  // A scaled view's row: read at its own fraction.
+  int y0 = shift.y0;
+  std::array<float, 4> wy = shift.wy;
+  if (shift.scaled) {
+    const double ty = shift.ay * y + shift.by;
+    const int at = int(std::floor(ty));
+    y0 = at - y;
+    wy = ReadWeights(ty - at, shift.read_sigma);
+  }
   rows.resize(2 * kChannels * std::size_t(w));
   float* vertical = rows.data();
   float* shifted = rows.data() + kChannels * std::size_t(w);
   for (int c = 0; c < kChannels; ++c) {
     const std::int16_t* r[4];
     for (int j = 0; j < 4; ++j)
-      r[j] = src.data() + c * plane + std::size_t(std::clamp(y + shift.y0 - 1 + j, 0, h - 1)) * w;
+      r[j] = src.data() + c * plane + std::size_t(std::clamp(y + y0 - 1 + j, 0, h - 1)) * w;
     // The vertical taps' weights take the packed unit out.
     const float unit = 1.0f / kPacked[std::size_t(c)];
     const float w0 = wy[0] * unit, w1 = wy[1] * unit, w2 = wy[2] * unit, w3 = wy[3] * unit;
@@ -147,17 +216,28 @@ void AccumulateShiftedRow(const PackedPlanes& src, const float* ref, int w, int 
     for (int x = shift.c_lo; x <= shift.c_hi; ++x)
       v[x] = w0 * float(r[0][x]) + w1 * float(r[1][x]) + w2 * float(r[2][x]) + w3 * float(r[3][x]);
     float* out = shifted + std::size_t(c) * w;
-    const auto edge = [&](int x) {
-      float value = 0;
-      for (int i = 0; i < 4; ++i) value += wx[i] * v[std::clamp(x + x0 - 1 + i, 0, w - 1)];
-      out[x] = value;
+    // Columns [from, to] read at offset x0 with weights wx: the taps inside the row as they
+    // come, those over its ends at the end sample.
+    const auto across = [&](int from, int to, int x0, const std::array<float, 4>& wx, int inner_lo,
+                            int inner_hi) {
+      const auto edge = [&](int x) {
+        float value = 0;
+        for (int i = 0; i < 4; ++i) value += wx[i] * v[std::clamp(x + x0 - 1 + i, 0, w - 1)];
+        out[x] = value;
+      };
+      for (int x = from; x <= to && x < inner_lo; ++x) edge(x);
+      const int last = std::min(inner_hi, to);
+      for (int x = std::max(from, inner_lo); x <= last; ++x) {
+        const float* p = v + x + x0 - 1;
+        out[x] = wx[0] * p[0] + wx[1] * p[1] + wx[2] * p[2] + wx[3] * p[3];
+      }
+      for (int x = std::max({from, inner_hi + 1, inner_lo}); x <= to; ++x) edge(x);
     };
-    for (int x = x_lo; x <= x_hi && x < shift.inner_lo; ++x) edge(x);
-    for (int x = std::max(x_lo, shift.inner_lo); x <= shift.inner_hi; ++x) {
-      const float* p = v + x + x0 - 1;
-      out[x] = wx[0] * p[0] + wx[1] * p[1] + wx[2] * p[2] + wx[3] * p[3];
-    }
-    for (int x = std::max({x_lo, shift.inner_hi + 1, shift.inner_lo}); x <= x_hi; ++x) edge(x);
+    if (!shift.scaled)
+      across(x_lo, x_hi, shift.x0, shift.wx, shift.inner_lo, shift.inner_hi);
+    else
+      for (const Shift::Tile& t : shift.tiles)
+        across(t.x_begin, t.x_end, t.x0, t.wx, InnerLo(t.x0), InnerHi(t.x0, w));
   }
   const std::size_t at = std::size_t(y) * w + std::size_t(x_lo);
   const std::size_t sw = std::size_t(w);
@@ -359,9 +439,9 @@ CostVolume SweepViews::Sweep(const std::vector<double>& q, double gradient_share
     for (std::size_t v = 0; v < views_.size(); ++v) {
       const cv::Matx33d a = Homography(views_[v], 1.0 / q.front());
       const cv::Matx33d b = Homography(views_[v], 1.0 / q.back());
-      if (IsShift(a) && IsShift(b)) {
-        const Shift sa = MakeShift(a(0, 2), a(1, 2), w, h, read_sigma_);
-        stable[v] = MakeShift(b(0, 2), b(1, 2), w, h, read_sigma_, &sa);
+      if (IsScaledShift(a) && IsScaledShift(b)) {
+        const Shift sa = MakeScaledShift(a, w, h, read_sigma_);
+        stable[v] = MakeScaledShift(b, w, h, read_sigma_, &sa);
         continue;
       }
       std::vector<float> at_b;
@@ -391,18 +471,20 @@ CostVolume SweepViews::Sweep(const std::vector<double>& q, double gradient_share
     sweep.most = most;
     sweep.sub_array_count = sub_array_count_;
     sweep.quarter_weight = kQuarterWeight;
+    sweep.read_sigma = read_sigma_;
     bool shifts = true;
     for (int i = 0; i < n && shifts; ++i)
       for (std::size_t v = 0; v < views_.size() && shifts; ++v) {
         const cv::Matx33d m = Homography(views_[v], 1.0 / q[std::size_t(i)]);
-        if (!IsShift(m) || (options_.same_views_at_every_plane && !stable_mask[v].empty())) {
+        if (!IsScaledShift(m) || (options_.same_views_at_every_plane && !stable_mask[v].empty())) {
           shifts = false;
           break;
         }
-        const Shift shift = MakeShift(m(0, 2), m(1, 2), w, h, read_sigma_,
-                                      options_.same_views_at_every_plane ? &stable[v] : nullptr);
+        const Shift shift = MakeScaledShift(
+            m, w, h, read_sigma_, options_.same_views_at_every_plane ? &stable[v] : nullptr);
         sweep.reads.push_back({shift.x0, shift.y0, shift.wx, shift.wy, shift.x_lo, shift.x_hi,
-                               shift.y_lo, shift.y_hi});
+                               shift.y_lo, shift.y_hi, shift.scaled, shift.ax, shift.bx, shift.ay,
+                               shift.by});
       }
     const std::string refused = shifts ? engine->Refuses(sweep) : std::string();
     if (shifts && refused.empty()) return engine->Sweep(sweep);
@@ -422,10 +504,10 @@ CostVolume SweepViews::Sweep(const std::vector<double>& q, double gradient_share
     for (std::size_t v = 0; v < views_.size(); ++v) {
       const View& view = views_[v];
       const cv::Matx33d m = Homography(view, depth);
-      if (IsShift(m)) {
+      if (IsScaledShift(m)) {
         ps.shifted.emplace_back(
-            v, MakeShift(m(0, 2), m(1, 2), w, h, read_sigma_,
-                         options_.same_views_at_every_plane ? &stable[v] : nullptr));
+            v, MakeScaledShift(m, w, h, read_sigma_,
+                               options_.same_views_at_every_plane ? &stable[v] : nullptr));
         continue;
       }
       if (ps.class_sum.empty()) {
@@ -475,7 +557,7 @@ CostVolume SweepViews::Sweep(const std::vector<double>& q, double gradient_share
   bool all_shifts = true;
   for (int i = 0; i < n && all_shifts; ++i)
     for (const View& view : views_)
-      if (!IsShift(Homography(view, 1.0 / q[std::size_t(i)]))) {
+      if (!IsScaledShift(Homography(view, 1.0 / q[std::size_t(i)]))) {
         all_shifts = false;
         break;
       }

@@ -133,8 +133,9 @@ struct CostVolume {
 };
 
 // A sweep whose every view is read shifted at every plane (the st-plane parallel to the array's
-// plane, as a rectified, parallel or built light field has it), laid out for a GPU to compute
-// the same volume as SweepViews::Sweep (depth/gl_cost_volume.h).
+// plane, as a rectified, parallel or built light field has it), scaled too where a camera lies
+// off the reference's plane, laid out for a GPU to compute the same volume as SweepViews::Sweep
+// (depth/gl_cost_volume.h).
 struct ShiftedSweep {
   static constexpr int kChannels = 5;    // R, G, B (sRGB, 0 .. 1), the grey gradients along x, y
   static constexpr int kHalves = 8;      // half-arrays: bits 0 .. 7 of a view's `sub_arrays`
@@ -151,12 +152,19 @@ struct ShiftedSweep {
   // How a view is read at a plane: at (x + x0 - 1 + i, y + y0 - 1 + j), i, j = 0 .. 3, with
   // Keys' weights wx[i] wy[j], the view's edge repeated; only at the samples x_lo .. x_hi,
   // y_lo .. y_hi.
+  // A view whose camera lies nearer to or farther from the st-plane than the reference's (a
+  // calibrated array's cameras, a millimetre or two off one plane) is scaled as well: read at
+  // (ax x + bx, ay y + by), each sample at its own fraction with `read_sigma`'s weights
+  // (sweep::ReadWeights), in place of x0, y0, wx and wy.
   struct Read {
     int x0 = 0, y0 = 0;
     std::array<float, 4> wx{}, wy{};
     int x_lo = 0, x_hi = -1, y_lo = 0, y_hi = -1;
+    bool scaled = false;
+    double ax = 1, bx = 0, ay = 1, by = 0;
   };
   std::vector<Read> reads;  // [label * views.size() + view]
+  double read_sigma = 0;    // the reads' kernel: 0 Keys' cubic, else a Gaussian this wide
   float color_cap = 0, gradient_cap = 0, color_weight = 0, gradient_weight = 0;
   int window_radius = 0;
   float min_count = 0;  // a sub-array counts where its windowed count exceeds this
@@ -216,9 +224,16 @@ class SweepViews {
   int view_count() const { return int(views_.size()); }
   // Where view i reads the reference's sample (x, y) at the plane of inverse depth q (1/mm), for
   // views read shifted (the st-plane parallel to the array's plane): (x, y) + offset + q per_q,
-  // in matching samples. Nullopt where a view is warped by a homography.
+  // in matching samples; a view scaled as well (its camera off the reference's plane parallel to
+  // the st-plane) at (x, y) scaled by 1 + scale + q scale_per_q along each axis, then shifted so.
+  // Nullopt where a view is warped by a homography.
   struct ReadShift {
     cv::Point2d offset, per_q;
+    cv::Point2d scale{0, 0}, scale_per_q{0, 0};
+    cv::Point2d At(double x, double y, double q) const {
+      return {x * (1 + scale.x + q * scale_per_q.x) + offset.x + q * per_q.x,
+              y * (1 + scale.y + q * scale_per_q.y) + offset.y + q * per_q.y};
+    }
   };
   std::optional<std::vector<ReadShift>> ReadShifts() const;
   // View i's colour planes (R, G, B: sRGB 0 .. 1, its brightness made the reference's where the

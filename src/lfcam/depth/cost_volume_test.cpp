@@ -8,12 +8,15 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <iostream>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "lfcam/depth/depth_test_scene.h"
+#include "lfcam/depth/sweep_reads.h"
 
 namespace lfcam {
 namespace {
@@ -40,15 +43,26 @@ class DefinitionEngine : public CostVolumeEngine {
       std::fill(count.begin(), count.end(), 0.0);
       for (int v = 0; v < views; ++v) {
         const ShiftedSweep::Read& read = sweep.reads[std::size_t(i) * views + v];
+        scaled_ += read.scaled;
         for (int y = read.y_lo; y <= read.y_hi; ++y)
           for (int x = read.x_lo; x <= read.x_hi; ++x) {
+            // The taps' first sample and weights: the shift's, or a scaled view's own at (x, y).
+            int x0 = x + read.x0 - 1, y0 = y + read.y0 - 1;
+            std::array<float, 4> wx = read.wx, wy = read.wy;
+            if (read.scaled) {
+              const double tx = read.ax * x + read.bx, ty = read.ay * y + read.by;
+              x0 = int(std::floor(tx)) - 1;
+              y0 = int(std::floor(ty)) - 1;
+              wx = sweep::ReadWeights(tx - std::floor(tx), sweep.read_sigma);
+              wy = sweep::ReadWeights(ty - std::floor(ty), sweep.read_sigma);
+            }
             double value[kChannels] = {};
             for (int c = 0; c < kChannels; ++c) {
               for (int j = 0; j < 4; ++j)
                 for (int k = 0; k < 4; ++k) {
-                  const int sy = std::clamp(y + read.y0 - 1 + j, 0, h - 1);
-                  const int sx = std::clamp(x + read.x0 - 1 + k, 0, w - 1);
-                  value[c] += double(read.wy[std::size_t(j)]) * read.wx[std::size_t(k)] *
+                  const int sy = std::clamp(y0 + j, 0, h - 1);
+                  const int sx = std::clamp(x0 + k, 0, w - 1);
+                  value[c] += double(wy[std::size_t(j)]) * wx[std::size_t(k)] *
                               sweep.views[std::size_t(v)][c * plane + std::size_t(sy) * w + sx];
                 }
               value[c] /= sweep.packed_unit[std::size_t(c)];
@@ -114,9 +128,10 @@ class DefinitionEngine : public CostVolumeEngine {
   int paired() const { return paired_; }
   int quarters() const { return quarters_; }  // costs a quarter-array gave
   int sub_array_count() const { return sub_array_count_; }
+  int scaled() const { return scaled_; }  // the reads of views scaled as well as shifted
 
  private:
-  int uncounted_ = 0, paired_ = 0, quarters_ = 0, sub_array_count_ = 0;
+  int uncounted_ = 0, paired_ = 0, quarters_ = 0, sub_array_count_ = 0, scaled_ = 0;
 };
 
 // The window's radius and the views' reach.
@@ -161,6 +176,92 @@ TEST_P(CostVolumeDefinition, TheSweepIsTheCostItsDefinitionGives) {
 INSTANTIATE_TEST_SUITE_P(RadiusAndReach, CostVolumeDefinition,
                          ::testing::Values(std::pair{0, 1}, std::pair{1, 1}, std::pair{2, 1},
                                            std::pair{1, 2}));
+
+// A calibrated array's cameras lie a millimetre or two off one plane, so each plane scales a
+// view as well as shifting it: the CPU reads such views along each row in runs at one fraction
+// (at most 1/256 of a sample from where each read belongs), the definition each sample at its
+// own; the volumes agree to within what that moves a cost.
+TEST(CostVolumeDefinitionOffPlane, ViewsScaledAsWellAsShiftedAreReadAsTheDefinitionGives) {
+  const LightField lf = testing::TwoPlaneLightField(testing::TwoPlaneScene(), 2.0);
+  CostVolumeOptions options;
+  options.reach = 2;
+  options.same_views_at_every_plane = true;
+  options.window_radius = 1;
+  const SweepViews views(lf, 3, 3, options);
+  const std::vector<double> q = testing::SweepPlanes(9);
+  const CostVolume swept = views.Sweep(q, 0.6);
+  DefinitionEngine definition;
+  const CostVolume direct = views.Sweep(q, 0.6, &definition);
+  // Every view but those level with the reference is scaled (24 a plane).
+  EXPECT_EQ(definition.scaled(), 24 * 9);
+  ASSERT_EQ(swept.cost.size(), direct.cost.size());
+  int off = 0, far_off = 0;
+  for (std::size_t i = 0; i < swept.cost.size(); ++i) {
+    const int d = std::abs(int(swept.cost[i]) - int(direct.cost[i]));
+    off += d != 0;
+    far_off += d > 4;
+  }
+  std::cout << "costs off the definition's: " << off << " of " << swept.cost.size()
+            << ", by more than 4 units " << far_off << "\n";
+  EXPECT_EQ(far_off, 0);
+  EXPECT_LT(double(off) / double(swept.cost.size()), 0.05);  // (read in one run: 11%, and 4 far)
+}
+
+// An engine that keeps the reads it is given.
+class RecordingEngine : public CostVolumeEngine {
+ public:
+  CostVolume Sweep(const ShiftedSweep& sweep) override {
+    reads = sweep.reads;
+    return {};
+  }
+  void RanOnCpu(const std::string& why) override { FAIL() << "not a shifted sweep: " << why; }
+  std::vector<ShiftedSweep::Read> reads;
+};
+
+// What the silhouettes' visibility step and the occlusion order read (SweepViews::ReadShifts: a
+// line in 1/D for each view's shift and scale) is where the sweep reads each view, to a
+// hundredth of a sample, its cameras off one plane or not.
+TEST(CostVolumeReadShifts, FollowTheSweepsReadsWithTheCamerasOffOnePlane) {
+  for (const double off_plane_mm : {0.0, 2.0}) {
+    const LightField lf = testing::TwoPlaneLightField(testing::TwoPlaneScene(), off_plane_mm);
+    CostVolumeOptions options;
+    options.reach = 2;
+    const SweepViews views(lf, 3, 3, options);
+    const std::vector<double> q = testing::SweepPlanes(5);
+    RecordingEngine engine;
+    views.Sweep(q, 0.5, &engine);
+    const auto shifts = views.ReadShifts();
+    ASSERT_TRUE(shifts.has_value()) << off_plane_mm;
+    const int count = views.view_count();
+    ASSERT_EQ(engine.reads.size(), q.size() * std::size_t(count));
+    double worst = 0;
+    int scaled = 0;
+    for (std::size_t i = 0; i < q.size(); ++i)
+      for (int v = 0; v < count; ++v) {
+        const ShiftedSweep::Read& read = engine.reads[i * std::size_t(count) + std::size_t(v)];
+        scaled += read.scaled;
+        for (const double x : {0.0, 120.0, 239.0})
+          for (const double y : {0.0, 219.0}) {
+            const cv::Point2d at = (*shifts)[std::size_t(v)].At(x, y, q[i]);
+            // The sweep's read: the shift's whole-sample offset and its fraction (the weights
+            // are Keys' here: where their centre of mass lies), or a scaled view's own mapping.
+            const double sx = read.scaled
+                                  ? read.ax * x + read.bx
+                                  : x + read.x0 + (read.wx[2] + 2 * read.wx[3] - read.wx[0]);
+            const double sy = read.scaled
+                                  ? read.ay * y + read.by
+                                  : y + read.y0 + (read.wy[2] + 2 * read.wy[3] - read.wy[0]);
+            worst = std::max({worst, std::abs(at.x - sx), std::abs(at.y - sy)});
+          }
+      }
+    std::cout << "cameras " << off_plane_mm << " mm off one plane: the reads " << worst
+              << " samples apart at most\n";
+    EXPECT_EQ(scaled > 0, off_plane_mm > 0);
+    // Shifts are lines in 1/D exactly; a scaled view's scale and shift are only to first order
+    // in its camera's offset (the reads 60 samples apart at reach 2: a hundredth of a sample).
+    EXPECT_LT(worst, off_plane_mm > 0 ? 0.02 : 1e-6);
+  }
+}
 
 // An engine that takes no sweep (as a GPU refuses one beyond its texture limits).
 class RefusingEngine : public CostVolumeEngine {

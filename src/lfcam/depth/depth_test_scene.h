@@ -39,12 +39,23 @@ inline Scene TwoPlaneScene(double turn_deg = 0.0) {
   return scene;
 }
 
-inline LightField TwoPlaneLightField(const Scene& scene) {
+// `off_plane_mm` > 0: each camera moved along the array's normal by its own amount, at most that
+// (a calibrated array's cameras lie a millimetre or two off one plane; recorded as measured).
+inline LightField TwoPlaneLightField(const Scene& scene, double off_plane_mm = 0.0) {
   SimulateLightFieldOptions o;
   o.rows = o.cols = 7;
   o.n_s = 240;
   o.n_t = 220;
   o.supersampling = 1;
+  if (off_plane_mm > 0) {
+    Slab slab = scene.IdealSlab(o.st_domain);
+    slab.uv = ResizeArray(slab.uv, o.rows, o.cols);
+    for (int r = 0; r < o.rows; ++r)
+      for (int c = 0; c < o.cols; ++c)
+        o.camera_centers.push_back(slab.uv.camera_center(r, c) +
+                                   slab.uv.n_ca *
+                                       (off_plane_mm * std::sin(1.7 * (r * o.cols + c) + 0.3)));
+  }
   return SimulateLightField(scene, o);
 }
 

@@ -321,6 +321,11 @@ std::string GlCostVolume::Refuses(const ShiftedSweep& sweep) const {
         "the GPU ({}) takes textures of at most {} texels a side and {} layers; this sweep "
         "needs {}x{} samples, {} views and {} planes ({} rows as layers)",
         device_.renderer, max_texture_size_, max_layers_, w, h, views, n, h);
+  for (const ShiftedSweep::Read& read : sweep.reads)
+    if (read.scaled)
+      return "its views' cameras lie off one plane parallel to the st-plane (a calibrated "
+             "array's: each plane scales a view as well as shifting it), which the GPU's sweep "
+             "does not read";
   return {};
 }
 

@@ -160,5 +160,27 @@ TEST(GlCostVolume, LeavesTurnedViewsToTheCpuAndSaysWhy) {
   EXPECT_EQ(fallback.cost, cpu.cost);
 }
 
+// A calibrated array's cameras a millimetre or two off one plane: each plane scales a view as
+// well as shifting it, which the GPU's sweep does not read; the CPU's does, and says so.
+TEST(GlCostVolume, LeavesViewsOffOnePlaneToTheCpuAndSaysWhy) {
+  LFCAM_ENGINE_OR_SKIP(engine);
+  const LightField lf = testing::TwoPlaneLightField(testing::TwoPlaneScene(), 2.0);
+  CostVolumeOptions options;
+  options.reach = 1;
+  const SweepViews views(lf, 3, 3, options);
+  const std::vector<double> q = testing::SweepPlanes(12);
+  const GlCostVolume::Tally before = engine->tally();
+  const CostVolume cpu = views.Sweep(q);
+  const CostVolume fallback = views.Sweep(q, 0.5, engine);
+  const GlCostVolume::Tally after = engine->tally();
+  EXPECT_EQ(after.gpu_sweeps, before.gpu_sweeps);
+  EXPECT_EQ(after.cpu_sweeps, before.cpu_sweeps + 1);
+  ASSERT_FALSE(after.cpu_reasons.empty());
+  EXPECT_NE(after.cpu_reasons.back().find("off one plane parallel to the st-plane"),
+            std::string::npos)
+      << after.cpu_reasons.back();
+  EXPECT_EQ(fallback.cost, cpu.cost);
+}
+
 }  // namespace
 }  // namespace lfcam

@@ -172,7 +172,8 @@ OcclusionOrder MeasureOcclusionOrder(const LightField& full) {
       if (p.x < 0 || p.y < 0 || p.x >= w || p.y >= h) return false;
       const float q = inverse_depth.at<float>(p);
       if (!std::isfinite(q)) return false;
-      const double vx = p.x + s.offset.x + q * s.per_q.x, vy = p.y + s.offset.y + q * s.per_q.y;
+      const cv::Point2d at = s.At(p.x, p.y, q);
+      const double vx = at.x, vy = at.y;
       double sum = 0;
       for (int c = 0; c < 3; ++c) {
         float v = 0;
@@ -183,7 +184,10 @@ OcclusionOrder MeasureOcclusionOrder(const LightField& full) {
       return true;
     };
     for (Edge& e : edges) {
-      const cv::Point2d r = s.per_q * double(e.qa - e.qb);
+      // How far apart the two surfaces' reads lie in this view (a scaled view's scale too).
+      const double qd = double(e.qa - e.qb);
+      const cv::Point2d r(s.per_q.x * qd + e.a.x * s.scale_per_q.x * qd,
+                          s.per_q.y * qd + e.a.y * s.scale_per_q.y * qd);
       const double apart = r.x * e.dir.x + r.y * e.dir.y;  // > 0: a's surface moves toward b's
       if (std::abs(apart) < kFewestSamplesApart) continue;
       const bool closing = apart > 0;

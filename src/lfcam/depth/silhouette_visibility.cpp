@@ -123,8 +123,8 @@ int RefineSilhouettesByVisibility(const SweepViews& views, const std::vector<dou
         for (int x = 0; x < w; ++x) {
           if (!needed[x]) continue;
           const double qq = q0 + dq * row[x];
-          const int tx = RoundHalfAway(x + s.offset.x + qq * s.per_q.x);
-          const int ty = RoundHalfAway(y + s.offset.y + qq * s.per_q.y);
+          const cv::Point2d at = s.At(x, y, qq);
+          const int tx = RoundHalfAway(at.x), ty = RoundHalfAway(at.y);
           if (tx < 0 || ty < 0 || tx >= w || ty >= h) continue;
           float& z = hidden_by.at<float>(ty, tx);
           z = std::min(z, row[x]);
@@ -138,8 +138,8 @@ int RefineSilhouettesByVisibility(const SweepViews& views, const std::vector<dou
         for (int side = 0; side < 2; ++side) {
           const float hypothesis = side == 0 ? c.near : c.far;
           const double qq = q0 + dq * hypothesis;
-          const double px = c.x + s.offset.x + qq * s.per_q.x;
-          const double py = c.y + s.offset.y + qq * s.per_q.y;
+          const cv::Point2d at = s.At(c.x, c.y, qq);
+          const double px = at.x, py = at.y;
           const int tx = RoundHalfAway(px), ty = RoundHalfAway(py);
           if (tx < 0 || ty < 0 || tx >= w || ty >= h) continue;
           if (hidden_by.at<float>(ty, tx) < hypothesis - tolerance) continue;

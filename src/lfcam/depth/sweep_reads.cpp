@@ -29,4 +29,9 @@ bool IsShift(const cv::Matx33d& m) {
          std::abs(m(2, 2) - 1) < 1e-12;
 }
 
+bool IsScaledShift(const cv::Matx33d& m) {
+  return m(0, 1) == 0 && m(1, 0) == 0 && m(2, 0) == 0 && m(2, 1) == 0 && m(2, 2) == 1 &&
+         m(0, 0) > 0 && m(1, 1) > 0;
+}
+
 }  // namespace lfcam::sweep

@@ -28,5 +28,9 @@ std::array<float, 4> ReadWeights(double f, double read_sigma);
 
 // Whether the homography m is a shift (to within rounding).
 bool IsShift(const cv::Matx33d& m);
+// Whether it is a scale and a shift along each axis, both scales positive (SweepViews::Homography
+// makes such a view's exactly so: a camera nearer to or farther from the st-plane than the
+// reference's); a shift is one.
+bool IsScaledShift(const cv::Matx33d& m);
 
 }  // namespace lfcam::sweep

@@ -24,6 +24,7 @@ namespace lfcam {
 namespace {
 
 // The reads the two halves of the sweep share (depth/sweep_reads.h).
+using sweep::IsScaledShift;
 using sweep::IsShift;
 using sweep::kChannels;
 using sweep::kHalves;
@@ -31,6 +32,13 @@ using sweep::kPacked;
 using sweep::kSubArrays;
 using sweep::ReadWeights;
 
+// How far from a scale and a shift along each axis a view's homography may be, in samples, to be
+// read as one (SweepViews::Homography): a calibrated array's st-plane lies a thousandth of a
+// radian or so off the array's plane, and the planes of equal depth (along the array's normal)
+// then map a view to the reference a hundredth of a sample off a scale and a shift at the frame's
+// corners (the demo's capture: 0.0095 at most), a tenth of what the calibration itself leaves (its
+// reprojection error: 0.07 of a camera's pixel there, 0.1-0.3 of an st sample).
+constexpr double kScaledShiftError = 1.0 / 32;
 // Views noisier than kNoisyViewLevels (NoiseLevel, 8-bit levels; cost_volume.h) are read through
 // a Gaussian of kNoisyReadSigma samples (ReadWeights). Clean renders measure about 0.4, the real
 // photographs here (a Lytro camera's views, JPEG photographs) 0.5-0.8 (docs/depth.md, "Noisy
@@ -206,7 +214,8 @@ SweepViews::SweepViews(const LightField& lf, int row, int col, const CostVolumeO
   // st-plane turned from the array's plane) are read by OpenCV's cubic, which the reference must
   // then match unfiltered.
   for (const View& view : views_)
-    if (read_sigma_ > 0 && !IsShift(Homography(view, 2.0 * geometry_.st_depth))) read_sigma_ = 0;
+    if (read_sigma_ > 0 && !IsScaledShift(Homography(view, 2.0 * geometry_.st_depth)))
+      read_sigma_ = 0;
   if (read_sigma_ > 0) {
     // The reference as a read at a whole sample sees it: the same kernel's three taps.
     const std::array<float, 4> k = ReadWeights(0.0, read_sigma_);
@@ -238,31 +247,72 @@ cv::Matx33d SweepViews::Homography(const View& view, double depth) const {
              float(ToScaled(view.sampling.l_of(hit->t), scale_y))};
   }
   cv::Matx33d m = cv::getPerspectiveTransform(from, to);
+  // Where reference sample (xr, yr) lands in the view, in double precision.
+  const auto land = [&](double xr, double yr) {
+    const Vec3 x = reference_.sampling.Point(ToFull(xr, scale_x), ToFull(yr, scale_y));
+    const double lambda = (depth - DepthOf(slab, c)) / (DepthOf(slab, x) - DepthOf(slab, c));
+    const Vec3 p = c + lambda * (x - c);
+    const auto hit = slab.intersect({view.center, p - view.center});
+    if (!hit) throw Error("plane sweep: a view's ray runs parallel to the st-plane");
+    return cv::Point2d(ToScaled(view.sampling.k_of(hit->s), scale_x),
+                       ToScaled(view.sampling.l_of(hit->t), scale_y));
+  };
   // A shift computed through floats: make it exactly one when it is one to within rounding.
   if (std::abs(m(0, 0) - 1) < 1e-6 && std::abs(m(1, 1) - 1) < 1e-6 && std::abs(m(0, 1)) < 1e-6 &&
       std::abs(m(1, 0)) < 1e-6 && std::abs(m(2, 0)) < 1e-9 && std::abs(m(2, 1)) < 1e-9) {
     // The shift itself in double precision, from the centre's mapping.
-    const Vec3 x = reference_.sampling.Point(ToFull(w / 2, scale_x), ToFull(h / 2, scale_y));
-    const double lambda = (depth - DepthOf(slab, c)) / (DepthOf(slab, x) - DepthOf(slab, c));
-    const Vec3 p = c + lambda * (x - c);
-    const auto hit = slab.intersect({view.center, p - view.center});
+    const cv::Point2d middle = land(w / 2, h / 2);
     m = cv::Matx33d::eye();
-    m(0, 2) = ToScaled(view.sampling.k_of(hit->s), scale_x) - w / 2;
-    m(1, 2) = ToScaled(view.sampling.l_of(hit->t), scale_y) - h / 2;
+    m(0, 2) = middle.x - w / 2;
+    m(1, 2) = middle.y - h / 2;
+    return m;
+  }
+  // A view whose camera lies nearer to or farther from the st-plane than the reference's (a
+  // calibrated array's, a millimetre or two off): a scale and a shift along each axis, made
+  // exactly one where it is one to within kScaledShiftError over the frame (the st-plane tilted
+  // from the array's plane by a calibration's thousandth of a radian leaves a few millionths of a
+  // sample), read by the sweep's own kernel rather than warped whole.
+  const cv::Point2d left = land(0, h / 2), right = land(w, h / 2);
+  const cv::Point2d top = land(w / 2, 0), bottom = land(w / 2, h);
+  const double ax = (right.x - left.x) / w, ay = (bottom.y - top.y) / h;
+  double error = 0;
+  for (int j = 0; j <= 2; ++j)
+    for (int i = 0; i <= 2; ++i) {
+      const double xr = 0.5 * i * w, yr = 0.5 * j * h;
+      const cv::Point2d at = land(xr, yr);
+      error = std::max(
+          {error, std::abs(at.x - (ax * xr + left.x)), std::abs(at.y - (ay * yr + top.y))});
+    }
+  if (ax > 0 && ay > 0 && error <= kScaledShiftError) {
+    m = cv::Matx33d::eye();
+    m(0, 0) = ax;
+    m(0, 2) = left.x;
+    m(1, 1) = ay;
+    m(1, 2) = top.y;
   }
   return m;
 }
 
 std::optional<std::vector<SweepViews::ReadShift>> SweepViews::ReadShifts() const {
-  // Two planes' shifts give the line every plane's lies on (a shift is linear in 1/D).
-  const double d1 = 0.5 * geometry_.st_depth, d2 = 2.0 * geometry_.st_depth;
+  // Two planes' shifts give the line every plane's lies on (a shift is linear in 1/D): planes
+  // half and twice the st-plane's distance away, or, for a view scaled as well (whose homography
+  // bends the more, the farther the plane from the st-plane), a fifth nearer and farther.
   std::vector<ReadShift> shifts;
   for (const View& v : views_) {
-    const cv::Matx33d m1 = Homography(v, d1), m2 = Homography(v, d2);
-    if (!IsShift(m1) || !IsShift(m2)) return std::nullopt;
+    double d1 = 0.5 * geometry_.st_depth, d2 = 2.0 * geometry_.st_depth;
+    cv::Matx33d m1 = Homography(v, d1), m2 = Homography(v, d2);
+    if (!IsScaledShift(m1) || !IsScaledShift(m2)) {
+      d1 = 0.8 * geometry_.st_depth, d2 = 1.25 * geometry_.st_depth;
+      m1 = Homography(v, d1), m2 = Homography(v, d2);
+    }
+    if (!IsScaledShift(m1) || !IsScaledShift(m2)) return std::nullopt;
     const cv::Point2d t1(m1(0, 2), m1(1, 2)), t2(m2(0, 2), m2(1, 2));
     const cv::Point2d per_q = (t1 - t2) * (1.0 / (1.0 / d1 - 1.0 / d2));
-    shifts.push_back({t1 - per_q * (1.0 / d1), per_q});
+    // A scaled view's scale, linear in 1/D too (to a few parts in ten million over the planes
+    // swept, for cameras millimetres off the reference's plane).
+    const cv::Point2d s1(m1(0, 0) - 1, m1(1, 1) - 1), s2(m2(0, 0) - 1, m2(1, 1) - 1);
+    const cv::Point2d scale_per_q = (s1 - s2) * (1.0 / (1.0 / d1 - 1.0 / d2));
+    shifts.push_back({t1 - per_q * (1.0 / d1), per_q, s1 - scale_per_q * (1.0 / d1), scale_per_q});
   }
   return shifts;
 }
