@@ -21,11 +21,12 @@ constexpr int kGroupX = 16, kGroupY = 8;  // the shaders' local size
 
 // ShiftedSweep::Read as the shader reads it (std430).
 struct ShaderRead {
-  std::int32_t x0, y0, sub_arrays, unused;
+  std::int32_t x0, y0, sub_arrays, scaled;
   float wx[4], wy[4];
   std::int32_t x_lo, x_hi, y_lo, y_hi;
+  float scale[4];  // ax, bx, ay, by
 };
-static_assert(sizeof(ShaderRead) == 64, "std430 layout of Read");
+static_assert(sizeof(ShaderRead) == 80, "std430 layout of Read");
 
 GLuint NewTexture(GLenum target) {
   GLuint texture = 0;
@@ -174,10 +175,17 @@ CostVolume GlCostVolume::SweepOnGlThread(const ShiftedSweep& sweep) {
     for (std::size_t i = 0; i < reads.size(); ++i) {
       const ShiftedSweep::Read& r = sweep.reads[i];
       ShaderRead& s = reads[i];
-      s = {r.x0,   r.y0,   std::int32_t(sweep.sub_arrays[i % std::size_t(views)]),
-           0,      {},     {},
-           r.x_lo, r.x_hi, r.y_lo,
-           r.y_hi};
+      s = {r.x0,
+           r.y0,
+           std::int32_t(sweep.sub_arrays[i % std::size_t(views)]),
+           r.scaled,
+           {},
+           {},
+           r.x_lo,
+           r.x_hi,
+           r.y_lo,
+           r.y_hi,
+           {float(r.ax), float(r.bx), float(r.ay), float(r.by)}};
       std::copy(r.wx.begin(), r.wx.end(), s.wx);
       std::copy(r.wy.begin(), r.wy.end(), s.wy);
     }
@@ -202,6 +210,7 @@ CostVolume GlCostVolume::SweepOnGlThread(const ShiftedSweep& sweep) {
   glUniform4f(glGetUniformLocation(costs_program_, "terms"), sweep.color_cap, sweep.gradient_cap,
               sweep.color_weight, sweep.gradient_weight);
   glUniform1i(glGetUniformLocation(costs_program_, "sub_arrays"), sweep.sub_array_count);
+  glUniform1f(glGetUniformLocation(costs_program_, "read_sigma"), float(sweep.read_sigma));
   glUseProgram(window_program_);
   glUniform2i(glGetUniformLocation(window_program_, "size"), w, h);
   glUniform1i(glGetUniformLocation(window_program_, "radius"), std::max(0, sweep.window_radius));
@@ -321,11 +330,6 @@ std::string GlCostVolume::Refuses(const ShiftedSweep& sweep) const {
         "the GPU ({}) takes textures of at most {} texels a side and {} layers; this sweep "
         "needs {}x{} samples, {} views and {} planes ({} rows as layers)",
         device_.renderer, max_texture_size_, max_layers_, w, h, views, n, h);
-  for (const ShiftedSweep::Read& read : sweep.reads)
-    if (read.scaled)
-      return "its views' cameras lie off one plane parallel to the st-plane (a calibrated "
-             "array's: each plane scales a view as well as shifting it), which the GPU's sweep "
-             "does not read";
   return {};
 }
 

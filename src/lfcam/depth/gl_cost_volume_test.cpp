@@ -161,25 +161,36 @@ TEST(GlCostVolume, LeavesTurnedViewsToTheCpuAndSaysWhy) {
 }
 
 // A calibrated array's cameras a millimetre or two off one plane: each plane scales a view as
-// well as shifting it, which the GPU's sweep does not read; the CPU's does, and says so.
-TEST(GlCostVolume, LeavesViewsOffOnePlaneToTheCpuAndSaysWhy) {
+// well as shifting it. The GPU reads each sample at its own fraction, the CPU along each row in
+// runs at one fraction (at most 1/256 of a sample off): the volumes agree to within what that
+// moves a cost, as the CPU's does with its definition (CostVolumeDefinitionOffPlane).
+TEST(GlCostVolume, SweepsViewsOffOnePlaneAsTheCpuDoes) {
   LFCAM_ENGINE_OR_SKIP(engine);
   const LightField lf = testing::TwoPlaneLightField(testing::TwoPlaneScene(), 2.0);
-  CostVolumeOptions options;
-  options.reach = 1;
-  const SweepViews views(lf, 3, 3, options);
-  const std::vector<double> q = testing::SweepPlanes(12);
-  const GlCostVolume::Tally before = engine->tally();
-  const CostVolume cpu = views.Sweep(q);
-  const CostVolume fallback = views.Sweep(q, 0.5, engine);
-  const GlCostVolume::Tally after = engine->tally();
-  EXPECT_EQ(after.gpu_sweeps, before.gpu_sweeps);
-  EXPECT_EQ(after.cpu_sweeps, before.cpu_sweeps + 1);
-  ASSERT_FALSE(after.cpu_reasons.empty());
-  EXPECT_NE(after.cpu_reasons.back().find("off one plane parallel to the st-plane"),
-            std::string::npos)
-      << after.cpu_reasons.back();
-  EXPECT_EQ(fallback.cost, cpu.cost);
+  for (const int reach : {1, 2}) {
+    CostVolumeOptions options;
+    options.reach = reach;
+    options.same_views_at_every_plane = true;
+    const SweepViews views(lf, 3, 3, options);
+    const std::vector<double> q = testing::SweepPlanes(12);
+    const GlCostVolume::Tally before = engine->tally();
+    const CostVolume cpu = views.Sweep(q, 0.6);
+    const CostVolume gpu = views.Sweep(q, 0.6, engine);
+    EXPECT_EQ(engine->tally().gpu_sweeps, before.gpu_sweeps + 1);
+    ASSERT_EQ(gpu.cost.size(), cpu.cost.size());
+    int largest = 0;
+    std::size_t differ = 0;
+    for (std::size_t i = 0; i < cpu.cost.size(); ++i) {
+      const int d = std::abs(int(gpu.cost[i]) - int(cpu.cost[i]));
+      largest = std::max(largest, d);
+      differ += d != 0;
+    }
+    std::cout << "reach " << reach << ": " << differ << " of " << cpu.cost.size()
+              << " costs differ, by at most " << largest << "\n";
+    // Measured on llvmpipe: a unit at most, 5.6% of the costs at reach 1 and 3.0% at reach 2.
+    EXPECT_LE(largest, 2);
+    EXPECT_LT(double(differ) / double(cpu.cost.size()), 0.1);
+  }
 }
 
 }  // namespace
