@@ -270,8 +270,8 @@ cv::Matx33d SweepViews::Homography(const View& view, double depth) const {
   // A view whose camera lies nearer to or farther from the st-plane than the reference's (a
   // calibrated array's, a millimetre or two off): a scale and a shift along each axis, made
   // exactly one where it is one to within kScaledShiftError over the frame (the st-plane tilted
-  // from the array's plane by a calibration's thousandth of a radian leaves a few millionths of a
-  // sample), read by the sweep's own kernel rather than warped whole.
+  // from the array's plane by a calibration's thousandth of a radian bends it by up to a
+  // hundredth of a sample), read by the sweep's own kernel rather than warped whole.
   const cv::Point2d left = land(0, h / 2), right = land(w, h / 2);
   const cv::Point2d top = land(w / 2, 0), bottom = land(w / 2, h);
   const double ax = (right.x - left.x) / w, ay = (bottom.y - top.y) / h;

@@ -31,8 +31,8 @@ uniform int view_count;
 uniform ivec2 size;
 uniform vec4 unit_rgbx;  // 1 / the packed channels' units
 uniform float unit_y;
-uniform vec4 terms;      // colour cap, gradient cap, colour weight, gradient weight
-uniform int sub_arrays;  // 8: the half-arrays; 16: the quarter-arrays too
+uniform vec4 terms;        // colour cap, gradient cap, colour weight, gradient weight
+uniform int sub_arrays;    // 8: the half-arrays; 16: the quarter-arrays too
 uniform float read_sigma;  // a scaled view's reads: 0 Keys' cubic, else a tapered Gaussian
 
 // The weights of the samples at -1, 0, 1, 2 for a point at fraction f past sample 0: Keys' cubic
