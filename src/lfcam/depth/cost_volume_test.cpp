@@ -222,8 +222,12 @@ class RecordingEngine : public CostVolumeEngine {
 // line in 1/D for each view's shift and scale) is where the sweep reads each view, to a
 // hundredth of a sample, its cameras off one plane or not.
 TEST(CostVolumeReadShifts, FollowTheSweepsReadsWithTheCamerasOffOnePlane) {
-  for (const double off_plane_mm : {0.0, 2.0}) {
-    const LightField lf = testing::TwoPlaneLightField(testing::TwoPlaneScene(), off_plane_mm);
+  // On one plane; off it; off it with the st-plane turned a thousandth of a radian from the
+  // array's (a calibration's: each view bent a little too, still read as scaled).
+  for (const auto& [off_plane_mm, turn_deg] :
+       {std::pair{0.0, 0.0}, std::pair{2.0, 0.0}, std::pair{2.0, 0.06}}) {
+    const LightField lf =
+        testing::TwoPlaneLightField(testing::TwoPlaneScene(turn_deg), off_plane_mm);
     CostVolumeOptions options;
     options.reach = 2;
     const SweepViews views(lf, 3, 3, options);
@@ -254,8 +258,8 @@ TEST(CostVolumeReadShifts, FollowTheSweepsReadsWithTheCamerasOffOnePlane) {
             worst = std::max({worst, std::abs(at.x - sx), std::abs(at.y - sy)});
           }
       }
-    std::cout << "cameras " << off_plane_mm << " mm off one plane: the reads " << worst
-              << " samples apart at most\n";
+    std::cout << "cameras " << off_plane_mm << " mm off one plane, the st-plane turned " << turn_deg
+              << " degrees: the reads " << worst << " samples apart at most\n";
     EXPECT_EQ(scaled > 0, off_plane_mm > 0);
     // Shifts are lines in 1/D exactly; a scaled view's scale and shift are only to first order
     // in its camera's offset (the reads 60 samples apart at reach 2: a hundredth of a sample).
