@@ -46,7 +46,9 @@ void AddSimulateCaptureCommand(CLI::App& simulate) {
   command->add_option("--shots", flags->shots, "Intrinsics board poses")
       ->capture_default_str()
       ->check(CLI::Range(1, 16));
-  command->add_option("--supersampling", flags->supersampling, "Scene rays per pixel, per axis")
+  command
+      ->add_option("--supersampling", flags->supersampling,
+                   "Scene rays per pixel, per axis, each drawn within its stratum of the pixel")
       ->capture_default_str()
       ->check(CLI::Range(1, 8));
   command->add_flag("--no-noise", flags->no_noise, "An ideal sensor: no shot or read noise");

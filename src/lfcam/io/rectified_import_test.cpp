@@ -320,11 +320,13 @@ TEST(RectifiedImport, TheDepthRangeFoundIsTheSameInPixelsWhateverUnitsWereAssume
     EXPECT_GE(found.back().first, true_near - 0.1);
     EXPECT_LE(found.back().second, true_far + 0.1);
   }
-  // The same to within half a coarse plane (1.4 px here): the coarse sweep's planes lie where
-  // the bracket puts them. (The margin of two planes of whatever spacing the bracket gave made
-  // the two ranges differ by 0.55 px at the near end and 1.8 px at the far end.)
-  EXPECT_NEAR(found[0].first, found[1].first, 0.5);
-  EXPECT_NEAR(found[0].second, found[1].second, 0.5);
+  // The same to within half a coarse plane (a plane is 1.4 px here): the coarse sweep's planes
+  // lie where the bracket puts them. (The margin of two planes of whatever spacing the bracket
+  // gave made the two ranges differ by 0.55 px at the near end and 1.8 px at the far end. With
+  // the simulator's rays drawn within each pixel's strata, not on a grid, the near ends found
+  // differ by 0.59 px: which samples choose the nearest planes moves with the views' noise.)
+  EXPECT_NEAR(found[0].first, found[1].first, 0.7);
+  EXPECT_NEAR(found[0].second, found[1].second, 0.7);
   fs::remove_all(dir);
 }
 

@@ -32,7 +32,9 @@ PixelRuns BoardFootprintRuns(const BoardSpec& board, const Rigid3& world_from_bo
                              const SimulatedModule& module, const cv::Mat& directions,
                              const BoardAppearance& appearance = {});
 
-// Pixel radiance of `scene` alone, supersampled n x n over the pixel footprint.
+// Pixel radiance of `scene` alone, the mean of n x n rays over the pixel footprint, one drawn
+// uniformly in each of its n x n strata (the same draw at every shot of a pixel); n = 1: the
+// pixel's centre ray.
 PixelRadiance SceneRadiance(const Scene& scene, int supersampling);
 
 }  // namespace lfcam
