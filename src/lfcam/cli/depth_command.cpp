@@ -50,6 +50,7 @@ nlohmann::json Summary(const DepthMap& map) {
           {"noise_levels", map.noise_levels},
           {"near_nyquist_share", map.near_nyquist_share},
           {"read_sigma", map.read_sigma},
+          {"camera_blur_sigma", map.camera_blur_sigma},
           {"views_too_dark", map.views_too_dark},
           {"reach", map.reach}};
 }
@@ -67,6 +68,12 @@ void PrintViewsTooDark(const DepthMap& map) {
 
 // Says how noisy or sharp views were read, when they were read through a Gaussian.
 void PrintGaussianReads(const nlohmann::json& summary) {
+  if (const double sigma = summary["camera_blur_sigma"].get<double>(); sigma > 0)
+    fmt::print(
+        "  the views are sampled {:.1f} times as finely as their cameras' pixels: matched after a "
+        "Gaussian of {:.1f} samples (half a camera pixel; docs/depth.md, \"Views finer than their "
+        "cameras\")\n",
+        sigma / kCameraBlurPixels, sigma);
   if (summary["read_sigma"].get<double>() <= 0) return;
   const double noise = summary["noise_levels"].get<double>();
   if (noise > kNoisyViewLevels)

@@ -59,7 +59,20 @@ struct CostVolumeOptions {
   // between samples and smooth the noise, or blur the sharp edges, away (docs/depth.md, "Noisy
   // views" and "Sharp views").
   bool adapt_to_noise = false;
+  // Where the light field records the cameras its views were built from and a camera's pixel
+  // spans more than kFinerThanCameraSamples of the views' samples (a Pi capture built at the st
+  // sampling's default), every view is blurred by a Gaussian of kCameraBlurPixels of that pixel
+  // before matching: what lies between a camera's samples is its interpolation's, and a camera
+  // that sampled a sharp edge sharply places it differently from its neighbour, so absolute
+  // differences lean towards whole camera pixels (docs/depth.md, "Views finer than their
+  // cameras").
+  bool blur_to_cameras = false;
 };
+
+// CostVolumeOptions::blur_to_cameras: above this span of a camera pixel (in the views' samples
+// at the matching resolution) the views are blurred, by a Gaussian of this share of the span.
+inline constexpr double kFinerThanCameraSamples = 1.5;
+inline constexpr double kCameraBlurPixels = 0.5;
 
 // The noise (8-bit levels) above which views are noisy (CostVolumeOptions::adapt_to_noise).
 inline constexpr double kNoisyViewLevels = 1.0;
@@ -209,6 +222,9 @@ class SweepViews {
   double noise_level() const { return noise_level_; }
   double near_nyquist_share() const { return near_nyquist_share_; }
   double read_sigma() const { return read_sigma_; }
+  // The Gaussian every view was blurred by before matching (CostVolumeOptions::blur_to_cameras),
+  // in samples at the matching resolution; 0: none.
+  double camera_blur_sigma() const { return camera_blur_sigma_; }
   // The views within reach that were too dark to match the reference (grid row, col), left out
   // (CostVolumeOptions::equalise_brightness, kMaxBrightnessGain).
   const std::vector<std::pair<int, int>>& too_dark() const { return too_dark_; }
@@ -265,7 +281,7 @@ class SweepViews {
   std::vector<View> views_;
   std::vector<unsigned> class_sub_arrays_;       // the distinct sub-array memberships of the views
   int sub_array_count_ = ShiftedSweep::kHalves;  // as ShiftedSweep::sub_array_count
-  double noise_level_ = 0, near_nyquist_share_ = 0, read_sigma_ = 0;
+  double noise_level_ = 0, near_nyquist_share_ = 0, read_sigma_ = 0, camera_blur_sigma_ = 0;
   std::vector<std::pair<int, int>> too_dark_;
   cv::Mat reference_rgb8_;
 };

@@ -45,6 +45,9 @@ struct DepthMap {
   // width in samples of the Gaussian its neighbours were read through (0: Keys' cubic;
   // docs/depth.md, "Noisy views", "Sharp views").
   double noise_levels = 0, near_nyquist_share = 0, read_sigma = 0;
+  // The Gaussian (samples) every view was blurred by first where the views are finer than the
+  // cameras they were built from (0: none; docs/depth.md, "Views finer than their cameras").
+  double camera_blur_sigma = 0;
   int reach = 0;  // the views compared: those up to this many grid steps away (not stored)
   // The views within reach left out as too dark to match the reference (grid row, col; not
   // stored; CostVolumeOptions::equalise_brightness).

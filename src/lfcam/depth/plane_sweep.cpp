@@ -362,6 +362,7 @@ DepthMap EstimateDepth(const LightField& lf, int row, int col, const PlaneSweepO
   // (docs/depth.md, "The frame's edges").
   volume_options.same_views_at_every_plane = true;
   volume_options.adapt_to_noise = true;
+  volume_options.blur_to_cameras = options.blur_to_cameras;
   const double q_near = 1.0 / range.near_mm, q_far = 1.0 / range.far_mm;
   // The scene's span in inverse depth, without the margin the range adds to it: how far apart
   // neighbouring views see the scene decides how the views are matched (below).
@@ -450,6 +451,7 @@ DepthMap EstimateDepth(const LightField& lf, int row, int col, const PlaneSweepO
   map.noise_levels = views.noise_level();
   map.near_nyquist_share = views.near_nyquist_share();
   map.read_sigma = views.read_sigma();
+  map.camera_blur_sigma = views.camera_blur_sigma();
   map.views_too_dark = views.too_dark();
   map.reach = volume_options.reach;
   map.confidence = choice.confidence.clone();

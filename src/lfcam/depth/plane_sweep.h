@@ -57,6 +57,9 @@ struct PlaneSweepOptions {
   // Last, the samples beside the silhouettes re-decided by what each view can see
   // (depth/silhouette_visibility.h).
   bool silhouette_visibility = true;
+  // Views built more finely than their cameras recorded are blurred to the cameras' scale before
+  // matching (CostVolumeOptions::blur_to_cameras).
+  bool blur_to_cameras = true;
   // Where given, the cost volumes are computed by it (depth/gl_cost_volume.h: on the GPU); the
   // rest of the estimate stays on the CPU.
   CostVolumeEngine* engine = nullptr;

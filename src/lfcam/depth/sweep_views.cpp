@@ -67,6 +67,16 @@ cv::Mat ViewSrgb8(const LightField& lf, int row, int col) {
   return rgb;
 }
 
+// How many of the views' samples (`sample_mm` apart on the st-plane) one pixel of the camera that
+// view (row, col) was built from spans at the st-plane's distance; 0 where the light field
+// records no cameras.
+double CameraPixelSamples(const LightField& lf, int row, int col, double sample_mm) {
+  if (!lf.has_view_cameras() || !(sample_mm > 0)) return 0;
+  const auto& camera = lf.measured_poses()[std::size_t(row) * lf.dims().cols + col].intrinsics;
+  if (!camera || !(camera->fx > 0)) return 0;
+  return lf.slab().separation_mm() / camera->fx / sample_mm;
+}
+
 // Scaled sample coordinates <-> full-resolution ones (sample centres at integers).
 double ToFull(double x, double scale) { return (x + 0.5) * scale - 0.5; }
 double ToScaled(double x, double scale) { return (x + 0.5) / scale - 0.5; }
@@ -113,6 +123,11 @@ SweepViews::SweepViews(const LightField& lf, int row, int col, const CostVolumeO
   // The middle of the frame, where views narrowly apart see the same things.
   const cv::Rect middle(w / 8, h / 8, w - w / 4, h - h / 4);
   cv::Scalar reference_mean;
+  if (options.blur_to_cameras) {
+    // One blur for every view, from the reference's camera: views matched must be filtered alike.
+    const double span = CameraPixelSamples(lf, row, col, geometry_.sample_mm);
+    if (span > kFinerThanCameraSamples) camera_blur_sigma_ = kCameraBlurPixels * span;
+  }
   const auto load = [&](int r, int c) {
     View v;
     cv::Mat rgb = ViewSrgb8(lf, r, c);
@@ -130,6 +145,8 @@ SweepViews::SweepViews(const LightField& lf, int row, int col, const CostVolumeO
     }
     cv::Mat f, grey, gx, gy;
     rgb.convertTo(f, CV_32F, 1.0 / 255.0);
+    if (camera_blur_sigma_ > 0)
+      cv::GaussianBlur(f, f, {0, 0}, camera_blur_sigma_, camera_blur_sigma_, cv::BORDER_REPLICATE);
     if (r == row && c == col) {
       reference_mean = cv::mean(f(middle));
     } else if (options.equalise_brightness) {
