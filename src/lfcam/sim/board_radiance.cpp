@@ -28,7 +28,7 @@ double SquareWaveIntegral(double x, double square) {
 // within the pixel is rounded to 1/n of it the same way in every camera, and two cameras'
 // images matched by absolute differences (the depth sweep) agree best at a whole pixel's shift:
 // the paper scene's checkered wall, 6.92 px between neighbouring cameras of 1296 x 972, matched
-// at 7.00 px, and its depth 1.1% too near (docs/depth.md, "Depth of a built light field").
+// at 7.00 px, and its depth 1.1% too near (docs/benchmarks.md, "Depth of a built light field").
 class StratumJitter {
  public:
   explicit StratumJitter(const Ray& ray) {
