@@ -9,6 +9,7 @@
 #include <memory>
 
 #include "lfcam/calib/charuco.h"
+#include "lfcam/sim/splitmix.h"
 
 namespace lfcam {
 namespace {
@@ -36,24 +37,14 @@ class StratumJitter {
                            ray.direction.y(), ray.direction.z()}) {
       std::uint64_t bits;
       std::memcpy(&bits, &v, sizeof bits);
-      state_ = Mix(state_ ^ bits);
+      state_ = SplitMixFinalise(state_ ^ bits);
     }
   }
   // Uniform in [0, 1).
-  double Next() {
-    state_ += kGolden;
-    return double(Mix(state_) >> 11) * 0x1.0p-53;
-  }
+  double Next() { return double(SplitMixNext(state_) >> 11) * 0x1.0p-53; }
 
  private:
-  static constexpr std::uint64_t kGolden = 0x9E3779B97F4A7C15ull;
-  // SplitMix64's finaliser (Steele, Lea and Flood 2014).
-  static std::uint64_t Mix(std::uint64_t z) {
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-  }
-  std::uint64_t state_ = kGolden;
+  std::uint64_t state_ = kSplitMixGamma;
 };
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include "lfcam/core/color.h"
 #include "lfcam/core/error.h"
 #include "lfcam/core/limits.h"
+#include "lfcam/sim/splitmix.h"
 
 namespace lfcam {
 
@@ -115,10 +116,7 @@ class NoiseSource {
  public:
   explicit NoiseSource(std::uint64_t seed) : state_(seed) {}
   float Gaussian() {
-    std::uint64_t z = (state_ += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    z ^= z >> 31;
+    const std::uint64_t z = SplitMixNext(state_);
     const auto sum = float(std::uint32_t(z & 0xFFFF) + std::uint32_t((z >> 16) & 0xFFFF) +
                            std::uint32_t((z >> 32) & 0xFFFF) + std::uint32_t(z >> 48));
     // Four uniforms on [0, 1): mean 2, variance 1/3.
