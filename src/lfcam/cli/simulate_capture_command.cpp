@@ -3,6 +3,7 @@
 
 #include <filesystem>
 #include <memory>
+#include <optional>
 
 #include "lfcam/cli/commands.h"
 #include "lfcam/cli/parse.h"
@@ -22,6 +23,7 @@ void AddSimulateCaptureCommand(CLI::App& simulate) {
     std::uint64_t seed = 1;
     int shots = 14, supersampling = 2;
     bool no_noise = false, quiet = false, world_board_turned = false;
+    std::optional<double> lens_blur_um;
   };
   auto flags = std::make_shared<Flags>();
   command->add_option("--scene", flags->scene, "Built-in scene (paper)")->capture_default_str();
@@ -31,7 +33,11 @@ void AddSimulateCaptureCommand(CLI::App& simulate) {
   command
       ->add_option("--sensor", flags->sensor, "Each module's image size WxH (Pi v1.3: 2592x1944)")
       ->capture_default_str();
-  command->add_option("--defects", flags->defects, "realistic or none")->capture_default_str();
+  command
+      ->add_option("--defects", flags->defects,
+                   "realistic (mounting, intrinsics, distortion, the lens's blur, vignetting, "
+                   "exposure, white balance) or none")
+      ->capture_default_str();
   command->add_option("--seed", flags->seed, "Seed of the defects, board poses and noise")
       ->capture_default_str();
   command
@@ -48,9 +54,17 @@ void AddSimulateCaptureCommand(CLI::App& simulate) {
       ->check(CLI::Range(1, 16));
   command
       ->add_option("--supersampling", flags->supersampling,
-                   "Scene rays per pixel, per axis, each drawn within its stratum of the pixel")
+                   "Scene rays per pixel, per axis, each drawn within its stratum of the pixel's "
+                   "footprint as the lens spreads it (1: the pixel's centre ray, no blur)")
       ->capture_default_str()
       ->check(CLI::Range(1, 8));
+  command
+      ->add_option("--lens-blur", flags->lens_blur_um,
+                   fmt::format("Every lens's point spread, a Gaussian's sigma on the sensor in um "
+                               "(0: perfect lenses) [default: with --defects realistic each "
+                               "module's drawn within {}+-{}, with none 0]",
+                               kPiLensBlurUm, kPiLensBlurSpreadUm))
+      ->check(CLI::Range(0.0, kMaxLensBlurUm));
   command->add_flag("--no-noise", flags->no_noise, "An ideal sensor: no shot or read noise");
   command->add_flag("--world-board-turned", flags->world_board_turned,
                     "Hang the world board the other way up (turned 180 degrees in its plane: its "
@@ -82,6 +96,7 @@ void AddSimulateCaptureCommand(CLI::App& simulate) {
     o.intrinsics_shots = flags->shots;
     o.scene_supersampling = flags->supersampling;
     o.noise = !flags->no_noise;
+    o.lens_blur_um = flags->lens_blur_um;
     o.world_board_turned = flags->world_board_turned;
     const Scene scene = FlagValue("--scene", [&] { return MakeScene(flags->scene); });
     const std::filesystem::path out = flags->out;

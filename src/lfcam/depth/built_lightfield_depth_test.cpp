@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <utility>
 
 #include "lfcam/calib/lightfield_build.h"
 #include "lfcam/calib/test_calibrated_session.h"
@@ -53,13 +54,17 @@ TEST_F(BuiltLightFieldDepth, ViewsFinerThanTheirCamerasAreMatchedAtTheCamerasSca
   const double pixel_samples = 5.6 / (600.0 / 416);
   EXPECT_NEAR(blurred.camera_blur_sigma, kCameraBlurPixels * pixel_samples, 0.15);
   EXPECT_EQ(sharp.camera_blur_sigma, 0.0);
-  const double with_blur = ShareWithin(blurred, truth.map, 0.01);
-  const double without = ShareWithin(sharp, truth.map, 0.01);
-  std::printf("within 1%% of the truth: %.3f blurred to the cameras, %.3f not (sigma %.2f)\n",
-              with_blur, without, blurred.camera_blur_sigma);
-  // Measured: 29.6% of the view within 1% against 17.9% (this small, noisy capture; the demo's
-  // 1296 x 972 one: 90.3% against 82.4%, docs/benchmarks.md).
-  EXPECT_GT(with_blur, without + 0.06) << with_blur << " against " << without;
+  // Measured, within 1% / 2% of the true depth: 23.4% / 45.1% of the view against 19.0% /
+  // 37.0% (this small, noisy capture, its lenses blurring by 0.14 px; before the simulated lenses
+  // blurred, 29.6% against 17.9% within 1%). The demo's 1296 x 972 capture: 89.2% against 79.4%
+  // within 1% (docs/benchmarks.md, "Depth of a built light field").
+  for (const auto& [tolerance, gain] : {std::pair{0.01, 0.03}, std::pair{0.02, 0.045}}) {
+    const double with_blur = ShareWithin(blurred, truth.map, tolerance);
+    const double without = ShareWithin(sharp, truth.map, tolerance);
+    std::printf("within %.0f%% of the truth: %.3f blurred to the cameras, %.3f not (sigma %.2f)\n",
+                100 * tolerance, with_blur, without, blurred.camera_blur_sigma);
+    EXPECT_GT(with_blur, without + gain) << "within " << tolerance;
+  }
 }
 
 }  // namespace

@@ -3,10 +3,12 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <memory>
+#include <numbers>
 
 #include "lfcam/calib/charuco.h"
 #include "lfcam/sim/splitmix.h"
@@ -47,6 +49,58 @@ class StratumJitter {
   std::uint64_t state_ = kSplitMixGamma;
 };
 
+// Where a pixel's footprint seen through the lens puts a given share of its weight, along one
+// axis: the quantiles of one pixel's box (-0.5 .. 0.5) convolved with a Gaussian of sigma pixels,
+// tabulated. The footprint is the same along either axis and separable, so a point drawn at the
+// quantiles (u, v) of a stratum's uniform draw samples the blurred footprint as the strata sample
+// the box: an edge falls in one stratum, not among random offsets (which would add noise the
+// lens does not make). Sigma 0: the box's own quantiles, u - 0.5.
+class LensFootprintQuantiles {
+ public:
+  explicit LensFootprintQuantiles(double sigma) : sigma_(sigma) {
+    // The share of the footprint left of x: the integral over the box of the Gaussian's CDF, with
+    // G(t) = t Phi(t) + phi(t) its antiderivative.
+    const auto share_left_of = [sigma](double x) {
+      const auto antiderivative = [](double t) {
+        return t * 0.5 * std::erfc(-t / std::numbers::sqrt2) +
+               std::exp(-0.5 * t * t) / std::sqrt(2 * std::numbers::pi);
+      };
+      return sigma * (antiderivative((x + 0.5) / sigma) - antiderivative((x - 0.5) / sigma));
+    };
+    const double reach = 0.5 + 5 * sigma;  // beyond it, less than 3e-7 of the weight
+    quantiles_[0] = -reach;
+    quantiles_[kSteps] = reach;
+    for (int k = 1; k < kSteps; ++k) {
+      double lo = -reach, hi = reach;
+      for (int i = 0; i < 48; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (share_left_of(mid) < double(k) / kSteps ? lo : hi) = mid;
+      }
+      quantiles_[std::size_t(k)] = 0.5 * (lo + hi);
+    }
+  }
+  double sigma() const { return sigma_; }
+  // The offset from the pixel's centre (pixels) below which a share u in [0, 1) of the weight lies.
+  double At(double u) const {
+    const double at = u * kSteps;
+    const int k = std::min(kSteps - 1, int(at));
+    const double f = at - k;
+    return (1 - f) * quantiles_[std::size_t(k)] + f * quantiles_[std::size_t(k) + 1];
+  }
+
+ private:
+  static constexpr int kSteps = 1024;
+  double sigma_;
+  std::array<double, kSteps + 1> quantiles_{};
+};
+
+// The table for sigma, kept per thread while sigma stays the same (a module's pixels share it).
+const LensFootprintQuantiles& FootprintQuantilesFor(double sigma) {
+  thread_local std::unique_ptr<LensFootprintQuantiles> table;
+  if (!table || table->sigma() != sigma) table = std::make_unique<LensFootprintQuantiles>(sigma);
+  return *table;
+}
+
 }  // namespace
 
 double BlackAreaFraction(const BoardSpec& board, double x0, double x1, double y0, double y1) {
@@ -69,7 +123,7 @@ PixelRadiance BoardInFrontOf(const BoardSpec& board, const Rigid3& world_from_bo
   const double margin = look.margin_squares * board.square_mm;
   std::shared_ptr<const CharucoLayout> charuco;
   if (board.charuco()) charuco = std::make_shared<const CharucoLayout>(MakeCharucoLayout(board));
-  return [=, &scene](const Ray& ray, const Vec3& dx, const Vec3& dy, const Vec3* behind) -> Vec3 {
+  return [=, &scene](const Ray& ray, const PixelFootprint& footprint, const Vec3* behind) -> Vec3 {
     auto background = [&] { return behind ? *behind : scene.Radiance(ray); };
     // Everything in board coordinates: the board is the plane z = 0.
     const Vec3 o = board_from_world * ray.origin;
@@ -83,13 +137,16 @@ PixelRadiance BoardInFrontOf(const BoardSpec& board, const Rigid3& world_from_bo
       return true;
     };
     Vec2 center, right, down;
-    if (!hit(ray.direction, &center) || !hit(ray.direction + dx, &right) ||
-        !hit(ray.direction + dy, &down))
+    if (!hit(ray.direction, &center) || !hit(ray.direction + footprint.dx, &right) ||
+        !hit(ray.direction + footprint.dy, &down))
       return background();
-    // The footprint's extent along the board's axes, with the pixel's area.
+    // The footprint's extent along the board's axes, with the pixel's area, widened by the lens's
+    // blur to the box of the same variance: a box 2h wide has variance h^2 / 3, and the blur adds
+    // (2h sigma)^2 in the same units.
     const Vec2 ju = right - center, jv = down - center;
-    const double hx = 0.5 * std::sqrt(ju.x() * ju.x() + jv.x() * jv.x());
-    const double hy = 0.5 * std::sqrt(ju.y() * ju.y() + jv.y() * jv.y());
+    const double widen = std::sqrt(1.0 + 12.0 * footprint.blur_px * footprint.blur_px);
+    const double hx = 0.5 * widen * std::sqrt(ju.x() * ju.x() + jv.x() * jv.x());
+    const double hy = 0.5 * widen * std::sqrt(ju.y() * ju.y() + jv.y() * jv.y());
     const double x0 = center.x() - hx, x1 = center.x() + hx;
     const double y0 = center.y() - hy, y1 = center.y() + hy;
     const double bx0 = -margin, bx1 = board.width_mm() + margin;
@@ -165,14 +222,17 @@ PixelRuns BoardFootprintRuns(const BoardSpec& board, const Rigid3& world_from_bo
 }
 
 PixelRadiance SceneRadiance(const Scene& scene, int n) {
-  return [&scene, n](const Ray& ray, const Vec3& dx, const Vec3& dy, const Vec3*) -> Vec3 {
+  return [&scene, n](const Ray& ray, const PixelFootprint& footprint, const Vec3*) -> Vec3 {
     if (n <= 1) return scene.Radiance(ray);
     StratumJitter jitter(ray);
+    const LensFootprintQuantiles* lens =
+        footprint.blur_px > 0 ? &FootprintQuantilesFor(footprint.blur_px) : nullptr;
     Vec3 sum = Vec3::Zero();
     for (int a = 0; a < n; ++a)
       for (int b = 0; b < n; ++b) {
-        const double fx = (b + jitter.Next()) / n - 0.5, fy = (a + jitter.Next()) / n - 0.5;
-        sum += scene.Radiance({ray.origin, ray.direction + fx * dx + fy * dy});
+        const double u = (b + jitter.Next()) / n, v = (a + jitter.Next()) / n;
+        const double fx = lens ? lens->At(u) : u - 0.5, fy = lens ? lens->At(v) : v - 0.5;
+        sum += scene.Radiance({ray.origin, ray.direction + fx * footprint.dx + fy * footprint.dy});
       }
     return sum / double(n * n);
   };

@@ -3,7 +3,8 @@
 // share of black and white under its footprint, approximated by the board-aligned rectangle
 // with the footprint's extent along the board's axes (the box filter's integral of a checker is
 // separable: a triangle wave per axis; a ChArUco board's marker cells are rectangles too,
-// calib/charuco.h). No supersampling, and corners stay where they are.
+// calib/charuco.h), widened for the lens's blur to the box of the same variance. No
+// supersampling, and corners stay where they are.
 #include "lfcam/session/board.h"
 #include "lfcam/sim/camera_module.h"
 #include "lfcam/sim/scene.h"
@@ -32,9 +33,10 @@ PixelRuns BoardFootprintRuns(const BoardSpec& board, const Rigid3& world_from_bo
                              const SimulatedModule& module, const cv::Mat& directions,
                              const BoardAppearance& appearance = {});
 
-// Pixel radiance of `scene` alone, the mean of n x n rays over the pixel footprint, one drawn
-// uniformly in each of its n x n strata (the same draw at every shot of a pixel); n = 1: the
-// pixel's centre ray.
+// Pixel radiance of `scene` alone, the mean of n x n rays over the pixel footprint seen through
+// the lens (the pixel's box convolved with the lens's point spread), one drawn in each of its
+// n x n strata of equal weight (the same draw at every shot of a pixel). n = 1: the pixel's centre
+// ray, no blur.
 PixelRadiance SceneRadiance(const Scene& scene, int supersampling);
 
 }  // namespace lfcam

@@ -39,6 +39,9 @@ std::vector<SimulatedModule> MakeModules(const ArrayPlane& array, int width, int
   auto uniform = [&rng](double center, double half_width) {
     return std::uniform_real_distribution<double>(center - half_width, center + half_width)(rng);
   };
+  std::mt19937_64 lens_rng(seed ^ 0x5DEECE66D1E45B1Full);
+  std::uniform_real_distribution<double> lens_blur_um(kPiLensBlurUm - kPiLensBlurSpreadUm,
+                                                      kPiLensBlurUm + kPiLensBlurSpreadUm);
   const double degree = std::numbers::pi / 180.0;
   const double pixel_scale = double(width) / kPiCameraWidth;
   std::vector<SimulatedModule> modules;
@@ -78,6 +81,7 @@ std::vector<SimulatedModule> MakeModules(const ArrayPlane& array, int width, int
         m.photometry.gain = exposure * Vec3(red, 1.0, blue);
         m.photometry.vignetting[0] = uniform(-0.30, 0.05);
         m.photometry.vignetting[1] = uniform(-0.05, 0.03);
+        m.lens_blur_px = lens_blur_um(lens_rng) * pixel_scale / kPiCameraPixelUm;
       }
       modules.push_back(m);
     }
@@ -157,11 +161,11 @@ cv::Mat RenderRadiance(const SimulatedModule& module, const cv::Mat& directions,
         // The ray through the pixel's centre, and its change one pixel right and down.
         const Vec3 dir = ToVec3(d[x]);
         const int xn = x + 1 < c.width ? x + 1 : x - 1;
-        const Vec3 dx = (ToVec3(d[xn]) - dir) * (x + 1 < c.width ? 1.0 : -1.0);
-        const Vec3 dy = (ToVec3(d_down[x]) - dir) * dy_sign;
+        const PixelFootprint footprint{(ToVec3(d[xn]) - dir) * (x + 1 < c.width ? 1.0 : -1.0),
+                                       (ToVec3(d_down[x]) - dir) * dy_sign, module.lens_blur_px};
         Vec3 back;
         if (behind) back = ToVec3(o[x]);
-        const Vec3 v = radiance(Ray{origin, dir}, dx, dy, behind ? &back : nullptr);
+        const Vec3 v = radiance(Ray{origin, dir}, footprint, behind ? &back : nullptr);
         o[x] = cv::Vec3f(float(v.x()), float(v.y()), float(v.z()));
       }
     }

@@ -1,7 +1,8 @@
 #pragma once
 // The simulated Raspberry Pi camera module v1.3 (OmniVision OV5647: 2592 x 1944 pixels of
-// 1.4 um, a 3.60 mm lens) and the defects a real array of them has: mounting error, spread of
-// the intrinsics, lens distortion, vignetting, exposure and white-balance spread, sensor noise.
+// 1.4 um, a 3.60 mm f/2.9 lens) and the defects a real array of them has: mounting error, spread
+// of the intrinsics, lens distortion, the lens's blur, vignetting, exposure and white-balance
+// spread, sensor noise.
 #include <cstdint>
 #include <functional>
 #include <opencv2/core.hpp>
@@ -17,6 +18,12 @@ inline constexpr int kPiCameraWidth = 2592;
 inline constexpr int kPiCameraHeight = 1944;
 inline constexpr double kPiCameraFocalMm = 3.60;
 inline constexpr double kPiCameraPixelUm = 1.4;  // at full resolution
+// The lens's point spread as a Gaussian's sigma on the sensor: diffraction at f/2.9 in green light
+// alone is about 0.42 * 0.55 um * 2.9 = 0.67 um, and a moulded 3.6 mm lens adds its aberrations.
+// Realistic modules draw theirs within +-kPiLensBlurSpreadUm of this.
+inline constexpr double kPiLensBlurUm = 0.8;
+inline constexpr double kPiLensBlurSpreadUm = 0.15;
+inline constexpr double kMaxLensBlurUm = 20.0;  // what a simulated lens may be given
 
 // The nominal module at a sensor resolution of width x height (binned or scaled from the full
 // 2592 x 1944; the field of view stays 53.5 x 41.4 degrees): no distortion, centred.
@@ -36,6 +43,9 @@ struct SimulatedModule {
   CameraIntrinsics intrinsics;
   Rigid3 world_from_camera;
   ModulePhotometry photometry;
+  // The lens's blur: the sigma, in the module's pixels, of the Gaussian point spread each pixel's
+  // footprint is spread by (0: a perfect lens).
+  double lens_blur_px = 0.0;
 };
 
 enum class ModuleDefects { kNone, kRealistic };
@@ -43,16 +53,25 @@ enum class ModuleDefects { kNone, kRealistic };
 // One module per grid position of `array`, looking along -n_ca. kRealistic draws, from `seed`:
 // a centre within +-1 mm and a rotation within 1 degree of the ideal mount; focal lengths within
 // +-2%; a principal point within +-20 px (scaled to the sensor); Brown-Conrady distortion of a
-// 3.6 mm wide-angle lens; vignetting; gain within +-15% and white balance within +-8%.
+// 3.6 mm wide-angle lens; the lens's blur (kPiLensBlurUm within +-kPiLensBlurSpreadUm, drawn
+// from a stream of its own, so that the rest of a rig is what it was before modules had one);
+// vignetting; gain within +-15% and white balance within +-8%.
 std::vector<SimulatedModule> MakeModules(const ArrayPlane& array, int width, int height,
                                          ModuleDefects defects, std::uint64_t seed);
 
+// A pixel's footprint: the change of its centre ray's direction one pixel right (`dx`) and down
+// (`dy`), and the lens's blur, which spreads the footprint by a Gaussian of sigma `blur_px`
+// pixels.
+struct PixelFootprint {
+  Vec3 dx = Vec3::Zero(), dy = Vec3::Zero();
+  double blur_px = 0.0;
+};
+
 // What a pixel sees: the linear radiance over the footprint of the pixel whose centre ray is
-// `ray` (unit direction), with `dx`, `dy` the change of that direction one pixel right and down.
-// `behind`, when not null, is what the pixel would see were the nearest thing not there (a
-// scene rendered once and shared by every board shot of a module).
+// `ray` (unit direction). `behind`, when not null, is what the pixel would see were the nearest
+// thing not there (a scene rendered once and shared by every board shot of a module).
 using PixelRadiance =
-    std::function<Vec3(const Ray& ray, const Vec3& dx, const Vec3& dy, const Vec3* behind)>;
+    std::function<Vec3(const Ray& ray, const PixelFootprint& footprint, const Vec3* behind)>;
 
 struct ExposureOptions {
   bool noise = true;          // photon shot noise and read noise (off: an ideal sensor)

@@ -128,6 +128,13 @@ SimulatedArray::SimulatedArray(const Scene& scene, const CaptureSimulationOption
                    scene.rig.board_square_mm},
       modules_(MakeModules(array_, o.sensor_width, o.sensor_height, o.defects, o.seed)),
       board_poses_(IntrinsicsBoardPoses(array_, o.intrinsics_board, o.intrinsics_shots, o.seed)) {
+  if (o.lens_blur_um) {
+    if (!(*o.lens_blur_um >= 0 && *o.lens_blur_um <= kMaxLensBlurUm))
+      throw Error(fmt::format("a lens blur of {} um is out of range (0..{})", *o.lens_blur_um,
+                              kMaxLensBlurUm));
+    for (SimulatedModule& m : modules_)
+      m.lens_blur_px = *o.lens_blur_um * o.sensor_width / (kPiCameraWidth * kPiCameraPixelUm);
+  }
   auto board_plan = [&scene](ShotKind kind, std::string name, std::string dir,
                              const BoardSpec& board, const Rigid3& world_from_board) {
     return ShotPlan{kind, std::move(name), std::move(dir),
@@ -287,6 +294,7 @@ CaptureSimulationResult SimulateCapture(const Scene& scene, const CaptureSimulat
         {"center", Vec3ToJson(m.world_from_camera.translation)},
         {"orientation", RotationToJson(m.world_from_camera.rotation)},
         {"ideal_center", Vec3ToJson(array.camera_center(m.row, m.col))},
+        {"lens_blur_px", m.lens_blur_px},
         {"photometry",
          {{"gain", Vec3ToJson(m.photometry.gain)},
           {"vignetting", {m.photometry.vignetting[0], m.photometry.vignetting[1]}}}}});

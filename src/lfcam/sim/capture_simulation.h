@@ -32,6 +32,9 @@ struct CaptureSimulationOptions {
   int intrinsics_shots = 14;
   int scene_supersampling = 2;  // per axis: the scene shot, and what the boards stand before
   bool noise = true;            // false: an ideal sensor (tests)
+  // Every module's lens blur, a Gaussian point spread of this sigma on the sensor (um; 0: a
+  // perfect lens), in place of what `defects` draws (MakeModules).
+  std::optional<double> lens_blur_um;
   // The world board hung the other way up: turned 180 degrees in its plane about its centre (its
   // bottom-left square, seen from the array, is white). The world frame stays where it was.
   bool world_board_turned = false;

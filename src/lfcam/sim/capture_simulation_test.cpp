@@ -99,4 +99,26 @@ TEST(SimulatedRig, IsTheSameWhicheverCompilerBuildsIt) {
     EXPECT_NEAR(drawn[i], expected[i], 1e-12) << "value " << i;
 }
 
+// Each realistic module's lens blurs by its own point spread, the same on the sensor whatever the
+// resolution it is read at (in pixels: 2.8 um pixels at 1296 x 972 halve it); an ideal module's
+// lens does not blur.
+TEST(SimulatedRig, EachLensBlursByItsOwnPointSpreadOnTheSensor) {
+  ArrayPlane array;
+  array.rows = array.cols = 4;
+  const auto full = MakeModules(array, 2592, 1944, ModuleDefects::kRealistic, 3);
+  const auto binned = MakeModules(array, 1296, 972, ModuleDefects::kRealistic, 3);
+  double least = 1e9, most = 0;
+  for (std::size_t i = 0; i < full.size(); ++i) {
+    const double um = full[i].lens_blur_px * kPiCameraPixelUm;
+    least = std::min(least, um);
+    most = std::max(most, um);
+    EXPECT_NEAR(binned[i].lens_blur_px, 0.5 * full[i].lens_blur_px, 1e-12);
+  }
+  EXPECT_GE(least, kPiLensBlurUm - kPiLensBlurSpreadUm);
+  EXPECT_LE(most, kPiLensBlurUm + kPiLensBlurSpreadUm);
+  EXPECT_GT(most - least, kPiLensBlurSpreadUm) << "every lens alike";
+  for (const SimulatedModule& m : MakeModules(array, 1296, 972, ModuleDefects::kNone, 3))
+    EXPECT_EQ(m.lens_blur_px, 0.0);
+}
+
 }  // namespace lfcam
