@@ -95,9 +95,7 @@ TEST(RecordSession, SimulatedNodesRecordInStepAndEveryFrameComesHomeWithItsTime)
       EXPECT_EQ(frame.rows, 120);
     }
   }
-  // The scene moves: the first and the last frame of a camera differ (the ball came in: a few
-  // pixels of 160 x 120, 33 values more than 20 levels apart; the two frames' noise, about 4
-  // levels apart, puts none there).
+  // The scene moves: the first and the last frame of a camera differ (the ball came in).
   const ShotImage& first = shot.images[0];
   const std::string stream = ReadBytes(dir / "session" / first.file);
   auto decode = [&](const FrameTime& f) {
@@ -106,7 +104,7 @@ TEST(RecordSession, SimulatedNodesRecordInStepAndEveryFrameComesHomeWithItsTime)
   };
   cv::Mat diff;
   cv::absdiff(decode(first.frames.front()), decode(first.frames.back()), diff);
-  EXPECT_GT(cv::countNonZero(diff.reshape(1) > 20), 10);
+  EXPECT_GT(cv::countNonZero(diff.reshape(1) > 40), 10);
 
   // The report: ten light field frames, each of four cameras, in step to the sync error.
   auto run = Lfcam(fmt::format("capture report --session {} --json --out {}",
