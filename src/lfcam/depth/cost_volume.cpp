@@ -153,6 +153,52 @@ Shift MakeScaledShift(const cv::Matx33d& m, int w, int h, double read_sigma,
   return s;
 }
 
+// One view's rows as floats, each converted from the packed samples once while the sweep is at
+// it. Every plane of a group reads a row through four vertical taps, so converting at each read
+// converted each row some 30 times a band (docs/benchmarks.md, "The views' rows converted once").
+// Rows are kept in a ring by their index, each slot saying which row it holds, so a row outside
+// those kept is converted again, never read stale; the values are the floats a conversion at the
+// read gives.
+class ViewRows {
+ public:
+  void Reset(const PackedPlanes& src, int w, int h) {
+    src_ = src.data();
+    w_ = w;
+    h_ = h;
+    data_.resize(std::size_t(kSlots) * kChannels * std::size_t(w));
+    held_.fill(-1);
+  }
+  // Row r (clamped to the view: its edge repeated); channel c's samples at + c w.
+  const float* Row(int r) {
+    r = std::clamp(r, 0, h_ - 1);
+    const std::size_t slot = std::size_t(r % kSlots);
+    float* row = data_.data() + slot * kChannels * std::size_t(w_);
+    if (held_[slot] == r) return row;
+    const std::size_t plane = std::size_t(w_) * std::size_t(h_);
+    for (int c = 0; c < kChannels; ++c)
+      Convert(src_ + std::size_t(c) * plane + std::size_t(r) * std::size_t(w_), std::size_t(w_),
+              row + std::size_t(c) * std::size_t(w_));
+    held_[slot] = r;
+    return row;
+  }
+
+ private:
+  // More rows than a band's reads span (its rows, the taps' reach, the spread of the group's
+  // shifts), so that a band's rows stay converted while it is swept.
+  static constexpr int kSlots = 32;
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+  __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+#endif
+  static void
+  Convert(const std::int16_t* __restrict in, std::size_t n, float* __restrict out) {
+    for (std::size_t x = 0; x < n; ++x) out[x] = float(in[x]);
+  }
+  const std::int16_t* src_ = nullptr;
+  int w_ = 0, h_ = 0;
+  std::vector<float> data_;
+  std::array<int, kSlots> held_{};
+};
+
 // The two terms of a view's cost at a sample: each truncated, then weighted.
 struct CostTerms {
   float color_cap, gradient_cap, color_weight, gradient_weight;
@@ -187,9 +233,9 @@ void CompareRow(const float* __restrict s0, const float* __restrict s1, const fl
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
 __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
 #endif
-void AccumulateShiftedRow(const PackedPlanes& src, const float* ref, int w, int h,
-                          int y, const Shift& shift, const CostTerms& terms,
-                          std::vector<float>& rows, float* sum_row) {
+void AccumulateShiftedRow(ViewRows& src, const float* ref, int w, int h, int y,
+                          const Shift& shift, const CostTerms& terms, std::vector<float>& rows,
+                          float* sum_row) {
   if (y < shift.y_lo || y > shift.y_hi || shift.x_lo > shift.x_hi) return;
   const std::size_t plane = std::size_t(w) * h;
   const int x_lo = shift.x_lo, x_hi = shift.x_hi;
@@ -205,16 +251,17 @@ void AccumulateShiftedRow(const PackedPlanes& src, const float* ref, int w, int 
   rows.resize(2 * kChannels * std::size_t(w));
   float* vertical = rows.data();
   float* shifted = rows.data() + kChannels * std::size_t(w);
+  const float* tap_rows[4];
+  for (int j = 0; j < 4; ++j) tap_rows[j] = src.Row(y + y0 - 1 + j);
   for (int c = 0; c < kChannels; ++c) {
-    const std::int16_t* r[4];
-    for (int j = 0; j < 4; ++j)
-      r[j] = src.data() + c * plane + std::size_t(std::clamp(y + y0 - 1 + j, 0, h - 1)) * w;
+    const float* r[4];
+    for (int j = 0; j < 4; ++j) r[j] = tap_rows[j] + std::size_t(c) * w;
     // The vertical taps' weights take the packed unit out.
     const float unit = 1.0f / kPacked[std::size_t(c)];
     const float w0 = wy[0] * unit, w1 = wy[1] * unit, w2 = wy[2] * unit, w3 = wy[3] * unit;
     float* v = vertical + std::size_t(c) * w;
     for (int x = shift.c_lo; x <= shift.c_hi; ++x)
-      v[x] = w0 * float(r[0][x]) + w1 * float(r[1][x]) + w2 * float(r[2][x]) + w3 * float(r[3][x]);
+      v[x] = w0 * r[0][x] + w1 * r[1][x] + w2 * r[2][x] + w3 * r[3][x];
     float* out = shifted + std::size_t(c) * w;
     // Columns [from, to] read at offset x0 with weights wx: the taps inside the row as they
     // come, those over its ends at the end sample.
@@ -294,6 +341,7 @@ struct Scratch {
   std::vector<std::size_t> order;  // the views read shifted, class by class
   std::vector<int> steps;
   std::vector<float> across, unpacked, warped, valid;
+  ViewRows view_rows;
   std::vector<float> window_sum, best;
 };
 
@@ -613,7 +661,9 @@ CostVolume SweepViews::Sweep(const std::vector<double>& q, double gradient_share
         return views_[listed[a].first].view_class < views_[listed[b].first].view_class;
       });
       for (const PlaneScratch& ps : s.planes)
-        if (ps.shifted.size() != listed.size())
+        if (ps.shifted.size() != listed.size() ||
+            !std::equal(listed.begin(), listed.end(), ps.shifted.begin(),
+                        [](const auto& a, const auto& b) { return a.first == b.first; }))
           throw std::logic_error("the planes of a group read different views");
       const std::size_t plane_band = band_size * classes;
       for (int y0 = 0; y0 < h; y0 += kBandRows) {
@@ -623,16 +673,20 @@ CostVolume SweepViews::Sweep(const std::vector<double>& q, double gradient_share
         // stay in cache while the class's views add to them (docs/benchmarks.md, "The sweep's
         // views read once a group of planes").
         s.band_sum.assign(plane_band * std::size_t(planes), 0.0f);
-        for (const std::size_t k : s.order)
-          for (int j = 0; j < planes; ++j) {
-            const auto& [v, shift] = s.planes[std::size_t(j)].shifted[k];
-            const View& view = views_[v];
-            const std::size_t at =
-                std::size_t(j) * plane_band + std::size_t(view.view_class) * band_size;
-            for (int y = y0; y < y1; ++y)
-              AccumulateShiftedRow(view.packed, ref, w, h, y, shift, terms, s.across,
-                                   s.band_sum.data() + at + std::size_t(y - y0) * sw);
-          }
+        // A row at a time through the group's planes, so that the rows each plane's taps read
+        // are converted once for all of them (ViewRows); each sum takes the views in the same
+        // order as before, so it is the same float.
+        for (const std::size_t k : s.order) {
+          const View& view = views_[listed[k].first];
+          s.view_rows.Reset(view.packed, w, h);
+          const std::size_t at = std::size_t(view.view_class) * band_size;
+          for (int y = y0; y < y1; ++y)
+            for (int j = 0; j < planes; ++j)
+              AccumulateShiftedRow(
+                  s.view_rows, ref, w, h, y, s.planes[std::size_t(j)].shifted[k].second, terms,
+                  s.across,
+                  s.band_sum.data() + std::size_t(j) * plane_band + at + std::size_t(y - y0) * sw);
+        }
         for (int j = 0; j < planes; ++j) {
           PlaneScratch& ps = s.planes[std::size_t(j)];
           const float* band_sum = s.band_sum.data() + std::size_t(j) * plane_band;
