@@ -221,8 +221,47 @@ void CompareRow(const float* __restrict s0, const float* __restrict s1, const fl
         (std::abs(s0[x] - f0[x]) + std::abs(s1[x] - f1[x]) + std::abs(s2[x] - f2[x])) *
         (1.0f / 3.0f);
     const float gradient = std::abs(s3[x] - f3[x]) + std::abs(s4[x] - f4[x]);
-    sum[x] += color_weight * std::min(color, color_cap) +
-              gradient_weight * std::min(gradient, gradient_cap);
+    sum[x] += std::fma(color_weight, std::min(color, color_cap),
+                       gradient_weight * std::min(gradient, gradient_cap));
+  }
+}
+
+// A run of n samples' comparison (as CompareRow) with the view's row read across on the way:
+// channel c's shifted sample x is wx[0] v_c[x] + .. + wx[3] v_c[x + 3], the taps all inside the
+// row, so that the shifted row is never stored and read back. The multiply-adds are written out,
+// in the order GCC contracted the separate pass's vectorised loop (wx[1]'s product first), so
+// that a sample's cost is the same float whether the vectorised loop or its remainder takes it
+// (a scaled view's runs of one fraction are some 30 columns, so a quarter of its samples fall in
+// remainders; left to the compiler, those were contracted in another order).
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+#endif
+void ShiftAndCompare(const float* __restrict v0, const float* __restrict v1,
+                     const float* __restrict v2, const float* __restrict v3,
+                     const float* __restrict v4, const float* __restrict f0,
+                     const float* __restrict f1, const float* __restrict f2,
+                     const float* __restrict f3, const float* __restrict f4,
+                     const std::array<float, 4> wx, const CostTerms terms, std::size_t n,
+                     float* __restrict sum) {
+  const float a0 = wx[0], a1 = wx[1], a2 = wx[2], a3 = wx[3];
+  const float color_cap = terms.color_cap, gradient_cap = terms.gradient_cap;
+  const float color_weight = terms.color_weight, gradient_weight = terms.gradient_weight;
+  for (std::size_t x = 0; x < n; ++x) {
+    const float s0 =
+        std::fma(a3, v0[x + 3], std::fma(a2, v0[x + 2], std::fma(a0, v0[x], a1 * v0[x + 1])));
+    const float s1 =
+        std::fma(a3, v1[x + 3], std::fma(a2, v1[x + 2], std::fma(a0, v1[x], a1 * v1[x + 1])));
+    const float s2 =
+        std::fma(a3, v2[x + 3], std::fma(a2, v2[x + 2], std::fma(a0, v2[x], a1 * v2[x + 1])));
+    const float s3 =
+        std::fma(a3, v3[x + 3], std::fma(a2, v3[x + 2], std::fma(a0, v3[x], a1 * v3[x + 1])));
+    const float s4 =
+        std::fma(a3, v4[x + 3], std::fma(a2, v4[x + 2], std::fma(a0, v4[x], a1 * v4[x + 1])));
+    const float color =
+        (std::abs(s0 - f0[x]) + std::abs(s1 - f1[x]) + std::abs(s2 - f2[x])) * (1.0f / 3.0f);
+    const float gradient = std::abs(s3 - f3[x]) + std::abs(s4 - f4[x]);
+    sum[x] += std::fma(color_weight, std::min(color, color_cap),
+                       gradient_weight * std::min(gradient, gradient_cap));
   }
 }
 
@@ -262,36 +301,43 @@ void AccumulateShiftedRow(ViewRows& src, const float* ref, int w, int h, int y,
     float* v = vertical + std::size_t(c) * w;
     for (int x = shift.c_lo; x <= shift.c_hi; ++x)
       v[x] = w0 * r[0][x] + w1 * r[1][x] + w2 * r[2][x] + w3 * r[3][x];
-    float* out = shifted + std::size_t(c) * w;
-    // Columns [from, to] read at offset x0 with weights wx: the taps inside the row as they
-    // come, those over its ends at the end sample.
-    const auto across = [&](int from, int to, int x0, const std::array<float, 4>& wx, int inner_lo,
-                            int inner_hi) {
-      const auto edge = [&](int x) {
+  }
+  // Columns [from, to] read at offset x0 with weights wx and compared: the taps inside the row
+  // in one pass with the comparison, the columns whose taps reach over its ends at the end
+  // sample (a few at the row's ends).
+  const std::size_t sw = std::size_t(w);
+  const float* ref_row = ref + std::size_t(y) * sw;
+  const auto across = [&](int from, int to, int x0, const std::array<float, 4>& wx, int inner_lo,
+                          int inner_hi) {
+    const auto edge = [&](int x) {
+      for (int c = 0; c < kChannels; ++c) {
+        const float* v = vertical + std::size_t(c) * sw;
         float value = 0;
         for (int i = 0; i < 4; ++i) value += wx[i] * v[std::clamp(x + x0 - 1 + i, 0, w - 1)];
-        out[x] = value;
-      };
-      for (int x = from; x <= to && x < inner_lo; ++x) edge(x);
-      const int last = std::min(inner_hi, to);
-      for (int x = std::max(from, inner_lo); x <= last; ++x) {
-        const float* p = v + x + x0 - 1;
-        out[x] = wx[0] * p[0] + wx[1] * p[1] + wx[2] * p[2] + wx[3] * p[3];
+        shifted[std::size_t(c) * sw + std::size_t(x)] = value;
       }
-      for (int x = std::max({from, inner_hi + 1, inner_lo}); x <= to; ++x) edge(x);
+      const std::size_t at = std::size_t(x);
+      CompareRow(shifted + at, shifted + sw + at, shifted + 2 * sw + at, shifted + 3 * sw + at,
+                 shifted + 4 * sw + at, ref_row + at, ref_row + plane + at,
+                 ref_row + 2 * plane + at, ref_row + 3 * plane + at, ref_row + 4 * plane + at,
+                 terms, 1, sum_row + at);
     };
-    if (!shift.scaled)
-      across(x_lo, x_hi, shift.x0, shift.wx, shift.inner_lo, shift.inner_hi);
-    else
-      for (const Shift::Tile& t : shift.tiles)
-        across(t.x_begin, t.x_end, t.x0, t.wx, InnerLo(t.x0), InnerHi(t.x0, w));
-  }
-  const std::size_t at = std::size_t(y) * w + std::size_t(x_lo);
-  const std::size_t sw = std::size_t(w);
-  CompareRow(shifted + x_lo, shifted + sw + x_lo, shifted + 2 * sw + x_lo, shifted + 3 * sw + x_lo,
-             shifted + 4 * sw + x_lo, ref + at, ref + plane + at, ref + 2 * plane + at,
-             ref + 3 * plane + at, ref + 4 * plane + at, terms, std::size_t(x_hi - x_lo + 1),
-             sum_row + x_lo);
+    for (int x = from; x <= to && x < inner_lo; ++x) edge(x);
+    const int first = std::max(from, inner_lo), last = std::min(inner_hi, to);
+    if (first <= last) {
+      const float* v = vertical + std::ptrdiff_t(first + x0 - 1);
+      const float* f = ref_row + first;
+      ShiftAndCompare(v, v + sw, v + 2 * sw, v + 3 * sw, v + 4 * sw, f, f + plane, f + 2 * plane,
+                      f + 3 * plane, f + 4 * plane, wx, terms, std::size_t(last - first + 1),
+                      sum_row + first);
+    }
+    for (int x = std::max({from, inner_hi + 1, inner_lo}); x <= to; ++x) edge(x);
+  };
+  if (!shift.scaled)
+    across(x_lo, x_hi, shift.x0, shift.wx, shift.inner_lo, shift.inner_hi);
+  else
+    for (const Shift::Tile& t : shift.tiles)
+      across(t.x_begin, t.x_end, t.x0, t.wx, InnerLo(t.x0), InnerHi(t.x0, w));
 }
 
 // Where the homography m (reference coordinates -> the view's) lands inside the view: 1, else 0.
