@@ -204,6 +204,18 @@ struct CostTerms {
   float color_cap, gradient_cap, color_weight, gradient_weight;
 };
 
+// A sample's cost: the shifted view's channels s0 .. s4 against the reference's f0 .. f4, the
+// colour's mean and the gradients' sum each truncated, then weighted (one multiply-add, written
+// out so that every loop that inlines it gives the same float).
+[[gnu::always_inline]] inline float TruncatedCost(float s0, float s1, float s2, float s3, float s4,
+                                                  float f0, float f1, float f2, float f3, float f4,
+                                                  const CostTerms& terms) {
+  const float color = (std::abs(s0 - f0) + std::abs(s1 - f1) + std::abs(s2 - f2)) * (1.0f / 3.0f);
+  const float gradient = std::abs(s3 - f3) + std::abs(s4 - f4);
+  return std::fma(terms.color_weight, std::min(color, terms.color_cap),
+                  terms.gradient_weight * std::min(gradient, terms.gradient_cap));
+}
+
 // One row's comparison: the shifted view's channels s0 .. s4 against the reference's f0 .. f4,
 // each term truncated and weighted, added to `sum`.
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
@@ -214,16 +226,9 @@ void CompareRow(const float* __restrict s0, const float* __restrict s1, const fl
                 const float* __restrict f1, const float* __restrict f2, const float* __restrict f3,
                 const float* __restrict f4, const CostTerms terms, std::size_t n,
                 float* __restrict sum) {
-  const float color_cap = terms.color_cap, gradient_cap = terms.gradient_cap;
-  const float color_weight = terms.color_weight, gradient_weight = terms.gradient_weight;
-  for (std::size_t x = 0; x < n; ++x) {
-    const float color =
-        (std::abs(s0[x] - f0[x]) + std::abs(s1[x] - f1[x]) + std::abs(s2[x] - f2[x])) *
-        (1.0f / 3.0f);
-    const float gradient = std::abs(s3[x] - f3[x]) + std::abs(s4[x] - f4[x]);
-    sum[x] += std::fma(color_weight, std::min(color, color_cap),
-                       gradient_weight * std::min(gradient, gradient_cap));
-  }
+  for (std::size_t x = 0; x < n; ++x)
+    sum[x] +=
+        TruncatedCost(s0[x], s1[x], s2[x], s3[x], s4[x], f0[x], f1[x], f2[x], f3[x], f4[x], terms);
 }
 
 // A run of n samples' comparison (as CompareRow) with the view's row read across on the way:
@@ -244,8 +249,6 @@ void ShiftAndCompare(const float* __restrict v0, const float* __restrict v1,
                      const std::array<float, 4> wx, const CostTerms terms, std::size_t n,
                      float* __restrict sum) {
   const float a0 = wx[0], a1 = wx[1], a2 = wx[2], a3 = wx[3];
-  const float color_cap = terms.color_cap, gradient_cap = terms.gradient_cap;
-  const float color_weight = terms.color_weight, gradient_weight = terms.gradient_weight;
   for (std::size_t x = 0; x < n; ++x) {
     const float s0 =
         std::fma(a3, v0[x + 3], std::fma(a2, v0[x + 2], std::fma(a0, v0[x], a1 * v0[x + 1])));
@@ -257,11 +260,7 @@ void ShiftAndCompare(const float* __restrict v0, const float* __restrict v1,
         std::fma(a3, v3[x + 3], std::fma(a2, v3[x + 2], std::fma(a0, v3[x], a1 * v3[x + 1])));
     const float s4 =
         std::fma(a3, v4[x + 3], std::fma(a2, v4[x + 2], std::fma(a0, v4[x], a1 * v4[x + 1])));
-    const float color =
-        (std::abs(s0 - f0[x]) + std::abs(s1 - f1[x]) + std::abs(s2 - f2[x])) * (1.0f / 3.0f);
-    const float gradient = std::abs(s3 - f3[x]) + std::abs(s4 - f4[x]);
-    sum[x] += std::fma(color_weight, std::min(color, color_cap),
-                       gradient_weight * std::min(gradient, gradient_cap));
+    sum[x] += TruncatedCost(s0, s1, s2, s3, s4, f0[x], f1[x], f2[x], f3[x], f4[x], terms);
   }
 }
 
