@@ -81,7 +81,7 @@ std::vector<SimulatedModule> MakeModules(const ArrayPlane& array, int width, int
         m.photometry.gain = exposure * Vec3(red, 1.0, blue);
         m.photometry.vignetting[0] = uniform(-0.30, 0.05);
         m.photometry.vignetting[1] = uniform(-0.05, 0.03);
-        m.lens_blur_px = lens_blur_um(lens_rng) * pixel_scale / kPiCameraPixelUm;
+        m.lens_blur_px = LensBlurPx(lens_blur_um(lens_rng), width);
       }
       modules.push_back(m);
     }

@@ -25,6 +25,12 @@ inline constexpr double kPiLensBlurUm = 0.8;
 inline constexpr double kPiLensBlurSpreadUm = 0.15;
 inline constexpr double kMaxLensBlurUm = 20.0;  // what a simulated lens may be given
 
+// A point spread of `um` on the sensor in pixels of a sensor read at `width` pixels across (the
+// full 2592 binned or scaled: a pixel there is 2592 / width full-size pixels wide).
+inline double LensBlurPx(double um, int width) {
+  return um * (double(width) / kPiCameraWidth) / kPiCameraPixelUm;
+}
+
 // The nominal module at a sensor resolution of width x height (binned or scaled from the full
 // 2592 x 1944; the field of view stays 53.5 x 41.4 degrees): no distortion, centred.
 CameraIntrinsics NominalPiCamera(int width, int height);

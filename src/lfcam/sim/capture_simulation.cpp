@@ -133,7 +133,7 @@ SimulatedArray::SimulatedArray(const Scene& scene, const CaptureSimulationOption
       throw Error(fmt::format("a lens blur of {} um is out of range (0..{})", *o.lens_blur_um,
                               kMaxLensBlurUm));
     for (SimulatedModule& m : modules_)
-      m.lens_blur_px = *o.lens_blur_um * o.sensor_width / (kPiCameraWidth * kPiCameraPixelUm);
+      m.lens_blur_px = LensBlurPx(*o.lens_blur_um, o.sensor_width);
   }
   auto board_plan = [&scene](ShotKind kind, std::string name, std::string dir,
                              const BoardSpec& board, const Rigid3& world_from_board) {
