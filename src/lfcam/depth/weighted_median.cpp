@@ -14,14 +14,17 @@
 
 #ifndef LFCAM_DEPTH_WEIGHTED_MEDIAN_ONCE
 #define LFCAM_DEPTH_WEIGHTED_MEDIAN_ONCE
+#include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <span>
 #include <vector>
 
 #include "lfcam/core/error.h"
@@ -95,13 +98,34 @@ HWY_EXPORT(LanesT);
 
 struct Weighted {
   float label;
+  int bucket;  // LabelBuckets::Of(label)
   double weight;
+};
+
+// The map's labels cut into kCount buckets in their order: a label's bucket is never before a
+// smaller label's. A median is found as the bucket where the weights' running sum reaches half,
+// then among that bucket's labels alone.
+struct LabelBuckets {
+  static constexpr int kCount = 256;
+  float lo = 0, scale = 0;
+  explicit LabelBuckets(const cv::Mat& label) {
+    float low = std::numeric_limits<float>::infinity(), high = -low;
+    for (int y = 0; y < label.rows; ++y)
+      for (const float l : std::span(label.ptr<float>(y), std::size_t(label.cols)))
+        if (!std::isnan(l)) low = std::min(low, l), high = std::max(high, l);
+    if (low < high && std::isfinite(high - low))
+      lo = low, scale = float(kCount / double(high - low));
+  }
+  int Of(float l) const {
+    const float t = (l - lo) * scale;  // NaN only for an infinite label with scale 0
+    return !(t >= 1) ? 0 : t >= kCount - 1 ? kCount - 1 : int(t);
+  }
 };
 
 // The smallest label whose weight, with the weights of every smaller label, reaches `target`
 // (average linear time: a selection that keeps only the side the answer lies on). `items` is
 // reordered; its weights sum to at least `target` > 0.
-float WeightedSelect(std::vector<Weighted>& items, double target) {
+float WeightedSelect(std::span<Weighted> items, double target) {
   auto begin = items.begin(), end = items.end();
   float largest = -std::numeric_limits<float>::infinity();
   for (const Weighted& i : items) largest = std::max(largest, i.label);
@@ -146,12 +170,33 @@ int ReplaceOutliersByWeightedMedian(const cv::Mat& guide_rgb8, const WeightedMed
   const float colour_scale = float(-1.0 / (2 * s * s));
   const float threshold = float(options.threshold);
 
+  // The median's weights, exp(n colour_scale) for every squared colour distance n that two 8-bit
+  // colours can be apart (each the same double the exponential gives for that n), looked up: a
+  // sample decided by its median weighs a whole neighbourhood.
+  constexpr int kLargestSquaredDistance = 3 * 255 * 255;
+  std::vector<double> colour_weight(std::size_t(kLargestSquaredDistance) + 1);
+  tbb::parallel_for(tbb::blocked_range<int>(0, kLargestSquaredDistance + 1, 4096),
+                    [&](const tbb::blocked_range<int>& n) {
+                      for (int i = n.begin(); i != n.end(); ++i)
+                        colour_weight[std::size_t(i)] = std::exp(double(i) * colour_scale);
+                    });
+  const double* const weight_of = colour_weight.data();
+  const LabelBuckets buckets(label);
   cv::Mat out = label.clone();
   std::atomic<int> replaced{0};
-  tbb::enumerable_thread_specific<std::vector<Weighted>> scratch;
+  struct Scratch {
+    std::vector<Weighted> items, in_bucket;
+    std::array<double, LabelBuckets::kCount> bucket_weight{};
+  };
+  tbb::enumerable_thread_specific<Scratch> scratch;
   tbb::parallel_for(0, h, [&](int y) {
     std::vector<float> sums(std::size_t(weighted_median::kSums * lanes));
-    std::vector<Weighted>& items = scratch.local();
+    Scratch& local = scratch.local();
+    // Written by index into room for a whole neighbourhood (a push's bounds check and stored end
+    // were a sixth of the median's time).
+    const std::size_t window = std::size_t(2 * r + 1) * std::size_t(2 * r + 1);
+    local.items.resize(window);
+    local.in_bucket.resize(window);
     int count = 0;
     for (int x0 = 0; x0 < w; x0 += lanes) {
       HWY_DYNAMIC_DISPATCH(OutlierSumsT)(m, colour_scale, threshold, y, x0, sums.data());
@@ -162,21 +207,40 @@ int ReplaceOutliersByWeightedMedian(const cv::Mat& guide_rgb8, const WeightedMed
         // An outlier, or near enough to one that the median decides: the median itself.
         const int x = x0 + i;
         const std::size_t centre = m.At(y, x);
-        items.clear();
+        std::size_t n = 0;
+        local.bucket_weight.fill(0.0);
+        Weighted* const item_out = local.items.data();
+        double* const bucket_weight = local.bucket_weight.data();
         double total = 0;
         for (int yy = std::max(0, y - r); yy <= std::min(h - 1, y + r); ++yy)
           for (int xx = std::max(0, x - r); xx <= std::min(w - 1, x + r); ++xx) {
             const std::size_t at = m.At(yy, xx);
             const float l = m.label[at];
             if (std::isnan(l)) continue;
-            const double dr = m.red[at] - m.red[centre], dg = m.green[at] - m.green[centre],
-                         db = m.blue[at] - m.blue[centre];
-            const double weight = std::exp((dr * dr + dg * dg + db * db) * colour_scale);
-            items.push_back({l, weight});
+            const int dr = int(m.red[at] - m.red[centre]), dg = int(m.green[at] - m.green[centre]),
+                      db = int(m.blue[at] - m.blue[centre]);
+            const double weight = weight_of[dr * dr + dg * dg + db * db];
+            const int bucket = buckets.Of(l);
+            item_out[n++] = {l, bucket, weight};
+            bucket_weight[bucket] += weight;
             total += weight;
           }
         if (!(total > 0)) continue;
-        const float median = WeightedSelect(items, 0.5 * total);
+        // The bucket where the running sum reaches half, then the median among its labels.
+        const double half = 0.5 * total;
+        double before = 0;
+        int k = 0;
+        while (k + 1 < LabelBuckets::kCount && before + local.bucket_weight[std::size_t(k)] < half)
+          before += local.bucket_weight[std::size_t(k++)];
+        const std::span<Weighted> items(local.items.data(), n);
+        std::size_t in_k = 0;
+        for (const Weighted& item : items)
+          if (item.bucket == k) local.in_bucket[in_k++] = item;
+        // No label there only by rounding (the sums fell short of half): the largest label.
+        const float median =
+            in_k == 0
+                ? std::ranges::max(items, {}, [](const Weighted& item) { return item.label; }).label
+                : WeightedSelect({local.in_bucket.data(), in_k}, half - before);
         if (options.dark_limb_levels > 0 && median > m.label[centre] + threshold &&
             IsDarkLimb(guide_rgb8, label, x, y, median, threshold,
                        {options.dark_limb_levels, options.dark_limb_radius}))

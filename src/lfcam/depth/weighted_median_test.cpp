@@ -74,38 +74,66 @@ std::pair<cv::Mat, cv::Mat> NoisyLabels(int w, int h, unsigned seed) {
   return {guide, label};
 }
 
+// Every sample of `label` cleaned up at radius r against the definition; returns how many the
+// definition replaces.
+int ExpectTheDefinition(const cv::Mat& guide, const cv::Mat& label, int r) {
+  const double sigma = 25.5, threshold = 2.0;
+  cv::Mat out = label.clone();
+  const int replaced = ReplaceOutliersByWeightedMedian(guide, {r, sigma, threshold}, out);
+  int expected = 0, disagree = 0;
+  for (int y = 0; y < label.rows; ++y)
+    for (int x = 0; x < label.cols; ++x) {
+      const float own = label.at<float>(y, x), got = out.at<float>(y, x);
+      if (std::isnan(own)) {
+        EXPECT_TRUE(std::isnan(got)) << x << "," << y;
+        continue;
+      }
+      const Definition d = Define(guide, label, x, y, r, sigma, threshold);
+      expected += d.outlier;
+      const float want = d.outlier ? d.median : own;
+      // Sums in float may decide otherwise only where the definition's are within a hair of
+      // half the neighbourhood's weight.
+      if (got != want) {
+        ++disagree;
+        EXPECT_LT(d.margin, 1e-4) << "r " << r << " at " << x << "," << y << ": " << got
+                                  << " against " << want;
+      }
+    }
+  EXPECT_LE(disagree, 2) << "r " << r << " w " << label.cols;
+  EXPECT_NEAR(replaced, expected, disagree) << "r " << r << " w " << label.cols;
+  return expected;
+}
+
 TEST(WeightedMedian, IsItsDefinitionSampleBySample) {
   for (const int r : {0, 1, 3, 7}) {
     // Widths that are and are not whole numbers of vectors.
     for (const int w : {37, 64}) {
       const auto [guide, label] = NoisyLabels(w, 29, unsigned(7 * r + w));
-      const double sigma = 25.5, threshold = 2.0;
-      cv::Mat out = label.clone();
-      const int replaced = ReplaceOutliersByWeightedMedian(guide, {r, sigma, threshold}, out);
-      int expected = 0, disagree = 0;
-      for (int y = 0; y < label.rows; ++y)
-        for (int x = 0; x < label.cols; ++x) {
-          const float own = label.at<float>(y, x), got = out.at<float>(y, x);
-          if (std::isnan(own)) {
-            EXPECT_TRUE(std::isnan(got)) << x << "," << y;
-            continue;
-          }
-          const Definition d = Define(guide, label, x, y, r, sigma, threshold);
-          expected += d.outlier;
-          const float want = d.outlier ? d.median : own;
-          // Sums in float may decide otherwise only where the definition's are within a hair of
-          // half the neighbourhood's weight.
-          if (got != want) {
-            ++disagree;
-            EXPECT_LT(d.margin, 1e-4)
-                << "r " << r << " at " << x << "," << y << ": " << got << " against " << want;
-          }
-        }
-      EXPECT_LE(disagree, 2) << "r " << r << " w " << w;
-      EXPECT_NEAR(replaced, expected, disagree) << "r " << r << " w " << w;
+      const int expected = ExpectTheDefinition(guide, label, r);
       if (r > 0) {
         EXPECT_GT(expected, 20) << "the scene must have outliers to find";
       }
+    }
+  }
+}
+
+// The median is looked for among the labels cut into buckets in their order: whole labels (many
+// ties within a bucket), one label far beyond the rest (all the others in one bucket), or every
+// label the same, it is still the definition's.
+TEST(WeightedMedian, IsItsDefinitionWhateverTheLabelsSpread) {
+  for (const int kind : {0, 1, 2}) {
+    auto [guide, label] = NoisyLabels(48, 31, unsigned(101 + kind));
+    for (int y = 0; y < label.rows; ++y)
+      for (int x = 0; x < label.cols; ++x) {
+        float& l = label.at<float>(y, x);
+        if (std::isnan(l)) continue;
+        if (kind == 0) l = std::round(l);
+        if (kind == 2) l = 5.0f;
+      }
+    if (kind == 1) label.at<float>(3, 4) = 1.0e6f;
+    const int expected = ExpectTheDefinition(guide, label, 5);
+    if (kind != 2) {
+      EXPECT_GT(expected, 20) << "the scene must have outliers to find";
     }
   }
 }
