@@ -193,7 +193,7 @@ int ReplaceOutliersByWeightedMedian(const cv::Mat& guide_rgb8, const WeightedMed
     std::vector<float> sums(std::size_t(weighted_median::kSums * lanes));
     Scratch& local = scratch.local();
     // Written by index into room for a whole neighbourhood (a push's bounds check and stored end
-    // were a sixth of the median's time).
+    // were about a sixth of the median's time).
     const std::size_t window = std::size_t(2 * r + 1) * std::size_t(2 * r + 1);
     local.items.resize(window);
     local.in_bucket.resize(window);
@@ -230,8 +230,8 @@ int ReplaceOutliersByWeightedMedian(const cv::Mat& guide_rgb8, const WeightedMed
         const double half = 0.5 * total;
         double before = 0;
         int k = 0;
-        while (k + 1 < LabelBuckets::kCount && before + local.bucket_weight[std::size_t(k)] < half)
-          before += local.bucket_weight[std::size_t(k++)];
+        while (k + 1 < LabelBuckets::kCount && before + bucket_weight[k] < half)
+          before += bucket_weight[k++];
         const std::span<Weighted> items(local.items.data(), n);
         std::size_t in_k = 0;
         for (const Weighted& item : items)
