@@ -255,6 +255,11 @@ class SweepViews {
   // View i's colour planes (R, G, B: sRGB 0 .. 1, its brightness made the reference's where the
   // sweep does) at the matching resolution; i = -1: the reference's.
   std::array<cv::Mat, 3> Colour(int i) const;
+  // View i's colour planes as the sweep keeps them, without a copy (valid while this lives;
+  // i >= 0): 16-bit (CV_16SC1), Colour(i)'s values times kPackedColour, whose float product with
+  // 1 / kPackedColour is exactly Colour(i)'s value.
+  std::array<cv::Mat, 3> PackedColour(int i) const;
+  static constexpr float kPackedColour = 255.0f;
 
  private:
   struct View {

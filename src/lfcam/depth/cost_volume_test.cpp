@@ -10,11 +10,13 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <iostream>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "lfcam/depth/bilinear_read.h"
 #include "lfcam/depth/depth_test_scene.h"
 #include "lfcam/depth/sweep_reads.h"
 
@@ -265,6 +267,45 @@ TEST(CostVolumeReadShifts, FollowTheSweepsReadsWithTheCamerasOffOnePlane) {
     // in its camera's offset (the reads 60 samples apart at reach 2: a hundredth of a sample).
     EXPECT_LT(worst, off_plane_mm > 0 ? 0.02 : 1e-6);
   }
+}
+
+TEST(CostVolumeColour, TheViewsPackedColourReadsAsTheirFloatColour) {
+  // The silhouettes' visibility step reads the views' own 16-bit planes where the sweep reads
+  // them unblurred: every bilinear read the same float as from Colour(i)'s copy, bit for bit.
+  const LightField lf = testing::TwoPlaneLightField(testing::TwoPlaneScene());
+  CostVolumeOptions options;
+  options.reach = 1;
+  const SweepViews views(lf, 3, 3, options);
+  ASSERT_GT(views.view_count(), 0);
+  const float scale = float(1.0 / SweepViews::kPackedColour);
+  cv::RNG rng(7);
+  int reads = 0, differing = 0;
+  double spread = 0;
+  for (int i = 0; i < views.view_count(); ++i) {
+    const std::array<cv::Mat, 3> colour = views.Colour(i), packed = views.PackedColour(i);
+    for (int c = 0; c < 3; ++c) {
+      const cv::Mat& f = colour[std::size_t(c)];
+      const cv::Mat& p = packed[std::size_t(c)];
+      ASSERT_EQ(p.type(), CV_16SC1);
+      ASSERT_EQ(p.size(), f.size());
+      double lo = 0, hi = 0;
+      cv::minMaxLoc(f, &lo, &hi);
+      spread = std::max(spread, hi - lo);
+      for (int k = 0; k < 200; ++k) {
+        // Anywhere on the plane, its last row and column too, and a little beyond (refused).
+        const double x = rng.uniform(-0.5, f.cols - 0.5), y = rng.uniform(-0.5, f.rows - 0.5);
+        float from_float = -1, from_packed = -1;
+        const bool inside = BilinearAt(f, x, y, &from_float);
+        ASSERT_EQ(BilinearAt<std::int16_t>(p, x, y, scale, &from_packed), inside);
+        if (!inside) continue;
+        ++reads;
+        differing += from_float != from_packed;
+      }
+    }
+  }
+  EXPECT_GT(spread, 0.2);  // the views have texture: the reads tell values apart
+  EXPECT_GT(reads, 1000);
+  EXPECT_EQ(differing, 0) << "of " << reads;
 }
 
 // An engine that takes no sweep (as a GPU refuses one beyond its texture limits).

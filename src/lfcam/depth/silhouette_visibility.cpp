@@ -30,6 +30,16 @@ int RoundHalfAway(double v) {
   return static_cast<int>(fraction >= 0.5 ? t + 1 : fraction <= -0.5 ? t - 1 : t);
 }
 
+// The same for where a splatted sample lands, with no branch on the fraction (a row's samples
+// round whichever way, unpredictably), clamped to int's range less one (any such is off the map).
+int RoundHalfAwayBranchless(double v) {
+  constexpr double kLimit = std::numeric_limits<int>::max() - 1;
+  v = std::clamp(v, -kLimit, kLimit);
+  const int t = static_cast<int>(v);
+  const double fraction = v - static_cast<double>(t);
+  return t + int(fraction >= 0.5) - int(fraction <= -0.5);
+}
+
 }  // namespace
 
 int RefineSilhouettesByVisibility(const SweepViews& views, const std::vector<double>& q,
@@ -51,8 +61,14 @@ int RefineSilhouettesByVisibility(const SweepViews& views, const std::vector<dou
     return rgb;
   };
   const std::array<cv::Mat, 3> reference = colour(-1);
+  // The other views' as read: the sweep's own 16-bit planes, not copied, where it reads them
+  // as they are (a float copy of 100 views of 1248 x 1152 would be 1.7 GB); float copies
+  // through its Gaussian where it does not.
+  const bool blurred = views.read_sigma() > 0;
   std::vector<std::array<cv::Mat, 3>> view_colour;
-  for (int i = 0; i < views.view_count(); ++i) view_colour.push_back(colour(i));
+  for (int i = 0; i < views.view_count(); ++i)
+    view_colour.push_back(blurred ? colour(i) : views.PackedColour(i));
+  const float packed_scale = float(1.0 / SweepViews::kPackedColour);
   const cv::Mat kernel = cv::Mat::ones(o.window, o.window, CV_8U);
   int changed = 0;
   cv::Mat moved_here(h, w, CV_8U), near_moved;
@@ -104,30 +120,45 @@ int RefineSilhouettesByVisibility(const SweepViews& views, const std::vector<dou
     struct Sums {
       std::vector<std::array<CostSum, 2>> sum;
       std::vector<std::array<int, 2>> seen;
-      cv::Mat hidden_by;  // the nearest label splatted there
+      cv::Mat hidden_by;            // the nearest label splatted there
+      std::vector<int> to_x, to_y;  // where a row's samples land
     };
     tbb::enumerable_thread_specific<Sums> per_thread([&] {
       return Sums{std::vector<std::array<CostSum, 2>>(candidates.size()),
-                  std::vector<std::array<int, 2>>(candidates.size(), {0, 0}),
-                  cv::Mat(h, w, CV_32F)};
+                  std::vector<std::array<int, 2>>(candidates.size(), {0, 0}), cv::Mat(h, w, CV_32F),
+                  std::vector<int>(std::size_t(w)), std::vector<int>(std::size_t(w))};
     });
     tbb::parallel_for(0, views.view_count(), [&](int i) {
       Sums& sums = per_thread.local();
       cv::Mat& hidden_by = sums.hidden_by;
       const SweepViews::ReadShift& s = (*shifts)[std::size_t(i)];
       hidden_by.setTo(std::numeric_limits<float>::infinity());
+      int* to_x = sums.to_x.data();
+      int* to_y = sums.to_y.data();
       for (int y = 0; y < h; ++y) {
         if (!row_splatted[std::size_t(y)]) continue;
         const float* row = label.ptr<float>(y);
         const unsigned char* needed = splatted.ptr<unsigned char>(y);
-        for (int x = 0; x < w; ++x) {
-          if (!needed[x]) continue;
-          const double qq = q0 + dq * row[x];
-          const cv::Point2d at = s.At(x, y, qq);
-          const int tx = RoundHalfAway(at.x), ty = RoundHalfAway(at.y);
-          if (tx < 0 || ty < 0 || tx >= w || ty >= h) continue;
-          float& z = hidden_by.at<float>(ty, tx);
-          z = std::min(z, row[x]);
+        // Run by run of the samples needed (the candidates' neighbourhoods): where each lands,
+        // with no branch on the rounding, then the nearest kept.
+        for (int x0 = 0; x0 < w;) {
+          while (x0 < w && !needed[x0]) ++x0;
+          int x1 = x0;
+          while (x1 < w && needed[x1]) ++x1;
+          for (int x = x0; x < x1; ++x) {
+            const double qq = q0 + dq * row[x];
+            to_x[x] = RoundHalfAwayBranchless(x * (1 + s.scale.x + qq * s.scale_per_q.x) +
+                                              s.offset.x + qq * s.per_q.x);
+            to_y[x] = RoundHalfAwayBranchless(y * (1 + s.scale.y + qq * s.scale_per_q.y) +
+                                              s.offset.y + qq * s.per_q.y);
+          }
+          for (int x = x0; x < x1; ++x) {
+            const int tx = to_x[x], ty = to_y[x];
+            if (unsigned(tx) >= unsigned(w) || unsigned(ty) >= unsigned(h)) continue;
+            float& z = hidden_by.ptr<float>(ty)[tx];
+            z = std::min(z, row[x]);
+          }
+          x0 = x1;
         }
       }
       // A point splatted between samples leaves holes: each takes its neighbours' nearest.
@@ -156,7 +187,10 @@ int RefineSilhouettesByVisibility(const SweepViews& views, const std::vector<dou
               float d = 0, read = 0;
               bool inside = true;
               for (int ch = 0; ch < 3 && inside; ++ch) {
-                inside = BilinearAt(v[std::size_t(ch)], px + dx, py + dy, &read);
+                const cv::Mat& plane = v[std::size_t(ch)];
+                inside = blurred ? BilinearAt(plane, px + dx, py + dy, &read)
+                                 : BilinearAt<std::int16_t>(plane, px + dx, py + dy, packed_scale,
+                                                            &read);
                 d += std::abs(read - reference[std::size_t(ch)].at<float>(ry, rx));
               }
               if (!inside) continue;

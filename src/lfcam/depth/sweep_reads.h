@@ -17,6 +17,8 @@ static_assert(kChannels == ShiftedSweep::kChannels && kHalves == ShiftedSweep::k
 // The packed channels' units: sRGB levels exactly (0 .. 255); gradients (at most 1 in size) in
 // steps of 1/8192, finer than an 8-bit grey level's gradient (1/2040).
 inline constexpr std::array<float, kChannels> kPacked = {255.0f, 255.0f, 255.0f, 8192.0f, 8192.0f};
+static_assert(kPacked[0] == SweepViews::kPackedColour && kPacked[1] == SweepViews::kPackedColour &&
+              kPacked[2] == SweepViews::kPackedColour);
 
 // The weights of a read at fraction f of a sample (taps at -1 - f, -f, 1 - f, 2 - f): Keys'
 // cubic, or with `read_sigma` > 0 a Gaussian of that many samples tapered to zero at 2 samples

@@ -351,4 +351,15 @@ std::array<cv::Mat, 3> SweepViews::Colour(int i) const {
   return rgb;
 }
 
+std::array<cv::Mat, 3> SweepViews::PackedColour(int i) const {
+  const int w = geometry_.width, h = geometry_.height;
+  const std::size_t plane = std::size_t(w) * h;
+  const View& v = views_.at(std::size_t(i));
+  std::array<cv::Mat, 3> rgb;
+  for (int c = 0; c < 3; ++c)
+    rgb[std::size_t(c)] =
+        cv::Mat(h, w, CV_16SC1, const_cast<std::int16_t*>(v.packed.data()) + c * plane);
+  return rgb;
+}
+
 }  // namespace lfcam
