@@ -22,17 +22,11 @@ struct EdgeSample {
   std::array<int, 2> seen{0, 0};  // the views that see the point there
 };
 
-// std::lround's rounding (half away from zero) inline, for coordinates well within int: the
-// library call was 4% of `lfcam depth --all` (docs/benchmarks.md). v less its truncation is exact.
+// std::lround's rounding (half away from zero) inline: the library call was 4% of `lfcam depth
+// --all` (docs/benchmarks.md). v less its truncation is exact; no branch on the fraction (a row's
+// splatted samples round whichever way, unpredictably); clamped to int's range less one (any such
+// is off the map).
 int RoundHalfAway(double v) {
-  const auto t = static_cast<long long>(v);
-  const double fraction = v - static_cast<double>(t);
-  return static_cast<int>(fraction >= 0.5 ? t + 1 : fraction <= -0.5 ? t - 1 : t);
-}
-
-// The same for where a splatted sample lands, with no branch on the fraction (a row's samples
-// round whichever way, unpredictably), clamped to int's range less one (any such is off the map).
-int RoundHalfAwayBranchless(double v) {
   constexpr double kLimit = std::numeric_limits<int>::max() - 1;
   v = std::clamp(v, -kLimit, kLimit);
   const int t = static_cast<int>(v);
@@ -146,11 +140,9 @@ int RefineSilhouettesByVisibility(const SweepViews& views, const std::vector<dou
           int x1 = x0;
           while (x1 < w && needed[x1]) ++x1;
           for (int x = x0; x < x1; ++x) {
-            const double qq = q0 + dq * row[x];
-            to_x[x] = RoundHalfAwayBranchless(x * (1 + s.scale.x + qq * s.scale_per_q.x) +
-                                              s.offset.x + qq * s.per_q.x);
-            to_y[x] = RoundHalfAwayBranchless(y * (1 + s.scale.y + qq * s.scale_per_q.y) +
-                                              s.offset.y + qq * s.per_q.y);
+            const cv::Point2d at = s.At(x, y, q0 + dq * row[x]);
+            to_x[x] = RoundHalfAway(at.x);
+            to_y[x] = RoundHalfAway(at.y);
           }
           for (int x = x0; x < x1; ++x) {
             const int tx = to_x[x], ty = to_y[x];
