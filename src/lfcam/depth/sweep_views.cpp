@@ -338,15 +338,13 @@ std::array<cv::Mat, 3> SweepViews::Colour(int i) const {
   const int w = geometry_.width, h = geometry_.height;
   const std::size_t plane = std::size_t(w) * h;
   std::array<cv::Mat, 3> rgb;
+  const std::array<cv::Mat, 3> packed = i < 0 ? std::array<cv::Mat, 3>{} : PackedColour(i);
   for (int c = 0; c < 3; ++c) {
-    if (i < 0) {
+    if (i < 0)
       cv::Mat(h, w, CV_32FC1, const_cast<float*>(reference_.channels.data()) + c * plane)
           .copyTo(rgb[std::size_t(c)]);
-    } else {
-      const View& v = views_[std::size_t(i)];
-      cv::Mat(h, w, CV_16SC1, const_cast<std::int16_t*>(v.packed.data()) + c * plane)
-          .convertTo(rgb[std::size_t(c)], CV_32F, 1.0 / kPacked[std::size_t(c)]);
-    }
+    else
+      packed[std::size_t(c)].convertTo(rgb[std::size_t(c)], CV_32F, 1.0 / kPackedColour);
   }
   return rgb;
 }
