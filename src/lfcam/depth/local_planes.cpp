@@ -10,8 +10,6 @@
 
 #include <hwy/foreach_target.h>  // must come before highway.h
 #include <hwy/highway.h>
-// After highway.h, once per instruction set:
-#include <hwy/contrib/math/math-inl.h>
 
 #ifndef LFCAM_DEPTH_LOCAL_PLANES_ONCE
 #define LFCAM_DEPTH_LOCAL_PLANES_ONCE
@@ -24,6 +22,7 @@
 #include <vector>
 
 #include "lfcam/core/error.h"
+#include "lfcam/depth/colour_weights.h"
 #include "lfcam/depth/padded_label_maps.h"
 
 namespace lfcam::local_planes {
@@ -37,7 +36,7 @@ struct PaddedMaps : PaddedLabelMaps {
 // The fit's constants, as the kernel takes them.
 struct FitConstants {
   std::vector<float> space;  // the distance weight per offset, (2r + 1)² of them, row by row
-  float colour_scale = 0;    // −1 / (2 σ²), σ in 8-bit levels
+  ColourWeights colour;      // the colour weight per squared distance, σ in 8-bit levels
   float gap = 0;             // max_label_gap
 };
 
@@ -54,6 +53,7 @@ namespace {
 
 namespace hn = hwy::HWY_NAMESPACE;
 using DF = hn::ScalableTag<float>;
+using DI = hn::RebindToSigned<DF>;
 using VF = hn::Vec<DF>;
 
 // The weighted sums over the neighbourhoods of samples [x0, x0 + lanes) of row y, into
@@ -68,7 +68,10 @@ void NeighbourhoodSumsT(const local_planes::PaddedMaps& m, const local_planes::F
   const VF red0 = hn::LoadU(d, m.red.data() + centre);
   const VF green0 = hn::LoadU(d, m.green.data() + centre);
   const VF blue0 = hn::LoadU(d, m.blue.data() + centre);
-  const VF gap = hn::Set(d, c.gap), colour_scale = hn::Set(d, c.colour_scale);
+  const VF gap = hn::Set(d, c.gap);
+  const DI di;
+  const float* colour_weight = c.colour.weight.data();
+  const auto last = hn::Set(di, c.colour.last);
   VF s0 = hn::Zero(d), sx = s0, sy = s0, sxx = s0, syy = s0, sxy = s0, sl = s0, slx = s0, sly = s0;
   for (int dy = -r; dy <= r; ++dy) {
     const int yy = y + dy;
@@ -83,7 +86,7 @@ void NeighbourhoodSumsT(const local_planes::PaddedMaps& m, const local_planes::F
       const VF dg = hn::Sub(hn::LoadU(d, m.green.data() + at), green0);
       const VF db = hn::Sub(hn::LoadU(d, m.blue.data() + at), blue0);
       const VF d2 = hn::MulAdd(dr, dr, hn::MulAdd(dg, dg, hn::Mul(db, db)));
-      const VF colour = hn::Exp(d, hn::Mul(d2, colour_scale));
+      const VF colour = hn::GatherIndex(d, colour_weight, hn::Min(hn::ConvertTo(di, d2), last));
       const VF w = hn::IfThenElseZero(near, hn::Mul(hn::Mul(colour, hn::Set(d, space[dx])),
                                                     hn::LoadU(d, m.weight.data() + at)));
       l = hn::IfThenElseZero(near, l);
@@ -168,7 +171,7 @@ cv::Mat FitLocalPlanes(const cv::Mat& label, const cv::Mat& guide_rgb8, const cv
       constants.space[std::size_t((dy + r) * (2 * r + 1) + dx + r)] =
           float(std::exp(-(dx * dx + dy * dy) / (2.0 * options.sigma_space * options.sigma_space)));
   const double s = options.sigma_colour * 255.0;
-  constants.colour_scale = float(-1.0 / (2 * s * s));
+  constants.colour = MakeColourWeights(float(-1.0 / (2 * s * s)));
   constants.gap = float(options.max_label_gap);
 
   cv::Mat out = label.clone();

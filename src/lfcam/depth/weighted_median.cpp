@@ -9,8 +9,6 @@
 
 #include <hwy/foreach_target.h>  // must come before highway.h
 #include <hwy/highway.h>
-// After highway.h, once per instruction set:
-#include <hwy/contrib/math/math-inl.h>
 
 #ifndef LFCAM_DEPTH_WEIGHTED_MEDIAN_ONCE
 #define LFCAM_DEPTH_WEIGHTED_MEDIAN_ONCE
@@ -28,6 +26,7 @@
 #include <vector>
 
 #include "lfcam/core/error.h"
+#include "lfcam/depth/colour_weights.h"
 #include "lfcam/depth/dark_limb.h"
 #include "lfcam/depth/padded_label_maps.h"
 
@@ -47,12 +46,13 @@ namespace {
 
 namespace hn = hwy::HWY_NAMESPACE;
 using DF = hn::ScalableTag<float>;
+using DI = hn::RebindToSigned<DF>;
 using VF = hn::Vec<DF>;
 
 // The sums over the neighbourhoods of samples [x0, x0 + lanes) of row y, into `sums` (kSums runs
 // of `lanes` floats: all, below, above).
-void OutlierSumsT(const PaddedLabelMaps& m, float colour_scale, float threshold, int y, int x0,
-                  float* sums) {
+void OutlierSumsT(const PaddedLabelMaps& m, const ColourWeights& colour, float threshold, int y,
+                  int x0, float* sums) {
   const DF d;
   const int r = m.radius;
   const std::size_t centre = m.At(y, x0);
@@ -61,7 +61,9 @@ void OutlierSumsT(const PaddedLabelMaps& m, float colour_scale, float threshold,
   const VF red0 = hn::LoadU(d, m.red.data() + centre);
   const VF green0 = hn::LoadU(d, m.green.data() + centre);
   const VF blue0 = hn::LoadU(d, m.blue.data() + centre);
-  const VF scale = hn::Set(d, colour_scale);
+  const DI di;
+  const float* colour_weight = colour.weight.data();
+  const auto last = hn::Set(di, colour.last);
   VF all = hn::Zero(d), below = all, above = all;
   for (int yy = std::max(0, y - r); yy <= std::min(m.height - 1, y + r); ++yy)
     for (int dx = -r; dx <= r; ++dx) {
@@ -71,7 +73,7 @@ void OutlierSumsT(const PaddedLabelMaps& m, float colour_scale, float threshold,
       const VF dg = hn::Sub(hn::LoadU(d, m.green.data() + at), green0);
       const VF db = hn::Sub(hn::LoadU(d, m.blue.data() + at), blue0);
       const VF d2 = hn::MulAdd(dr, dr, hn::MulAdd(dg, dg, hn::Mul(db, db)));
-      const VF w = hn::Exp(d, hn::Mul(d2, scale));
+      const VF w = hn::GatherIndex(d, colour_weight, hn::Min(hn::ConvertTo(di, d2), last));
       all = hn::Add(all, hn::IfThenElseZero(hn::Eq(l, l), w));  // NaN: the padding, unknowns
       below = hn::Add(below, hn::IfThenElseZero(hn::Lt(l, low), w));
       above = hn::Add(above, hn::IfThenElseZero(hn::Gt(l, high), w));
@@ -181,6 +183,7 @@ int ReplaceOutliersByWeightedMedian(const cv::Mat& guide_rgb8, const WeightedMed
                         colour_weight[std::size_t(i)] = std::exp(double(i) * colour_scale);
                     });
   const double* const weight_of = colour_weight.data();
+  const ColourWeights colour = MakeColourWeights(colour_scale);
   const LabelBuckets buckets(label);
   cv::Mat out = label.clone();
   std::atomic<int> replaced{0};
@@ -199,7 +202,7 @@ int ReplaceOutliersByWeightedMedian(const cv::Mat& guide_rgb8, const WeightedMed
     local.in_bucket.resize(window);
     int count = 0;
     for (int x0 = 0; x0 < w; x0 += lanes) {
-      HWY_DYNAMIC_DISPATCH(OutlierSumsT)(m, colour_scale, threshold, y, x0, sums.data());
+      HWY_DYNAMIC_DISPATCH(OutlierSumsT)(m, colour, threshold, y, x0, sums.data());
       for (int i = 0; i < lanes && x0 + i < w; ++i) {
         const float all = sums[std::size_t(i)], below = sums[std::size_t(lanes + i)],
                     above = sums[std::size_t(2 * lanes + i)];
