@@ -210,9 +210,20 @@ TEST(GridImport, StanfordNamesNeedTheFocalLengthAndBadFoldersAreNamed) {
   const std::string one = grid.view(1, 1).file;
   fs::rename(dir / one, dir / "held");
   refused("camera (1, 1) is missing");
-  // ... placed by the files beside it, in the folder's own names.
-  refused(fmt::format("camera (1, 1) lies in the row of {} and the column of {}",
-                      grid.view(1, 0).file, grid.view(0, 1).file));
+  // ... placed by the files beside it, in the folder's own names, and named as it would be,
+  // its positions (NAME_RR_CC_Y_X_.png) not guessed.
+  std::vector<std::string> fields;
+  for (std::size_t start = 0;;) {
+    const auto at = one.find('_', start);
+    fields.push_back(one.substr(start, at - start));
+    if (at == std::string::npos) break;
+    start = at + 1;
+  }
+  ASSERT_EQ(fields.size(), 6u) << one;
+  fields[3] = fields[4] = "*";
+  refused(fmt::format("camera (1, 1) would be {}: it lies in the row of {} and the column of {}",
+                      fmt::format("{}", fmt::join(fields, "_")), grid.view(1, 0).file,
+                      grid.view(0, 1).file));
   EXPECT_EQ(ScanGridFolder(dir, true).missing, std::vector<std::string>{"camera (1, 1)"});
   // A view of another size.
   cv::imwrite((dir / one).string(), cv::Mat(10, 10, CV_8UC3, cv::Scalar(0)));
@@ -233,10 +244,11 @@ TEST(GridImport, StanfordNamesNeedTheFocalLengthAndBadFoldersAreNamed) {
   EXPECT_THROW(ScanGridFolder(dir, false), Error);
 }
 
-// A view missing from a folder whose names are indices alone is named as its file would be:
-// a unit grid's (padded or not, tagged or not), the HCI benchmark's, a numbered sequence's;
-// names that carry measured positions (Stanford's) are not guessed.
-TEST(GridImport, AMissingViewIsNamedAsItsFileWouldBeWhereTheNamesAreIndices) {
+// A view missing from a folder is named as its file would be: a unit grid's (padded or not,
+// tagged or not), the HCI benchmark's, a numbered sequence's; where the names carry measured
+// positions (Stanford's, Blender's), its indices with a '*' for each position, which is not
+// guessed.
+TEST(GridImport, AMissingViewIsNamedAsItsFileWouldBe) {
   const fs::path dir =
       fs::temp_directory_path() / ("lfcam_import_hole_" + std::to_string(::getpid()));
   const cv::Mat grey(8, 8, CV_8UC3, cv::Scalar(90, 90, 90));
@@ -265,11 +277,18 @@ TEST(GridImport, AMissingViewIsNamedAsItsFileWouldBeWhereTheNamesAreIndices) {
   refused(hci, 4, "would be input_Cam004.png", GridShape{3, 3});
   const auto numbered = [](int r, int c) { return fmt::format("frame{:04d}.png", 7 + r * 3 + c); };
   refused(numbered, 8, "would be frame0015.png", GridShape{3, 3});
-  // Positions measured by a gantry are not made up: the hole is placed by its neighbours alone.
+  // Positions measured by a gantry are not made up: the hole's indices, its positions '*'.
   const auto stanford = [](int r, int c) {
     return fmt::format("out_{:02d}_{:02d}_{}.5_{}.25_.png", r, c, -10 * r, 10 * c);
   };
-  refused(stanford, 4, "camera (1, 1) lies in the row of out_01_00_-10.5_0.25_.png");
+  refused(stanford, 4,
+          "camera (1, 1) would be out_01_01_*_*_.png: it lies in the row of "
+          "out_01_00_-10.5_0.25_.png");
+  const auto blender = [](int r, int c) {
+    return fmt::format("Original Camera_{:02d}_{:02d}_{}.5_{}.25_30_36.jpg", r + 9, c + 9, 10 * r,
+                       10 * c);
+  };
+  refused(blender, 5, "would be Original Camera_10_11_*_*_30_36.jpg: it lies in the row of");
   fs::remove_all(dir);
 }
 
