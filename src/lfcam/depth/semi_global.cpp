@@ -19,6 +19,11 @@ constexpr int kHuge = 0x3fff;  // a label that does not exist (the padding eithe
 // One step along a path: cur[i] = c[i] + min(prev[i], prev[i -+ 1] + p1, min(prev) + p2) -
 // min(prev). `prev` and `cur` are padded by one label each side; returns min(cur). With a
 // `shift` (a slanted surface's expected label change), prev[i - shift] takes prev[i]'s place.
+// Compiled for the machine's vector width as well (its loop vectorises; without, x86-64's
+// baseline SSE2 has no 16- or 32-bit minimum and builds each from compares and masks).
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+#endif
 int Step(const Cost* c, const Cost* prev, int prev_min, Cost* cur, int n, int p1, int p2,
          int shift = 0) {
   const int jump = prev_min + p2;
@@ -46,6 +51,9 @@ int Step(const Cost* c, const Cost* prev, int prev_min, Cost* cur, int n, int p1
 }
 
 // A path's first sample: its own cost.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+#endif
 int Start(const Cost* c, Cost* cur, int n) {
   int lowest = kHuge * 4;
   for (int i = 0; i < n; ++i) {
@@ -55,6 +63,9 @@ int Start(const Cost* c, Cost* cur, int n) {
   return lowest;
 }
 
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+#endif
 void Accumulate(const Cost* path, Cost* sum, int n) {
   for (int i = 0; i < n; ++i) sum[i] = Cost(sum[i] + path[i + 1]);
 }
