@@ -390,6 +390,17 @@ struct Scratch {
   std::vector<float> window_sum, best;
 };
 
+// sum[x] += row[x] for x < n (each sum its own float, so the same at any vector width):
+// a sub-array's sums are its classes' rows added, which inlined in the sweep's per-band lambda
+// ran at x86-64's baseline width (docs/benchmarks.md, "Semi-global matching at the machine's
+// vector width").
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+#endif
+void AddRow(const float* __restrict row, std::size_t n, float* __restrict sum) {
+  for (std::size_t x = 0; x < n; ++x) sum[x] += row[x];
+}
+
 // Row y of sub-array g's count: how many of its views read shifted see each sample there.
 void CountRow(const std::vector<std::pair<std::size_t, Shift>>& shifted,
               const std::vector<unsigned>& sub_arrays, int g, int y, int w, std::vector<int>& steps,
@@ -759,15 +770,11 @@ CostVolume SweepViews::Sweep(const std::vector<double>& q, double gradient_share
                 if (first)
                   std::copy(cs, cs + sw, hs);
                 else
-                  for (std::size_t x = 0; x < sw; ++x) hs[x] += cs[x];
+                  AddRow(cs, sw, hs);
                 first = false;
                 if (ps.class_sum.empty()) continue;
-                const float* ws = ps.class_sum.data() + k * plane + std::size_t(y) * sw;
-                const float* wc = ps.class_count.data() + k * plane + std::size_t(y) * sw;
-                for (std::size_t x = 0; x < sw; ++x) {
-                  hs[x] += ws[x];
-                  hc[x] += wc[x];
-                }
+                AddRow(ps.class_sum.data() + k * plane + std::size_t(y) * sw, sw, hs);
+                AddRow(ps.class_count.data() + k * plane + std::size_t(y) * sw, sw, hc);
               }
               if (first) std::fill(hs, hs + sw, 0.0f);  // a sub-array without a view
             }
