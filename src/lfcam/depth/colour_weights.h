@@ -2,7 +2,7 @@
 // The colour weight of the depth clean-up's kernels (depth/local_planes.cpp,
 // depth/weighted_median.cpp), exp(n · scale) for a squared distance n between two 8-bit colours
 // (over R, G and B: 0 … 3 · 255²), looked up rather than computed: the vector exponential was
-// about half of the plane fit's time, a gather from this table less than half of that
+// about half of the plane fit's time, a gather from this table about half as long
 // (docs/benchmarks.md, "The clean-up's colour weights looked up"). Each entry is the float the
 // kernels' own vector exponential (Highway's, on the instruction set the machine runs) gives for
 // that n, so a map is the same to the last bit either way.
