@@ -394,25 +394,6 @@ std::vector<std::string> DigitRuns(const std::string& name) {
   return runs;
 }
 
-// A Stanford or Blender name's fields between its '_'s, and where its row index is (the column
-// index next, then the positions); nullopt when it has too few.
-std::optional<std::pair<std::vector<std::string>, std::size_t>> PositionedNameFields(
-    const std::string& file, GridNaming naming) {
-  std::vector<std::string> fields;
-  const std::string stem = fs::path(file).stem().string();
-  for (std::size_t start = 0;;) {
-    const auto at = stem.find('_', start);
-    fields.push_back(stem.substr(start, at - start));
-    if (at == std::string::npos) break;
-    start = at + 1;
-  }
-  // After the indices: Y and X (and a trailing '_'), or Blender's Y, X, F and W.
-  const std::size_t after =
-      naming == GridNaming::kBlender ? 4 : 2 + (fields.back().empty() ? 1 : 0);
-  if (fields.size() < after + 3) return std::nullopt;
-  return std::pair{fields, fields.size() - after - 2};
-}
-
 // The name a missing view would have, from the views beside it: `in_row` shares its row and
 // `in_col` its column. For names that are indices alone (a unit grid's, the HCI benchmark's, a
 // numbered sequence's), only a name that parses back to the hole's place (a unit grid:
@@ -426,15 +407,8 @@ std::optional<std::string> ExpectedViewName(const ImportedGrid& g, const GridVie
   const auto row_named = ParseViewName(in_row.file, g.naming);
   const auto col_named = ParseViewName(in_col.file, g.naming);
   if (!row_named || !col_named) return std::nullopt;
-  if (g.naming == GridNaming::kStanford || g.naming == GridNaming::kBlender) {
-    auto row_fields = PositionedNameFields(in_row.file, g.naming);
-    const auto col_fields = PositionedNameFields(in_col.file, g.naming);
-    if (!row_fields || !col_fields) return std::nullopt;
-    auto& [fields, rr] = *row_fields;
-    fields[rr + 1] = col_fields->first[col_fields->second + 1];
-    fields[rr + 2] = fields[rr + 3] = "*";
-    return fmt::format("{}{}", fmt::join(fields, "_"), fs::path(in_row.file).extension().string());
-  }
+  if (g.naming == GridNaming::kStanford || g.naming == GridNaming::kBlender)
+    return NameWithPositionsUnknown(in_row.file, in_col.file, g.naming);
   const std::vector<std::string> a = DigitRuns(in_row.file), b = DigitRuns(in_col.file);
   std::vector<std::string> candidates;
   if (g.naming == GridNaming::kUnitGrid) {

@@ -1,6 +1,7 @@
 // libFuzzer target: what `lfcam import` reads before any image: the views' file names (every
 // naming: Stanford, Blender camera grid, HCI, unit grid, sequence) and lfcam-views.json (versions 1
-// and 2: a rectified rig's zero-disparity plane or principal points, then its geometry resolved).
+// and 2: a rectified rig's zero-disparity plane or principal points, then its geometry resolved),
+// and the name a missing view of a positioned grid would have.
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -16,6 +17,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
        {lfcam::GridNaming::kStanford, lfcam::GridNaming::kBlender, lfcam::GridNaming::kHci,
         lfcam::GridNaming::kUnitGrid, lfcam::GridNaming::kSequence})
     (void)lfcam::ParseViewName(std::string(text.substr(0, 256)), naming);
+  // A missing view's name from two beside it (the input's halves, split at a newline).
+  if (const auto cut = text.find('\n'); cut != std::string_view::npos && cut < 256)
+    for (const auto naming : {lfcam::GridNaming::kStanford, lfcam::GridNaming::kBlender})
+      (void)lfcam::NameWithPositionsUnknown(std::string(text.substr(0, cut)),
+                                            std::string(text.substr(cut + 1, 256)), naming);
   try {
     lfcam::ImportedGrid grid =
         lfcam::GridFromDescription(lfcam::ParseJsonBounded(text, "fuzz"), "fuzz");

@@ -84,21 +84,30 @@ std::optional<std::pair<int, int>> JoinedRowAndColumn(const std::string& text) {
   return std::nullopt;
 }
 
+// Where a name that carries positions has its row index (the column index next, then the
+// positions): Blender's NAME_RR_CC_Y_X_F_W, Stanford's NAME_RR_CC_Y_X[_]; nullopt for other
+// namings and names with too few fields.
+std::optional<std::size_t> RowIndexField(const std::vector<std::string>& parts, GridNaming naming) {
+  if (naming == GridNaming::kBlender) {
+    if (parts.size() >= 7) return parts.size() - 6;
+  } else if (naming == GridNaming::kStanford) {
+    const std::size_t skip = !parts.empty() && parts.back().empty() ? 1 : 0;  // a trailing '_'
+    if (parts.size() >= 5 + skip) return parts.size() - 4 - skip;
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 std::optional<NamedView> ParseViewName(const std::string& file, GridNaming naming) {
   std::string stem = fs::path(file).stem().string();
   const std::vector<std::string> parts = Fields(stem, '_');
-  auto tail = [&](std::size_t n, std::size_t skip) {
-    return std::vector<std::string>(parts.end() - std::ptrdiff_t(n + skip),
-                                    parts.end() - std::ptrdiff_t(skip));
-  };
   NamedView v;
   v.file = file;
   switch (naming) {
     case GridNaming::kBlender:
-      if (parts.size() >= 7) {
-        const auto t = tail(6, 0);
+      if (const auto at = RowIndexField(parts, naming)) {
+        const std::string* t = parts.data() + *at;
         const auto rr = Index(t[0]), cc = Index(t[1]);
         const auto y = Number(t[2]), x = Number(t[3]), f = Number(t[4]), w = Number(t[5]);
         if (rr && cc && y && x && f && w && *f > 0 && *w > 0) {
@@ -108,10 +117,9 @@ std::optional<NamedView> ParseViewName(const std::string& file, GridNaming namin
         }
       }
       return std::nullopt;
-    case GridNaming::kStanford: {
-      const std::size_t skip = !parts.empty() && parts.back().empty() ? 1 : 0;  // a trailing '_'
-      if (parts.size() >= 5 + skip) {
-        const auto t = tail(4, skip);
+    case GridNaming::kStanford:
+      if (const auto at = RowIndexField(parts, naming)) {
+        const std::string* t = parts.data() + *at;
         const auto rr = Index(t[0]), cc = Index(t[1]);
         const auto y = Number(t[2]), x = Number(t[3]);
         if (rr && cc && y && x) {
@@ -120,7 +128,6 @@ std::optional<NamedView> ParseViewName(const std::string& file, GridNaming namin
         }
       }
       return std::nullopt;
-    }
     case GridNaming::kUnitGrid: {
       // [NAME_]RR_CC, or [NAME-]RR-CC where the name holds no '_' (beside a '_', a '-' is a
       // Stanford position's sign, and no index carries one).
@@ -194,6 +201,19 @@ GridNaming GridNamingFromString(const std::string& name) {
     if (ToString(n) == name) return n;
   throw Error(fmt::format(
       "unknown naming '{}' (stanford, blender-grid, hci, unit-grid or sequence)", name));
+}
+
+std::optional<std::string> NameWithPositionsUnknown(const std::string& row_file,
+                                                    const std::string& col_file,
+                                                    GridNaming naming) {
+  if (!ParseViewName(row_file, naming) || !ParseViewName(col_file, naming)) return std::nullopt;
+  std::vector<std::string> fields = Fields(fs::path(row_file).stem().string(), '_');
+  const std::vector<std::string> col_fields = Fields(fs::path(col_file).stem().string(), '_');
+  const auto at = RowIndexField(fields, naming), col_at = RowIndexField(col_fields, naming);
+  if (!at || !col_at) return std::nullopt;
+  fields[*at + 1] = col_fields[*col_at + 1];
+  fields[*at + 2] = fields[*at + 3] = "*";
+  return fmt::format("{}{}", fmt::join(fields, "_"), fs::path(row_file).extension().string());
 }
 
 }  // namespace lfcam

@@ -26,4 +26,11 @@ struct NamedView {
 };
 std::optional<NamedView> ParseViewName(const std::string& file, GridNaming naming);
 
+// The name of a view missing from a grid whose names carry positions (Stanford's, Blender's):
+// `row_file`'s name (a view in its row) with `col_file`'s column index (a view in its column)
+// and each position a '*', which only the missing file could say (out_03_05_*_*_.png). Nullopt
+// for other namings, or names that do not parse.
+std::optional<std::string> NameWithPositionsUnknown(const std::string& row_file,
+                                                    const std::string& col_file, GridNaming naming);
+
 }  // namespace lfcam
