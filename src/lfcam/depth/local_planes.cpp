@@ -177,11 +177,16 @@ cv::Mat FitLocalPlanes(const cv::Mat& label, const cv::Mat& guide_rgb8, const cv
   cv::Mat out = label.clone();
   if (slopes && (slopes->type() != CV_32FC2 || slopes->size() != label.size()))
     *slopes = cv::Mat(label.size(), CV_32FC2, cv::Scalar(0, 0));
-  const auto refit = [&](const float* c, int x) {
-    return x < w && c[x] < options.refit_below_confidence;
-  };
+  if (!options.refit_only.empty() &&
+      (options.refit_only.type() != CV_8UC1 || options.refit_only.size() != label.size()))
+    throw Error("FitLocalPlanes: the refit mask must be an 8-bit map of the labels' size");
   tbb::parallel_for(0, h, [&](int y) {
     const float* c = confidence.ptr<float>(y);
+    const std::uint8_t* only =
+        options.refit_only.empty() ? nullptr : options.refit_only.ptr<std::uint8_t>(y);
+    const auto refit = [&](const float* cc, int x) {
+      return x < w && cc[x] < options.refit_below_confidence && (!only || only[x] != 0);
+    };
     std::vector<float> sums(std::size_t(local_planes::kSums * lanes));
     for (int x0 = 0; x0 < w; x0 += lanes) {
       bool any = false;

@@ -24,6 +24,9 @@ struct LocalPlaneOptions {
   double min_confidence = 0.05;  // a neighbour's confidence counts at least this much
   // Only samples less confident than this are refitted (the others keep their labels).
   double refit_below_confidence = 2.0;
+  // Where refitting may happen at all (CV_8UC1 of the labels' size, non-zero where it may), for
+  // a caller that keeps only part of the result; empty: everywhere.
+  cv::Mat refit_only;
 };
 
 // `label`: CV_32FC1 continuous labels (linear in disparity); `guide_rgb8`: the reference view,

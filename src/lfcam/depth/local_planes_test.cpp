@@ -104,6 +104,46 @@ TEST(LocalPlanes, RefitOnlyTheSamplesLessConfidentThanAsked) {
     }
 }
 
+// A mask of where refitting may happen (the slant prior's second pass keeps its labels only where
+// the first pass was sure): outside it every label stays, inside it each is the unmasked fit's
+// own float, though its neighbours outside were not refitted (a fit reads the labels given).
+TEST(LocalPlanes, RefitOnlyWhereTheMaskAllows) {
+  const int w = 43, h = 31;
+  cv::Mat label(h, w, CV_32FC1), confidence(h, w, CV_32FC1), guide(h, w, CV_8UC3);
+  cv::Mat only(h, w, CV_8UC1);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> scatter(-0.6f, 0.6f), sure(0.0f, 0.2f);
+  std::uniform_int_distribution<int> texture(60, 140);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      label.at<float>(y, x) = 12.0f + 0.1f * float(x) - 0.07f * float(y) + scatter(rng);
+      confidence.at<float>(y, x) = sure(rng);
+      const auto g = std::uint8_t(texture(rng));
+      guide.at<cv::Vec3b>(y, x) = {g, std::uint8_t(g / 2), 90};
+      only.at<std::uint8_t>(y, x) = (x / 3 + y / 2) % 3 == 0 ? 255 : 0;
+    }
+  LocalPlaneOptions options;
+  options.radius = 10;
+  options.sigma_space = 5;
+  options.refit_below_confidence = 0.1;
+  const cv::Mat everywhere = FitLocalPlanes(label, guide, confidence, options);
+  options.refit_only = only;
+  const cv::Mat masked = FitLocalPlanes(label, guide, confidence, options);
+  int refitted = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const bool may = only.at<std::uint8_t>(y, x) != 0;
+      ASSERT_EQ(masked.at<float>(y, x), may ? everywhere.at<float>(y, x) : label.at<float>(y, x))
+          << x << ", " << y;
+      refitted += may && masked.at<float>(y, x) != label.at<float>(y, x);
+    }
+  EXPECT_GT(refitted, w * h / 12);  // half the mask's samples are unsure: about a sixth
+  options.refit_only = cv::Mat(h, w + 1, CV_8UC1, cv::Scalar(1));
+  EXPECT_THROW(FitLocalPlanes(label, guide, confidence, options), Error);
+  options.refit_only = cv::Mat(h, w, CV_32FC1, cv::Scalar(1));
+  EXPECT_THROW(FitLocalPlanes(label, guide, confidence, options), Error);
+}
+
 // The fit by its definition (local_planes.h), one sample and one neighbour at a time in double:
 // what the vectorised fit must give.
 cv::Mat ReferenceFit(const cv::Mat& label, const cv::Mat& guide, const cv::Mat& confidence,
