@@ -42,6 +42,10 @@ constexpr double kOutlierColourSigma = 25.5;  // the clean-up's colour weight, 8
 // A dark limb the clean-up keeps lies this far below its surroundings' grey, in 8-bit levels, and
 // at least kDarkLimbNoises times the views' noise (docs/depth.md, "Dark limbs kept").
 constexpr double kDarkLimbLevels = 4.0, kDarkLimbNoises = 3.0;
+// At narrow baselines on views without noise (at most kNoisyViewLevels), the clean-up replaces
+// only samples the sweep matched less surely than this: elsewhere the views' evidence stands
+// against its colour vote (docs/depth.md, "The clean-up where the sweep was sure").
+constexpr float kCleanUpBelowConfidence = 0.05f;
 constexpr double kPlaneGapPixels =
     0.3;                              // the plane fit's neighbours: nearest view's shift, samples
 constexpr int kWidePlaneRadius = 10;  // the second plane fit's radius, samples
@@ -404,6 +408,8 @@ DepthMap EstimateDepth(const LightField& lf, int row, int col, const PlaneSweepO
       clean_up.sigma_levels = kOutlierColourSigma;
       clean_up.threshold = std::max(2.0, kOutlierPixels / per_plane);
       if (options.keep_dark_limbs && narrow) clean_up.dark_limb_levels = dark_limb_levels;
+      if (narrow && views.noise_level() <= kNoisyViewLevels)
+        clean_up.replace_only = choice.confidence < kCleanUpBelowConfidence;
       ReplaceOutliersByWeightedMedian(views.reference_rgb8(), clean_up, choice.label);
     }
     if (options.fit_local_planes) {

@@ -164,6 +164,11 @@ int ReplaceOutliersByWeightedMedian(const cv::Mat& guide_rgb8, const WeightedMed
     throw Error(
         "ReplaceOutliersByWeightedMedian: the colour sigma must be positive, the threshold and "
         "the dark limbs' levels not negative");
+  if (!options.replace_only.empty() &&
+      (options.replace_only.type() != CV_8UC1 || options.replace_only.size() != label.size()))
+    throw Error(
+        "ReplaceOutliersByWeightedMedian: the replace mask must be an 8-bit map of the labels' "
+        "size");
   const int w = label.cols, h = label.rows, r = std::max(0, options.radius);
   if (w == 0 || h == 0) return 0;
   const int lanes = HWY_DYNAMIC_DISPATCH(LanesT)();
@@ -201,6 +206,8 @@ int ReplaceOutliersByWeightedMedian(const cv::Mat& guide_rgb8, const WeightedMed
     local.items.resize(window);
     local.in_bucket.resize(window);
     int count = 0;
+    const std::uint8_t* const only =
+        options.replace_only.empty() ? nullptr : options.replace_only.ptr<std::uint8_t>(y);
     for (int x0 = 0; x0 < w; x0 += lanes) {
       HWY_DYNAMIC_DISPATCH(OutlierSumsT)(m, colour, threshold, y, x0, sums.data());
       for (int i = 0; i < lanes && x0 + i < w; ++i) {
@@ -209,6 +216,7 @@ int ReplaceOutliersByWeightedMedian(const cv::Mat& guide_rgb8, const WeightedMed
         if (!(below >= 0.5f * all || above > 0.5f * all)) continue;  // false for NaN labels
         // An outlier, or near enough to one that the median decides: the median itself.
         const int x = x0 + i;
+        if (only && only[x] == 0) continue;
         const std::size_t centre = m.At(y, x);
         std::size_t n = 0;
         local.bucket_weight.fill(0.0);

@@ -26,10 +26,13 @@ struct WeightedMedianOptions {
   double threshold = 2.0;         // a sample farther than this from its median is an outlier
   double dark_limb_levels = 0.0;  // 0: no sample is kept as a dark limb
   int dark_limb_radius = 3;       // the neighbourhood the limb is judged in, in samples
+  // Where a sample may be replaced at all (CV_8UC1 of the labels' size, non-zero where it may);
+  // empty: everywhere. The others keep their labels and still count in their neighbours' medians.
+  cv::Mat replace_only;
 };
 
 // `label`: CV_32FC1 (NaN: unknown, takes no part and stays); `guide_rgb8`: CV_8UC3 of the same
-// size. Replaces the outliers in place; returns how many there were.
+// size. Replaces the outliers in place (where `replace_only` allows); returns how many it replaced.
 int ReplaceOutliersByWeightedMedian(const cv::Mat& guide_rgb8, const WeightedMedianOptions& options,
                                     cv::Mat& label);
 

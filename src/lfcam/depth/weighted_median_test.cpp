@@ -14,6 +14,14 @@
 namespace lfcam::weighted_median_test {
 namespace {
 
+WeightedMedianOptions Options(int radius, double sigma_levels, double threshold) {
+  WeightedMedianOptions options;
+  options.radius = radius;
+  options.sigma_levels = sigma_levels;
+  options.threshold = threshold;
+  return options;
+}
+
 // The definition, sample by sample, in double: the median and the two sums that say whether a
 // sample is an outlier, with how near to half the nearer of them is (a margin).
 struct Definition {
@@ -79,7 +87,7 @@ std::pair<cv::Mat, cv::Mat> NoisyLabels(int w, int h, unsigned seed) {
 int ExpectTheDefinition(const cv::Mat& guide, const cv::Mat& label, int r) {
   const double sigma = 25.5, threshold = 2.0;
   cv::Mat out = label.clone();
-  const int replaced = ReplaceOutliersByWeightedMedian(guide, {r, sigma, threshold}, out);
+  const int replaced = ReplaceOutliersByWeightedMedian(guide, Options(r, sigma, threshold), out);
   int expected = 0, disagree = 0;
   for (int y = 0; y < label.rows; ++y)
     for (int x = 0; x < label.cols; ++x) {
@@ -138,6 +146,29 @@ TEST(WeightedMedian, IsItsDefinitionWhateverTheLabelsSpread) {
   }
 }
 
+// With a mask, a sample the mask allows takes what the unmasked clean-up gives it, and every other
+// keeps its label while still counting in its neighbours' medians (the mask decides what is
+// replaced, not what votes).
+TEST(WeightedMedian, ReplacesOnlyWhereTheMaskAllows) {
+  const auto [guide, label] = NoisyLabels(64, 29, 11u);
+  cv::Mat everywhere = label.clone();
+  const int all = ReplaceOutliersByWeightedMedian(guide, Options(3, 25.5, 2.0), everywhere);
+  ASSERT_GT(all, 20) << "the scene must have outliers to find";
+  WeightedMedianOptions masked = Options(3, 25.5, 2.0);
+  masked.replace_only = cv::Mat(label.size(), CV_8UC1, cv::Scalar(0));
+  masked.replace_only(cv::Rect(0, 0, 32, 29)).setTo(1);  // the left half
+  cv::Mat some = label.clone();
+  const int replaced = ReplaceOutliersByWeightedMedian(guide, masked, some);
+  EXPECT_GT(replaced, 0);
+  EXPECT_LT(replaced, all);
+  for (int y = 0; y < label.rows; ++y)
+    for (int x = 0; x < label.cols; ++x) {
+      const float want = x < 32 ? everywhere.at<float>(y, x) : label.at<float>(y, x);
+      const float got = some.at<float>(y, x);
+      EXPECT_TRUE(got == want || (std::isnan(got) && std::isnan(want))) << x << "," << y;
+    }
+}
+
 TEST(WeightedMedian, ReplacesAnIsolatedOutlierAndKeepsAStripOfItsOwnColour) {
   // Two colour halves at labels 10 and 30, one stray sample, and a thin strip of the right
   // half's colour and label reaching into the left half (a thin object in front).
@@ -149,14 +180,14 @@ TEST(WeightedMedian, ReplacesAnIsolatedOutlierAndKeepsAStripOfItsOwnColour) {
   label(cv::Rect(5, 10, 12, 2)).setTo(30);
   label.at<float>(30, 8) = 55;  // the stray one
   cv::Mat out = label.clone();
-  EXPECT_EQ(ReplaceOutliersByWeightedMedian(guide, {5, 25.5, 2.0}, out), 1);
+  EXPECT_EQ(ReplaceOutliersByWeightedMedian(guide, Options(5, 25.5, 2.0), out), 1);
   EXPECT_EQ(out.at<float>(30, 8), 10.0f);
   EXPECT_EQ(out.at<float>(10, 10), 30.0f);  // the strip stays: its neighbours of its colour agree
   EXPECT_EQ(out.at<float>(20, 19), 10.0f);  // the edge stays where the colours change
   EXPECT_EQ(out.at<float>(20, 20), 30.0f);
   // Without the colour weight (a huge sigma) the strip is outvoted by the half around it.
   cv::Mat plain = label.clone();
-  ReplaceOutliersByWeightedMedian(guide, {5, 1e6, 2.0}, plain);
+  ReplaceOutliersByWeightedMedian(guide, Options(5, 1e6, 2.0), plain);
   EXPECT_EQ(plain.at<float>(10, 10), 10.0f);
 }
 
@@ -172,13 +203,13 @@ TEST(WeightedMedian, KeepsADarkLimbOnItsObjectAndMovesTheFattenedBackground) {
   label(cv::Rect(20, 0, 20, 40)).setTo(10);
   // The median moves both onto the wall: the limb is more like the wall than like the object.
   cv::Mat plain = label.clone();
-  ReplaceOutliersByWeightedMedian(guide, {7, 25.5, 2.0}, plain);
+  ReplaceOutliersByWeightedMedian(guide, Options(7, 25.5, 2.0), plain);
   EXPECT_EQ(plain.at<float>(10, 20), 30.0f);
   EXPECT_EQ(plain.at<float>(10, 21), 30.0f);
   EXPECT_EQ(plain.at<float>(10, 22), 10.0f);
   // Kept as a limb where it lies 4 levels below the wall around it and its object's mean; the
   // fattened wall still moves, and so does the limb where the wall is as dark within 3 samples.
-  WeightedMedianOptions limbs{7, 25.5, 2.0};
+  WeightedMedianOptions limbs = Options(7, 25.5, 2.0);
   limbs.dark_limb_levels = 4;
   cv::Mat kept = label.clone();
   ReplaceOutliersByWeightedMedian(guide, limbs, kept);
@@ -205,10 +236,15 @@ TEST(WeightedMedian, RefusesMapsOfAnotherKind) {
   cv::Mat ints(8, 8, CV_32SC1, cv::Scalar(1));
   EXPECT_THROW(ReplaceOutliersByWeightedMedian(guide, {}, ints), Error);
   cv::Mat ok(8, 8, CV_32FC1, cv::Scalar(1));
-  EXPECT_THROW(ReplaceOutliersByWeightedMedian(guide, {2, 0.0, 2.0}, ok), Error);
+  EXPECT_THROW(ReplaceOutliersByWeightedMedian(guide, Options(2, 0.0, 2.0), ok), Error);
   WeightedMedianOptions negative;
   negative.dark_limb_levels = -1;
   EXPECT_THROW(ReplaceOutliersByWeightedMedian(guide, negative, ok), Error);
+  WeightedMedianOptions masked;
+  masked.replace_only = cv::Mat(8, 8, CV_32FC1, cv::Scalar(1));  // not an 8-bit map
+  EXPECT_THROW(ReplaceOutliersByWeightedMedian(guide, masked, ok), Error);
+  masked.replace_only = cv::Mat(8, 9, CV_8UC1, cv::Scalar(1));  // not the labels' size
+  EXPECT_THROW(ReplaceOutliersByWeightedMedian(guide, masked, ok), Error);
 }
 
 }  // namespace
