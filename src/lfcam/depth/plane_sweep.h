@@ -8,7 +8,8 @@
 // within `reach` grid steps, occlusion-aware (depth/cost_volume.h), is aggregated by semi-global
 // matching (depth/semi_global.h), the cheapest plane per sample is refined to a fraction of a
 // step (a parabola through three aggregated costs), outliers (a sample far from the
-// weighted median of its neighbours of the same colour) take that median, and each sample then
+// weighted median of its neighbours of the same colour; at narrow baselines on clean views only
+// where the sweep was unsure of its match) take that median, and each sample then
 // takes the plane through its neighbours' labels (depth/local_planes.h); a sample of little
 // confidence, the plane through a neighbourhood twice as wide. Then semi-global matching is run
 // again with the fitted planes' slant as what its paths expect, and the steps after it. Last,
