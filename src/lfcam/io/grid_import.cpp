@@ -718,9 +718,11 @@ ImportedGrid ScanGridFolder(const fs::path& dir, bool allow_missing,
       for (const GridView& v : g.views)
         if (v.file.empty()) placed.push_back(WhereTheViewBelongs(g, v));
     throw Error(fmt::format(
-        "{}: the {}x{} grid is incomplete: {} {} missing ({}--allow-missing fills {} from {} "
-        "neighbours)",
+        "{}: the {}x{} grid is incomplete: {} {} missing, {} of its {} views here "
+        "({}--allow-missing "
+        "fills {} from {} neighbours)",
         dir.string(), g.rows, g.cols, which, g.missing.size() == 1 ? "is" : "are",
+        g.views.size() - g.missing.size(), g.views.size(),
         placed.empty() ? "" : fmt::format("{}; ", fmt::join(placed, "; ")),
         g.missing.size() == 1 ? "it" : "them", g.missing.size() == 1 ? "its" : "their"));
   }

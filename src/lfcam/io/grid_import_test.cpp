@@ -275,6 +275,7 @@ TEST(GridImport, AMissingViewIsNamedAsItsFileWouldBe) {
   refused(tagged, 7, "would be v_r2_c1.png");
   const auto hci = [](int r, int c) { return fmt::format("input_Cam{:03d}.png", r * 3 + c); };
   refused(hci, 4, "would be input_Cam004.png", GridShape{3, 3});
+  refused(hci, 4, "is missing, 8 of its 9 views here", GridShape{3, 3});
   const auto numbered = [](int r, int c) { return fmt::format("frame{:04d}.png", 7 + r * 3 + c); };
   refused(numbered, 8, "would be frame0015.png", GridShape{3, 3});
   // Positions measured by a gantry are not made up: the hole's indices, its positions '*'.
