@@ -719,8 +719,7 @@ ImportedGrid ScanGridFolder(const fs::path& dir, bool allow_missing,
         if (v.file.empty()) placed.push_back(WhereTheViewBelongs(g, v));
     throw Error(fmt::format(
         "{}: the {}x{} grid is incomplete: {} {} missing, {} of its {} views here "
-        "({}--allow-missing "
-        "fills {} from {} neighbours)",
+        "({}--allow-missing fills {} from {} neighbours)",
         dir.string(), g.rows, g.cols, which, g.missing.size() == 1 ? "is" : "are",
         g.views.size() - g.missing.size(), g.views.size(),
         placed.empty() ? "" : fmt::format("{}; ", fmt::join(placed, "; ")),
