@@ -437,15 +437,9 @@ DepthMap EstimateDepth(const LightField& lf, int row, int col, const PlaneSweepO
     cv::GaussianBlur(slopes, expected_step, cv::Size(0, 0), kSlantPriorSmoothing);
     // (The second pass's wide plane fit, for its unsure samples, is kept only where the first
     // pass was sure: refitted there alone, the same labels in a fraction of the time.)
-    cv::Mat kept(choice.confidence.size(), CV_8UC1);
-    for (int y = 0; y < kept.rows; ++y)
-      for (int x = 0; x < kept.cols; ++x)
-        kept.at<std::uint8_t>(y, x) = choice.confidence.at<float>(y, x) >= kWidePlaneConfidence;
+    const cv::Mat kept = choice.confidence >= kWidePlaneConfidence;
     const Choice second = estimate(expected_step, kept);
-    for (int y = 0; y < second.label.rows; ++y)
-      for (int x = 0; x < second.label.cols; ++x)
-        if (kept.at<std::uint8_t>(y, x) != 0)
-          choice.label.at<float>(y, x) = second.label.at<float>(y, x);
+    second.label.copyTo(choice.label, kept);
   }
   if (options.silhouette_visibility) {
     SilhouetteVisibilityOptions visibility;
