@@ -36,6 +36,46 @@ int RoundHalfAway(double v) {
 
 }  // namespace
 
+cv::Mat ReachedByTheFarSide(const cv::Mat& label, const cv::Mat& far, float edge) {
+  const int w = label.cols, h = label.rows;
+  cv::Mat reached(h, w, CV_8U, cv::Scalar(0));
+  const auto wants = [&](int x, int y) {
+    return !std::isnan(far.at<float>(y, x)) && !reached.at<unsigned char>(y, x);
+  };
+  constexpr std::array<std::array<int, 2>, 4> kSides{{{1, 0}, {-1, 0}, {0, 1}, {0, -1}}};
+  std::vector<cv::Point> queue;
+  // Next to a sample the map already puts at least as far (less the edge's threshold): one
+  // that does not itself move.
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      if (!wants(x, y)) continue;
+      const float to = far.at<float>(y, x);
+      for (const auto& [dx, dy] : kSides) {
+        const int nx = x + dx, ny = y + dy;
+        if (nx < 0 || ny < 0 || nx >= w || ny >= h || !std::isnan(far.at<float>(ny, nx))) continue;
+        if (label.at<float>(ny, nx) >= to - edge) {
+          reached.at<unsigned char>(y, x) = 1;
+          queue.emplace_back(x, y);
+          break;
+        }
+      }
+    }
+  // Then next to one that moves to a depth at least as far (less the threshold).
+  for (std::size_t i = 0; i < queue.size(); ++i) {
+    const cv::Point at = queue[i];
+    const float to = far.at<float>(at);
+    for (const auto& [dx, dy] : kSides) {
+      const int nx = at.x + dx, ny = at.y + dy;
+      if (nx < 0 || ny < 0 || nx >= w || ny >= h || !wants(nx, ny)) continue;
+      if (to >= far.at<float>(ny, nx) - edge) {
+        reached.at<unsigned char>(ny, nx) = 1;
+        queue.emplace_back(nx, ny);
+      }
+    }
+  }
+  return reached;
+}
+
 int RefineSilhouettesByVisibility(const SweepViews& views, const std::vector<double>& q,
                                   double samples_per_label, cv::Mat& label,
                                   const SilhouetteVisibilityOptions& o) {
@@ -65,7 +105,7 @@ int RefineSilhouettesByVisibility(const SweepViews& views, const std::vector<dou
   const float packed_scale = float(1.0 / SweepViews::kPackedColour);
   const cv::Mat kernel = cv::Mat::ones(o.window, o.window, CV_8U);
   int changed = 0;
-  cv::Mat moved_here(h, w, CV_8U), near_moved;
+  cv::Mat moved_here, near_moved;
   for (int pass = 0; pass < o.passes; ++pass) {
     cv::Mat nearest, farthest, jump(h, w, CV_32F, cv::Scalar(0));
     cv::erode(label, nearest, kernel);
@@ -201,15 +241,15 @@ int RefineSilhouettesByVisibility(const SweepViews& views, const std::vector<dou
           candidates[k].sum[std::size_t(side)] += sums.sum[k][std::size_t(side)];
           candidates[k].seen[std::size_t(side)] += sums.seen[k][std::size_t(side)];
         }
-    int moved = 0;
-    moved_here.setTo(0);
+    // The samples whose far depth matches better; of those, the ones the far side reaches move.
+    cv::Mat wanting(h, w, CV_32F, cv::Scalar(std::numeric_limits<float>::quiet_NaN()));
     for (const EdgeSample& c : candidates)
       if (c.seen[0] >= fewest_views && c.seen[1] >= fewest_views &&
-          c.sum[1].value() / c.seen[1] < c.sum[0].value() / c.seen[0]) {
-        label.at<float>(c.y, c.x) = c.far;
-        moved_here.at<unsigned char>(c.y, c.x) = 1;
-        ++moved;
-      }
+          c.sum[1].value() / c.seen[1] < c.sum[0].value() / c.seen[0])
+        wanting.at<float>(c.y, c.x) = c.far;
+    moved_here = ReachedByTheFarSide(label, wanting, edge);
+    const int moved = cv::countNonZero(moved_here);
+    wanting.copyTo(label, moved_here);
     changed += moved;
     cv::dilate(moved_here, near_moved, kernel);
     if (moved == 0) break;

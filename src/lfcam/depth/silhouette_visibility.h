@@ -15,8 +15,8 @@
 // judged by the sample and those of its window whose label is that depth's (within the edge's
 // threshold), not by the other side's samples read at a shift that is not theirs. Only
 // towards the far side: the near side is seen by every view that sees its neighbours, so the
-// sweep's own choice stands there. A few passes, each over the samples next to those the last
-// one moved.
+// sweep's own choice stands there; and only where the far side reaches the sample
+// (ReachedByTheFarSide). A few passes, each over the samples next to those the last one moved.
 #include <cmath>
 #include <cstdint>
 #include <opencv2/core.hpp>
@@ -51,6 +51,15 @@ struct CostSum {
   }
   double value() const { return double(units) / kUnits; }
 };
+
+// Of the samples that would take a farther depth (`far`, CV_32F: that label, NaN where a sample
+// keeps its own), those the far side reaches: a sample next to one whose label (CV_32F) is
+// already at least that far less `edge` labels, or next to another reached sample that moves
+// at least that far less `edge`. The rest keep their labels: a sample inside an object whose far
+// depth matched better by chance, with its own object between it and the edge, would open a hole no
+// view sees through (`hci-antinous`' statue, one sample in from its dark side). Returns CV_8U,
+// 1 where reached.
+cv::Mat ReachedByTheFarSide(const cv::Mat& label, const cv::Mat& far, float edge);
 
 // Re-decides `label` (CV_32F, the planes of inverse depth q[i] as SweepViews::Sweep swept them;
 // fractional) at its depth edges as above; `samples_per_label` is the nearest view's shift

@@ -3,12 +3,14 @@
 // where the estimator's is (DepthOnABenchmarkLikeScene.*, docs/depth.md, "Visibility at the
 // silhouettes"). A refinement of a small scene in arenas of 1 to 7 threads gave the same map with
 // floating-point sums too (the near ties are rare: one sample of a full-size view in 1.4
-// million), so the sums themselves are what is tested.
+// million), so the sums themselves are what is tested; and which of the samples whose far depth
+// matched better the far side reaches.
 #include "lfcam/depth/silhouette_visibility.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <limits>
 #include <numeric>
 #include <random>
 #include <vector>
@@ -52,6 +54,55 @@ TEST(CostSums, AreTheSameWhateverTheOrderTheCostsComeIn) {
   }
   // What the fixed point is for: the same costs summed as doubles differ in their last bits.
   EXPECT_GT(doubles_differ, 0);
+}
+
+// A near square (label 10) on a far wall (label 50) of a 12 x 12 map. Samples that would move
+// to the wall: a band two deep along the square's left edge, a sample alone in its middle, and a
+// pair in it; and one on the right edge that would move farther than the wall beside it, by more
+// than the edge's threshold.
+TEST(SilhouetteVisibility, MovesOnlyTheSamplesTheFarSideReaches) {
+  const float kNear = 10, kWall = 50, kEdge = 2;
+  cv::Mat label(12, 12, CV_32F, cv::Scalar(kWall));
+  label(cv::Rect(3, 3, 6, 6)).setTo(kNear);
+  cv::Mat far(12, 12, CV_32F, cv::Scalar(std::numeric_limits<float>::quiet_NaN()));
+  far(cv::Rect(3, 3, 2, 6)).setTo(kWall);      // the band: columns 3 and 4
+  far.at<float>(5, 6) = kWall;                 // alone, two samples in from the band
+  far(cv::Rect(6, 7, 2, 1)).setTo(kWall - 1);  // the pair, within the threshold of the wall
+  far.at<float>(4, 8) = kWall + 3 * kEdge;     // farther than the wall beside it
+  const cv::Mat reached = ReachedByTheFarSide(label, far, kEdge);
+  ASSERT_EQ(reached.type(), CV_8U);
+  ASSERT_EQ(reached.size(), label.size());
+  for (int y = 0; y < 12; ++y)
+    for (int x = 0; x < 12; ++x) {
+      const bool band = x >= 3 && x <= 4 && y >= 3 && y <= 8;
+      EXPECT_EQ(reached.at<unsigned char>(y, x) != 0, band) << "at x " << x << ", y " << y;
+    }
+
+  // The lone sample and the pair, once the band has moved (the next pass's map), are reached
+  // through the samples between them and the wall only when those move too.
+  far(cv::Rect(3, 3, 2, 6)).copyTo(label(cv::Rect(3, 3, 2, 6)));
+  far.at<float>(5, 5) = kWall;
+  far(cv::Rect(5, 7, 1, 1)).setTo(kWall + 1);  // farther than the pair: reaches it
+  cv::Mat after(12, 12, CV_32F, cv::Scalar(std::numeric_limits<float>::quiet_NaN()));
+  for (const cv::Point at :
+       {cv::Point(5, 5), cv::Point(6, 5), cv::Point(5, 7), cv::Point(6, 7), cv::Point(7, 7)})
+    after.at<float>(at) = far.at<float>(at);
+  const cv::Mat next = ReachedByTheFarSide(label, after, kEdge);
+  EXPECT_EQ(cv::countNonZero(next), 5);
+  for (const cv::Point at :
+       {cv::Point(5, 5), cv::Point(6, 5), cv::Point(5, 7), cv::Point(6, 7), cv::Point(7, 7)})
+    EXPECT_TRUE(next.at<unsigned char>(at)) << "at " << at;
+
+  // A chain reaches only as far as each step's depth reaches the next's target (less the
+  // threshold): a sample beyond one that moves to a much nearer depth is not reached through it.
+  cv::Mat chain(12, 12, CV_32F, cv::Scalar(std::numeric_limits<float>::quiet_NaN()));
+  chain.at<float>(6, 5) = kWall;
+  chain.at<float>(6, 6) = kWall - 3 * kEdge;
+  chain.at<float>(6, 7) = kWall;
+  const cv::Mat steps = ReachedByTheFarSide(label, chain, kEdge);
+  EXPECT_TRUE(steps.at<unsigned char>(6, 5));
+  EXPECT_TRUE(steps.at<unsigned char>(6, 6));
+  EXPECT_FALSE(steps.at<unsigned char>(6, 7));
 }
 
 }  // namespace
