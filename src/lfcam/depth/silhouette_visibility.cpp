@@ -14,12 +14,19 @@
 namespace lfcam {
 namespace {
 
+// The depths a sample is judged at: the far one, its own, and its own moved by up to
+// kMaxNearSteps steps each way.
+constexpr int kMaxNearSteps = 3;
+constexpr int kHypotheses = 2 + 2 * kMaxNearSteps;
+using HypothesisSums = std::array<CostSum, kHypotheses>;
+using HypothesisViews = std::array<int, kHypotheses>;
+
 // A sample on the near side of a depth edge, and the two depths it is judged between.
 struct EdgeSample {
   int x = 0, y = 0;
-  float near = 0, far = 0;        // labels (near: the smaller)
-  std::array<CostSum, 2> sum{};   // the views' costs: [0] near, [1] far
-  std::array<int, 2> seen{0, 0};  // the views that see the point there
+  float near = 0, far = 0;  // labels (near: the smaller)
+  HypothesisSums sum{};     // the views' costs: [0] far, [1] near, then near moved
+  HypothesisViews seen{};   // the views that see the point there
 };
 
 // std::lround's rounding (half away from zero) inline: the library call was 4% of `lfcam depth
@@ -32,6 +39,142 @@ int RoundHalfAway(double v) {
   const int t = static_cast<int>(v);
   const double fraction = v - static_cast<double>(t);
   return t + int(fraction >= 0.5) - int(fraction <= -0.5);
+}
+
+// What the views' costs are read with: the map, the colours, where each depth lies in a view.
+struct CostReads {
+  const std::vector<SweepViews::ReadShift>& shifts;
+  const cv::Mat& label;
+  const std::array<cv::Mat, 3>& reference;
+  const std::vector<std::array<cv::Mat, 3>>& view_colour;
+  bool blurred;  // the colours float copies through the sweep's Gaussian, or its 16-bit planes
+  float packed_scale;
+  double q0, dq;          // the planes' inverse depths: q0 + dq * label
+  float edge, tolerance;  // in labels
+  const SilhouetteVisibilityOptions& o;
+  const std::vector<float>& near_offsets;  // hypothesis j >= 1: the near label moved by [j - 1]
+};
+
+// Adds to each candidate's sums the views' costs at its hypotheses first .. last - 1 (0: the far
+// depth, 1 ..: the near one, moved), over the views that see the point there.
+void SumViewCosts(const CostReads& r, std::vector<EdgeSample>& candidates, int first, int last) {
+  const int w = r.label.cols, h = r.label.rows;
+  const cv::Mat& label = r.label;
+  const SilhouetteVisibilityOptions& o = r.o;
+  const double q0 = r.q0, dq = r.dq;
+  const float edge = r.edge, tolerance = r.tolerance;
+  // The samples whose splat can hide a candidate's read: a sample lands, in any view, as far
+  // from its own place as its label puts it, a candidate's read as far as its depths put it,
+  // so within the views' largest change of shift over the map's labels (and a sample for the
+  // rounding, one for the holes' filling below) of a candidate. Later passes have few.
+  double label_lo = 0, label_hi = 0;
+  cv::minMaxLoc(label, &label_lo, &label_hi);
+  double reach_x = 0, reach_y = 0;
+  for (const SweepViews::ReadShift& s : r.shifts) {
+    reach_x = std::max(reach_x, std::abs(dq * s.per_q.x) * (label_hi - label_lo));
+    reach_y = std::max(reach_y, std::abs(dq * s.per_q.y) * (label_hi - label_lo));
+  }
+  const int splat_x = int(std::ceil(reach_x)) + 2, splat_y = int(std::ceil(reach_y)) + 2;
+  cv::Mat splatted(h, w, CV_8U, cv::Scalar(0));
+  for (const EdgeSample& c : candidates) splatted.at<unsigned char>(c.y, c.x) = 1;
+  cv::dilate(splatted, splatted,
+             cv::getStructuringElement(cv::MORPH_RECT, {2 * splat_x + 1, 2 * splat_y + 1}));
+  std::vector<char> row_splatted(std::size_t(h), 0);
+  for (int y = 0; y < h; ++y) row_splatted[std::size_t(y)] = cv::countNonZero(splatted.row(y)) > 0;
+  // Each view on its own (in parallel): its z-buffer, then the candidates' costs read in it.
+  struct Sums {
+    std::vector<HypothesisSums> sum;
+    std::vector<HypothesisViews> seen;
+    cv::Mat hidden_by;            // the nearest label splatted there
+    std::vector<int> to_x, to_y;  // where a row's samples land
+  };
+  tbb::enumerable_thread_specific<Sums> per_thread([&] {
+    return Sums{std::vector<HypothesisSums>(candidates.size()),
+                std::vector<HypothesisViews>(candidates.size()), cv::Mat(h, w, CV_32F),
+                std::vector<int>(std::size_t(w)), std::vector<int>(std::size_t(w))};
+  });
+  tbb::parallel_for(0, int(r.shifts.size()), [&](int i) {
+    Sums& sums = per_thread.local();
+    cv::Mat& hidden_by = sums.hidden_by;
+    const SweepViews::ReadShift& s = r.shifts[std::size_t(i)];
+    hidden_by.setTo(std::numeric_limits<float>::infinity());
+    int* to_x = sums.to_x.data();
+    int* to_y = sums.to_y.data();
+    for (int y = 0; y < h; ++y) {
+      if (!row_splatted[std::size_t(y)]) continue;
+      const float* row = label.ptr<float>(y);
+      const unsigned char* needed = splatted.ptr<unsigned char>(y);
+      // Run by run of the samples needed (the candidates' neighbourhoods): where each lands,
+      // with no branch on the rounding, then the nearest kept.
+      for (int x0 = 0; x0 < w;) {
+        while (x0 < w && !needed[x0]) ++x0;
+        int x1 = x0;
+        while (x1 < w && needed[x1]) ++x1;
+        for (int x = x0; x < x1; ++x) {
+          const cv::Point2d at = s.At(x, y, q0 + dq * row[x]);
+          to_x[x] = RoundHalfAway(at.x);
+          to_y[x] = RoundHalfAway(at.y);
+        }
+        for (int x = x0; x < x1; ++x) {
+          const int tx = to_x[x], ty = to_y[x];
+          if (unsigned(tx) >= unsigned(w) || unsigned(ty) >= unsigned(h)) continue;
+          float& z = hidden_by.ptr<float>(ty)[tx];
+          z = std::min(z, row[x]);
+        }
+        x0 = x1;
+      }
+    }
+    // A point splatted between samples leaves holes: each takes its neighbours' nearest.
+    cv::erode(hidden_by, hidden_by, cv::Mat::ones(2, 2, CV_8U));
+    const std::array<cv::Mat, 3>& v = r.view_colour[std::size_t(i)];
+    for (std::size_t k = 0; k < candidates.size(); ++k) {
+      const EdgeSample& c = candidates[k];
+      for (int j = first; j < last; ++j) {
+        // The window's samples of this hypothesis's side: those of the far label for the far
+        // depth, of the sample's own for its own however moved.
+        const float side = j == 0 ? c.far : c.near;
+        const float hypothesis = j == 0 ? c.far : c.near + r.near_offsets[std::size_t(j - 1)];
+        const double qq = q0 + dq * hypothesis;
+        const cv::Point2d at = s.At(c.x, c.y, qq);
+        const double px = at.x, py = at.y;
+        const int tx = RoundHalfAway(px), ty = RoundHalfAway(py);
+        if (tx < 0 || ty < 0 || tx >= w || ty >= h) continue;
+        if (hidden_by.at<float>(ty, tx) < hypothesis - tolerance) continue;
+        double cost = 0;
+        int counted = 0;
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dx = -1; dx <= 1; ++dx) {
+            const int rx = c.x + dx, ry = c.y + dy;
+            if (rx < 0 || ry < 0 || rx >= w || ry >= h) continue;
+            // The window's samples on the edge's other side are not this hypothesis's.
+            if (o.same_side_window && (dx != 0 || dy != 0) &&
+                std::abs(label.at<float>(ry, rx) - side) > edge)
+              continue;
+            float d = 0, read = 0;
+            bool inside = true;
+            for (int ch = 0; ch < 3 && inside; ++ch) {
+              const cv::Mat& plane = v[std::size_t(ch)];
+              inside = r.blurred ? BilinearAt(plane, px + dx, py + dy, &read)
+                                 : BilinearAt<std::int16_t>(plane, px + dx, py + dy, r.packed_scale,
+                                                            &read);
+              d += std::abs(read - r.reference[std::size_t(ch)].at<float>(ry, rx));
+            }
+            if (!inside) continue;
+            cost += std::min(d / 3.0, o.color_cap);
+            ++counted;
+          }
+        if (counted == 0) continue;
+        sums.sum[k][std::size_t(j)].Add(cost / counted);
+        ++sums.seen[k][std::size_t(j)];
+      }
+    }
+  });
+  for (const Sums& sums : per_thread)
+    for (std::size_t k = 0; k < candidates.size(); ++k)
+      for (int j = first; j < last; ++j) {
+        candidates[k].sum[std::size_t(j)] += sums.sum[k][std::size_t(j)];
+        candidates[k].seen[std::size_t(j)] += sums.seen[k][std::size_t(j)];
+      }
 }
 
 }  // namespace
@@ -87,6 +230,16 @@ int RefineSilhouettesByVisibility(const SweepViews& views, const std::vector<dou
   const float edge = float(o.edge_samples / samples_per_label);
   const float tolerance = float(o.tolerance_samples / samples_per_label);
   const int fewest_views = std::max(2, views.view_count() / 10);
+  // The near side's depths: its own and those moved by steps of near_search_samples (the
+  // nearest view's shift) each way, in labels.
+  std::vector<float> near_offsets{0.0f};
+  const int steps = std::clamp(o.near_search_steps, 0, kMaxNearSteps);
+  for (int k = 1; k <= steps; ++k) {
+    const float offset = float(k * o.near_search_samples / samples_per_label);
+    near_offsets.push_back(offset);
+    near_offsets.push_back(-offset);
+  }
+  const int hypotheses = 1 + int(near_offsets.size());
   // The colour planes, read through the sweep's Gaussian where its views are.
   const auto colour = [&](int i) {
     std::array<cv::Mat, 3> rgb = views.Colour(i);
@@ -131,122 +284,38 @@ int RefineSilhouettesByVisibility(const SweepViews& views, const std::vector<dou
           candidates.push_back({x, y, l, b});
       }
     if (candidates.empty()) break;
-    // The samples whose splat can hide a candidate's read: a sample lands, in any view, as far
-    // from its own place as its label puts it, a candidate's read as far as its depths put it,
-    // so within the views' largest change of shift over the map's labels (and a sample for the
-    // rounding, one for the holes' filling below) of a candidate. Later passes have few.
-    double label_lo = 0, label_hi = 0;
-    cv::minMaxLoc(label, &label_lo, &label_hi);
-    double reach_x = 0, reach_y = 0;
-    for (const SweepViews::ReadShift& s : *shifts) {
-      reach_x = std::max(reach_x, std::abs(dq * s.per_q.x) * (label_hi - label_lo));
-      reach_y = std::max(reach_y, std::abs(dq * s.per_q.y) * (label_hi - label_lo));
+    const CostReads reads{*shifts, label, reference, view_colour, blurred, packed_scale,
+                          q0,      dq,    edge,      tolerance,   o,       near_offsets};
+    SumViewCosts(reads, candidates, 0, 2);
+    // Where the far depth matches better than the near one's own, the near one moved as well:
+    // elsewhere the far depth cannot win.
+    std::vector<EdgeSample> closer;
+    std::vector<std::size_t> closer_at;
+    for (std::size_t k = 0; k < candidates.size() && hypotheses > 2; ++k) {
+      const EdgeSample& c = candidates[k];
+      if (c.seen[0] >= fewest_views && c.seen[1] >= fewest_views &&
+          c.sum[0].value() / c.seen[0] < c.sum[1].value() / c.seen[1]) {
+        closer.push_back(c);
+        closer_at.push_back(k);
+      }
     }
-    const int splat_x = int(std::ceil(reach_x)) + 2, splat_y = int(std::ceil(reach_y)) + 2;
-    cv::Mat splatted(h, w, CV_8U, cv::Scalar(0));
-    for (const EdgeSample& c : candidates) splatted.at<unsigned char>(c.y, c.x) = 1;
-    cv::dilate(splatted, splatted,
-               cv::getStructuringElement(cv::MORPH_RECT, {2 * splat_x + 1, 2 * splat_y + 1}));
-    std::vector<char> row_splatted(std::size_t(h), 0);
-    for (int y = 0; y < h; ++y)
-      row_splatted[std::size_t(y)] = cv::countNonZero(splatted.row(y)) > 0;
-    // Each view on its own (in parallel): its z-buffer, then the candidates' costs read in it.
-    struct Sums {
-      std::vector<std::array<CostSum, 2>> sum;
-      std::vector<std::array<int, 2>> seen;
-      cv::Mat hidden_by;            // the nearest label splatted there
-      std::vector<int> to_x, to_y;  // where a row's samples land
-    };
-    tbb::enumerable_thread_specific<Sums> per_thread([&] {
-      return Sums{std::vector<std::array<CostSum, 2>>(candidates.size()),
-                  std::vector<std::array<int, 2>>(candidates.size(), {0, 0}), cv::Mat(h, w, CV_32F),
-                  std::vector<int>(std::size_t(w)), std::vector<int>(std::size_t(w))};
-    });
-    tbb::parallel_for(0, views.view_count(), [&](int i) {
-      Sums& sums = per_thread.local();
-      cv::Mat& hidden_by = sums.hidden_by;
-      const SweepViews::ReadShift& s = (*shifts)[std::size_t(i)];
-      hidden_by.setTo(std::numeric_limits<float>::infinity());
-      int* to_x = sums.to_x.data();
-      int* to_y = sums.to_y.data();
-      for (int y = 0; y < h; ++y) {
-        if (!row_splatted[std::size_t(y)]) continue;
-        const float* row = label.ptr<float>(y);
-        const unsigned char* needed = splatted.ptr<unsigned char>(y);
-        // Run by run of the samples needed (the candidates' neighbourhoods): where each lands,
-        // with no branch on the rounding, then the nearest kept.
-        for (int x0 = 0; x0 < w;) {
-          while (x0 < w && !needed[x0]) ++x0;
-          int x1 = x0;
-          while (x1 < w && needed[x1]) ++x1;
-          for (int x = x0; x < x1; ++x) {
-            const cv::Point2d at = s.At(x, y, q0 + dq * row[x]);
-            to_x[x] = RoundHalfAway(at.x);
-            to_y[x] = RoundHalfAway(at.y);
-          }
-          for (int x = x0; x < x1; ++x) {
-            const int tx = to_x[x], ty = to_y[x];
-            if (unsigned(tx) >= unsigned(w) || unsigned(ty) >= unsigned(h)) continue;
-            float& z = hidden_by.ptr<float>(ty)[tx];
-            z = std::min(z, row[x]);
-          }
-          x0 = x1;
-        }
-      }
-      // A point splatted between samples leaves holes: each takes its neighbours' nearest.
-      cv::erode(hidden_by, hidden_by, cv::Mat::ones(2, 2, CV_8U));
-      const std::array<cv::Mat, 3>& v = view_colour[std::size_t(i)];
-      for (std::size_t k = 0; k < candidates.size(); ++k) {
-        const EdgeSample& c = candidates[k];
-        for (int side = 0; side < 2; ++side) {
-          const float hypothesis = side == 0 ? c.near : c.far;
-          const double qq = q0 + dq * hypothesis;
-          const cv::Point2d at = s.At(c.x, c.y, qq);
-          const double px = at.x, py = at.y;
-          const int tx = RoundHalfAway(px), ty = RoundHalfAway(py);
-          if (tx < 0 || ty < 0 || tx >= w || ty >= h) continue;
-          if (hidden_by.at<float>(ty, tx) < hypothesis - tolerance) continue;
-          double cost = 0;
-          int counted = 0;
-          for (int dy = -1; dy <= 1; ++dy)
-            for (int dx = -1; dx <= 1; ++dx) {
-              const int rx = c.x + dx, ry = c.y + dy;
-              if (rx < 0 || ry < 0 || rx >= w || ry >= h) continue;
-              // The window's samples on the edge's other side are not this hypothesis's.
-              if (o.same_side_window && (dx != 0 || dy != 0) &&
-                  std::abs(label.at<float>(ry, rx) - hypothesis) > edge)
-                continue;
-              float d = 0, read = 0;
-              bool inside = true;
-              for (int ch = 0; ch < 3 && inside; ++ch) {
-                const cv::Mat& plane = v[std::size_t(ch)];
-                inside = blurred ? BilinearAt(plane, px + dx, py + dy, &read)
-                                 : BilinearAt<std::int16_t>(plane, px + dx, py + dy, packed_scale,
-                                                            &read);
-                d += std::abs(read - reference[std::size_t(ch)].at<float>(ry, rx));
-              }
-              if (!inside) continue;
-              cost += std::min(d / 3.0, o.color_cap);
-              ++counted;
-            }
-          if (counted == 0) continue;
-          sums.sum[k][std::size_t(side)].Add(cost / counted);
-          ++sums.seen[k][std::size_t(side)];
-        }
-      }
-    });
-    for (const Sums& sums : per_thread)
-      for (std::size_t k = 0; k < candidates.size(); ++k)
-        for (int side = 0; side < 2; ++side) {
-          candidates[k].sum[std::size_t(side)] += sums.sum[k][std::size_t(side)];
-          candidates[k].seen[std::size_t(side)] += sums.seen[k][std::size_t(side)];
-        }
+    if (!closer.empty()) {
+      SumViewCosts(reads, closer, 2, hypotheses);
+      for (std::size_t i = 0; i < closer.size(); ++i) candidates[closer_at[i]] = closer[i];
+    }
     // The samples whose far depth matches better; of those, the ones the far side reaches move.
     cv::Mat wanting(h, w, CV_32F, cv::Scalar(std::numeric_limits<float>::quiet_NaN()));
-    for (const EdgeSample& c : candidates)
-      if (c.seen[0] >= fewest_views && c.seen[1] >= fewest_views &&
-          c.sum[1].value() / c.seen[1] < c.sum[0].value() / c.seen[0])
-        wanting.at<float>(c.y, c.x) = c.far;
+    // The near side at its best depth of those tried (still nearer than the far one by more
+    // than the edge's threshold); the sample keeps its own label whichever wins.
+    for (const EdgeSample& c : candidates) {
+      if (c.seen[0] < fewest_views || c.seen[1] < fewest_views) continue;
+      double near_cost = c.sum[1].value() / c.seen[1];
+      for (int j = 2; j < hypotheses; ++j)
+        if (c.seen[std::size_t(j)] >= fewest_views &&
+            c.near + near_offsets[std::size_t(j - 1)] < c.far - edge)
+          near_cost = std::min(near_cost, c.sum[std::size_t(j)].value() / c.seen[std::size_t(j)]);
+      if (c.sum[0].value() / c.seen[0] < near_cost) wanting.at<float>(c.y, c.x) = c.far;
+    }
     moved_here = ReachedByTheFarSide(label, wanting, edge);
     const int moved = cv::countNonZero(moved_here);
     wanting.copyTo(label, moved_here);

@@ -13,7 +13,11 @@
 // view, nearest first: a z-buffer); it takes the far depth where that matches better. Its cost
 // is over a 3 x 3 window, which at an edge straddles it: with `same_side_window` a depth is
 // judged by the sample and those of its window whose label is that depth's (within the edge's
-// threshold), not by the other side's samples read at a shift that is not theirs. Only
+// threshold), not by the other side's samples read at a shift that is not theirs. The near
+// depth is the map's own to within a fraction of a sample, and at a limb, where the surface turns
+// away and its shading changes from sample to sample, a read that far off costs more than the
+// far side's smooth wall: so the near side counts at its best of its own depth and that depth
+// moved a little each way (`near_search_samples`; the label stays the map's). Only
 // towards the far side: the near side is seen by every view that sees its neighbours, so the
 // sweep's own choice stands there; and only where the far side reaches the sample
 // (ReachedByTheFarSide). A few passes, each over the samples next to those the last one moved.
@@ -33,6 +37,11 @@ struct SilhouetteVisibilityOptions {
   double tolerance_samples = 0.3;  // nearer than this (nearest view's shift) hides a point
   double color_cap = 0.1;          // the colour cost's truncation (sRGB 0 .. 1)
   bool same_side_window = false;   // each depth's cost over its own side of the window only
+  // The near side judged at its best of its own depth and that depth moved by up to
+  // near_search_steps steps of near_search_samples (nearest view's shift) each way (at most 3;
+  // 0: its own depth alone).
+  double near_search_samples = 0.05;
+  int near_search_steps = 2;
 };
 
 // A sum of matching costs that comes out the same whatever order they are added in. The views are
