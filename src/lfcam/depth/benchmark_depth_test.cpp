@@ -64,17 +64,19 @@ TEST(DepthOnTheBenchmark, AntinousScoresWhatDocsDepthSays) {
   std::cout << fmt::format(
       "[depth benchmark] antinous: BadPix0.07 {:.2f}%, MSEx100 {:.2f}, {:.1f} s\n", badpix, mse100,
       seconds);
-  // Floors a little above what was measured (docs/depth.md: 2.74% and 1.51 here and through
-  // `lfcam import`; 2.75% and 1.75 when the visibility step judged the near side at its own depth
-  // alone, which the MSE floor fails; 2.75% and 1.78 when it also moved samples the far side did
-  // not reach; when the clean-up replaced samples the sweep was sure of as well, 2.83% and
-  // 2.62, which the MSE floor fails; when the clean-up moved the statue's dark limb onto the wall
-  // and the visibility step took only half-sample jumps, 2.84% and 2.85, which the MSE floor fails;
-  // with the visibility step's cost over the whole window at its silhouettes, 2.91% and 3.06; with
-  // its window and passes of wide baselines 2.91% and 3.12; without the step 2.97% and 3.83;
-  // without the quarter-arrays as well 3.05% and 4.82; with the colour and gradient terms counting
-  // alike, as at wide baselines, 5.28% and 6.4, which both floors fail; without the slant prior
-  // then 5.38%, without the wider plane fit 5.55%, without the local planes 6.32%).
+  // Floors a little above what was measured (docs/depth.md: 2.80% and 1.49 here, 2.80% and 1.50
+  // through `lfcam import`; 2.74% and 1.51 when the visibility step read each side of its window
+  // at the judged depth, not at the samples' own; 2.75% and 1.75 when the visibility step judged
+  // the near side at its own depth alone, which the MSE floor fails; 2.75% and 1.78 when it also
+  // moved samples the far side did not reach; when the clean-up replaced samples the sweep was sure
+  // of as well, 2.83% and 2.62, which the MSE floor fails; when the clean-up moved the statue's
+  // dark limb onto the wall and the visibility step took only half-sample jumps, 2.84% and 2.85,
+  // which the MSE floor fails; with the visibility step's cost over the whole window at its
+  // silhouettes, 2.91% and 3.06; with its window and passes of wide baselines 2.91% and 3.12;
+  // without the step 2.97% and 3.83; without the quarter-arrays as well 3.05% and 4.82; with the
+  // colour and gradient terms counting alike, as at wide baselines, 5.28% and 6.4, which both
+  // floors fail; without the slant prior then 5.38%, without the wider plane fit 5.55%, without the
+  // local planes 6.32%).
   EXPECT_LE(badpix, 2.9);
   EXPECT_LE(mse100, 1.6);
 }

@@ -150,13 +150,18 @@ void SumViewCosts(const CostReads& r, std::vector<EdgeSample>& candidates, int f
             if (o.same_side_window && (dx != 0 || dy != 0) &&
                 std::abs(label.at<float>(ry, rx) - side) > edge)
               continue;
+            // Where the read is: the sample's, moved by the window's offset, or the
+            // neighbour's own depth moved as the hypothesis moves the side's.
+            cv::Point2d read_at{px + dx, py + dy};
+            if (o.same_side_window && o.side_at_own_depths && (dx != 0 || dy != 0))
+              read_at = s.At(rx, ry, q0 + dq * (label.at<float>(ry, rx) + (hypothesis - side)));
             float d = 0, read = 0;
             bool inside = true;
             for (int ch = 0; ch < 3 && inside; ++ch) {
               const cv::Mat& plane = v[std::size_t(ch)];
-              inside = r.blurred ? BilinearAt(plane, px + dx, py + dy, &read)
-                                 : BilinearAt<std::int16_t>(plane, px + dx, py + dy, r.packed_scale,
-                                                            &read);
+              inside = r.blurred ? BilinearAt(plane, read_at.x, read_at.y, &read)
+                                 : BilinearAt<std::int16_t>(plane, read_at.x, read_at.y,
+                                                            r.packed_scale, &read);
               d += std::abs(read - r.reference[std::size_t(ch)].at<float>(ry, rx));
             }
             if (!inside) continue;
