@@ -29,6 +29,12 @@ struct EdgeSample {
   HypothesisViews seen{};   // the views that see the point there
 };
 
+// The samples of a candidate's 3 x 3 window that one side's depths are judged by, row by row:
+// their labels, NaN where left out.
+struct WindowSide {
+  std::array<float, 9> label;
+};
+
 // std::lround's rounding (half away from zero) inline: the library call was 4% of `lfcam depth
 // --all` (docs/benchmarks.md). v less its truncation is exact; no branch on the fraction (a row's
 // splatted samples round whichever way, unpredictably); clamped to int's range less one (any such
@@ -81,6 +87,26 @@ void SumViewCosts(const CostReads& r, std::vector<EdgeSample>& candidates, int f
              cv::getStructuringElement(cv::MORPH_RECT, {2 * splat_x + 1, 2 * splat_y + 1}));
   std::vector<char> row_splatted(std::size_t(h), 0);
   for (int y = 0; y < h; ++y) row_splatted[std::size_t(y)] = cv::countNonZero(splatted.row(y)) > 0;
+  // Each candidate's window for each side (the far depth's, the near one's): the labels of the
+  // samples it reads, NaN for those it leaves out (off the map, or on the edge's other side).
+  const bool own_depths = o.same_side_window && o.side_at_own_depths;
+  std::vector<std::array<WindowSide, 2>> windows(candidates.size());
+  for (std::size_t k = 0; k < candidates.size(); ++k) {
+    const EdgeSample& c = candidates[k];
+    for (int side = 0; side < 2; ++side) {
+      const float side_label = side == 0 ? c.far : c.near;
+      for (int n = 0; n < 9; ++n) {
+        const int rx = c.x + n % 3 - 1, ry = c.y + n / 3 - 1;
+        float& own = windows[k][std::size_t(side)].label[std::size_t(n)];
+        own = std::numeric_limits<float>::quiet_NaN();
+        if (rx < 0 || ry < 0 || rx >= w || ry >= h) continue;
+        const float l = label.at<float>(ry, rx);
+        // The window's samples on the edge's other side are not this hypothesis's.
+        if (o.same_side_window && n != 4 && std::abs(l - side_label) > edge) continue;
+        own = l;
+      }
+    }
+  }
   // Each view on its own (in parallel): its z-buffer, then the candidates' costs read in it.
   struct Sums {
     std::vector<HypothesisSums> sum;
@@ -142,32 +168,27 @@ void SumViewCosts(const CostReads& r, std::vector<EdgeSample>& candidates, int f
         if (hidden_by.at<float>(ty, tx) < hypothesis - tolerance) continue;
         double cost = 0;
         int counted = 0;
-        for (int dy = -1; dy <= 1; ++dy)
-          for (int dx = -1; dx <= 1; ++dx) {
-            const int rx = c.x + dx, ry = c.y + dy;
-            if (rx < 0 || ry < 0 || rx >= w || ry >= h) continue;
-            // The window's samples on the edge's other side are not this hypothesis's.
-            if (o.same_side_window && (dx != 0 || dy != 0) &&
-                std::abs(label.at<float>(ry, rx) - side) > edge)
-              continue;
-            // Where the read is: the sample's, moved by the window's offset, or the
-            // neighbour's own depth moved as the hypothesis moves the side's.
-            cv::Point2d read_at{px + dx, py + dy};
-            if (o.same_side_window && o.side_at_own_depths && (dx != 0 || dy != 0))
-              read_at = s.At(rx, ry, q0 + dq * (label.at<float>(ry, rx) + (hypothesis - side)));
-            float d = 0, read = 0;
-            bool inside = true;
-            for (int ch = 0; ch < 3 && inside; ++ch) {
-              const cv::Mat& plane = v[std::size_t(ch)];
-              inside = r.blurred ? BilinearAt(plane, read_at.x, read_at.y, &read)
-                                 : BilinearAt<std::int16_t>(plane, read_at.x, read_at.y,
-                                                            r.packed_scale, &read);
-              d += std::abs(read - r.reference[std::size_t(ch)].at<float>(ry, rx));
-            }
-            if (!inside) continue;
-            cost += std::min(d / 3.0, o.color_cap);
-            ++counted;
-          }
+        const WindowSide& window = windows[k][j == 0 ? 0 : 1];
+        for (int n = 0; n < 9; ++n) {
+          const float own = window.label[std::size_t(n)];
+          if (std::isnan(own)) continue;
+          const int dx = n % 3 - 1, dy = n / 3 - 1;
+          const int rx = c.x + dx, ry = c.y + dy;
+          // Where the read is: the sample's, moved by the window's offset, or the neighbour's
+          // own depth moved as the hypothesis moves the side's.
+          cv::Point2d read_at{px + dx, py + dy};
+          if (own_depths && n != 4) read_at = s.At(rx, ry, q0 + dq * (own + (hypothesis - side)));
+          float read[3];
+          const bool inside =
+              r.blurred ? BilinearAt3<float>(v, read_at.x, read_at.y, 1.0f, read)
+                        : BilinearAt3<std::int16_t>(v, read_at.x, read_at.y, r.packed_scale, read);
+          if (!inside) continue;
+          float d = 0;
+          for (std::size_t ch = 0; ch < 3; ++ch)
+            d += std::abs(read[ch] - r.reference[ch].at<float>(ry, rx));
+          cost += std::min(d / 3.0, o.color_cap);
+          ++counted;
+        }
         if (counted == 0) continue;
         sums.sum[k][std::size_t(j)].Add(cost / counted);
         ++sums.seen[k][std::size_t(j)];
