@@ -450,6 +450,7 @@ DepthMap EstimateDepth(const LightField& lf, int row, int col, const PlaneSweepO
       // already holds the other side's, and the one-sided window only averages less noise.
       visibility.same_side_window = views.noise_level() <= kNoisyViewLevels;
       visibility.edge_samples = kNarrowVisibilityEdge;
+      visibility.far_side_plane = true;
     }
     // On noisy views the best of the near side's several depths is partly the luckiest of
     // several noisy costs, and keeps the near side where the wall's is right (`hci-antinous`

@@ -205,6 +205,36 @@ void SumViewCosts(const CostReads& r, std::vector<EdgeSample>& candidates, int f
 
 }  // namespace
 
+float FarSidePlaneAt(const cv::Mat& label, int x, int y, float beyond, float farthest, float edge) {
+  // A plane through the window's far-side samples, label = a + b dx + c dy, by least squares
+  // (the normal equations), its slopes held towards none by a prior of kSlopePrior: samples in
+  // one column or row, as along a straight edge, give no slope across it.
+  constexpr double kSlopePrior = 0.5;
+  cv::Matx33d normal = cv::Matx33d::zeros();
+  cv::Vec3d moment(0, 0, 0);
+  int samples = 0;
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx) {
+      const int rx = x + dx, ry = y + dy;
+      if ((dx == 0 && dy == 0) || rx < 0 || ry < 0 || rx >= label.cols || ry >= label.rows)
+        continue;
+      const float l = label.at<float>(ry, rx);
+      if (!(l > beyond)) continue;
+      const cv::Vec3d v(1.0, dx, dy);
+      normal += v * v.t();
+      moment += v * double(l);
+      ++samples;
+    }
+  if (samples < 3) return farthest;
+  normal(1, 1) += kSlopePrior;
+  normal(2, 2) += kSlopePrior;
+  cv::Vec3d plane;
+  if (std::abs(cv::determinant(normal)) <= 1e-6 || !cv::solve(normal, moment, plane))
+    return farthest;
+  if (!(plane[0] > beyond)) return farthest;
+  return float(std::min(plane[0], double(farthest) + edge));
+}
+
 cv::Mat ReachedByTheFarSide(const cv::Mat& label, const cv::Mat& far, float edge) {
   const int w = label.cols, h = label.rows;
   cv::Mat reached(h, w, CV_8U, cv::Scalar(0));
@@ -307,7 +337,8 @@ int RefineSilhouettesByVisibility(const SweepViews& views, const std::vector<dou
         // After the first pass, only where the last one moved a sample next to it.
         if (jump.at<float>(y, x) > edge && l - a < b - l &&
             (pass == 0 || near_moved.at<unsigned char>(y, x)))
-          candidates.push_back({x, y, l, b});
+          candidates.push_back(
+              {x, y, l, o.far_side_plane ? FarSidePlaneAt(label, x, y, l + edge, b, edge) : b});
       }
     if (candidates.empty()) break;
     const CostReads reads{*shifts, label, reference, view_colour, blurred, packed_scale,

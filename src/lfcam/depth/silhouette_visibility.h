@@ -47,7 +47,18 @@ struct SilhouetteVisibilityOptions {
   // 0: its own depth alone).
   double near_search_samples = 0.05;
   int near_search_steps = 2;
+  // The far depth a sample is judged at, and takes: the plane through the far-side samples of its
+  // 3 x 3 window, where they fit one (FarSidePlaneAt), not the farthest label of its window.
+  bool far_side_plane = false;
 };
+
+// The far side's depth at sample (x, y) of `label` (CV_32F): the plane through the samples of its
+// 3 x 3 window whose labels are over `beyond` (least squares, slopes held towards none where the
+// samples do not fix them), at (x, y), if at least three such samples give one over `beyond`; no
+// farther than `farthest` plus `edge`; else `farthest`. A slanted far surface (a floor, a ramp)
+// runs on under the sample: its farthest label in the window lies a sample or two off and past
+// it, the mean of its samples short of it.
+float FarSidePlaneAt(const cv::Mat& label, int x, int y, float beyond, float farthest, float edge);
 
 // A sum of matching costs that comes out the same whatever order they are added in. The views are
 // taken in parallel, each thread summing the views it was given, and a floating-point sum's last

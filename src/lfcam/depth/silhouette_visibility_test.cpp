@@ -105,5 +105,47 @@ TEST(SilhouetteVisibility, MovesOnlyTheSamplesTheFarSideReaches) {
   EXPECT_FALSE(steps.at<unsigned char>(6, 7));
 }
 
+// The far side's depth under a sample on a near object's edge: the plane its far-side neighbours
+// lie on, continued to the sample, where the window's farthest label (the caller's fallback) is a
+// sample off and the far side's mean short of it.
+TEST(SilhouetteVisibility, TakesTheFarSidesPlaneUnderAnEdgeSample) {
+  const float kNear = 10, kEdge = 2, kBeyond = kNear + kEdge;
+  // A straight edge between columns 4 and 5, the far side a floor rising 2 labels a row: the
+  // sample's own row's far value, not its window's farthest (54) nor, with no slope across the
+  // edge to read, anything but its column's.
+  cv::Mat floor(12, 12, CV_32F, cv::Scalar(kNear));
+  for (int y = 0; y < 12; ++y)
+    for (int x = 5; x < 12; ++x) floor.at<float>(y, x) = 40.0f + 2.0f * float(y);
+  EXPECT_NEAR(FarSidePlaneAt(floor, 4, 6, kBeyond, 54, kEdge), 52.0, 1e-4);
+  // A diagonal edge (the near side where x + y <= 8), the far side a ramp rising 3 labels a
+  // column: at (4, 4) its plane gives 52; the three far neighbours' mean is 54, their farthest 55.
+  cv::Mat ramp(12, 12, CV_32F);
+  for (int y = 0; y < 12; ++y)
+    for (int x = 0; x < 12; ++x)
+      ramp.at<float>(y, x) = x + y <= 8 ? kNear : 40.0f + 3.0f * float(x);
+  const float at_ramp = FarSidePlaneAt(ramp, 4, 4, kBeyond, 55, kEdge);
+  EXPECT_GT(at_ramp, 52.0f - 0.5f);
+  EXPECT_LT(at_ramp, 54.0f - 0.5f);
+  // Fewer than three far neighbours (a near object's corner): the caller's farthest.
+  cv::Mat corner(12, 12, CV_32F, cv::Scalar(kNear));
+  corner.at<float>(5, 5) = 50;
+  corner.at<float>(5, 6) = 50;
+  EXPECT_EQ(FarSidePlaneAt(corner, 4, 4, kBeyond, 50, kEdge), 50.0f);
+  // A plane that would put the sample on the near side: the farthest. The far side 13 + 30 (x +
+  // y - 9) past the diagonal, its plane about 7 at (4, 4).
+  cv::Mat towards_near(12, 12, CV_32F);
+  for (int y = 0; y < 12; ++y)
+    for (int x = 0; x < 12; ++x)
+      towards_near.at<float>(y, x) = x + y <= 8 ? kNear : 13.0f + 30.0f * float(x + y - 9);
+  EXPECT_EQ(FarSidePlaneAt(towards_near, 4, 4, kBeyond, 43, kEdge), 43.0f);
+  // One past the farthest label (50) by more than the edge's threshold: the farthest plus the
+  // threshold. The far side 80 - 6 x past the diagonal, its plane about 54 at (4, 4).
+  cv::Mat past_farthest(12, 12, CV_32F);
+  for (int y = 0; y < 12; ++y)
+    for (int x = 0; x < 12; ++x)
+      past_farthest.at<float>(y, x) = x + y <= 8 ? kNear : 80.0f - 6.0f * float(x);
+  EXPECT_EQ(FarSidePlaneAt(past_farthest, 4, 4, kBeyond, 50, kEdge), 50.0f + kEdge);
+}
+
 }  // namespace
 }  // namespace lfcam
