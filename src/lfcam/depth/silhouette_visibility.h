@@ -8,7 +8,8 @@
 // "fattening" along its silhouettes). Given the map, each view's visibility is known: a point at
 // depth D is hidden from a view where the map puts something nearer on that view's line through
 // it. So each sample on the near side of a depth edge (a jump between neighbouring samples, not a
-// slope) is judged between its own depth and the farthest one around it, by their mean matching
+// slope) is judged between its own depth and the farthest one around it (or, with
+// `far_side_plane`, the far side's plane continued under it), by their mean matching
 // cost over the views that see the point at each (the map's own samples splatted into every
 // view, nearest first: a z-buffer); it takes the far depth where that matches better. Its cost
 // is over a 3 x 3 window, which at an edge straddles it: with `same_side_window` a depth is
