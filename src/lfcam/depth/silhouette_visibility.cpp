@@ -101,8 +101,17 @@ void SumViewCosts(const CostReads& r, std::vector<EdgeSample>& candidates, int f
         own = std::numeric_limits<float>::quiet_NaN();
         if (rx < 0 || ry < 0 || rx >= w || ry >= h) continue;
         const float l = label.at<float>(ry, rx);
-        // The window's samples on the edge's other side are not this hypothesis's.
-        if (o.same_side_window && n != 4 && std::abs(l - side_label) > edge) continue;
+        // The window's samples on the edge's other side are not this hypothesis's. Read at their
+        // own depths, a sample is on the far side where it is farther than the near label by
+        // more than the threshold, on the near side where it is nearer than the far depth by as
+        // much (a slanted side's samples all count); read at the judged depth, only those within
+        // the threshold of that side's label.
+        if (o.same_side_window && n != 4) {
+          const bool same_side = !own_depths ? std::abs(l - side_label) <= edge
+                                 : side == 0 ? l > c.near + edge
+                                             : l < c.far - edge;
+          if (!same_side) continue;
+        }
         own = l;
       }
     }

@@ -14,8 +14,9 @@
 // view, nearest first: a z-buffer); it takes the far depth where that matches better. Its cost
 // is over a 3 x 3 window, which at an edge straddles it: with `same_side_window` a depth is
 // judged by the sample and those of its window whose label is that depth's (within the edge's
-// threshold), not by the other side's samples read at a shift that is not theirs, each of them
-// read at its own depth (`side_at_own_depths`: a limb is slanted across the window). The near
+// threshold), not by the other side's samples read at a shift that is not theirs; with
+// `side_at_own_depths`, by every sample on its side of the edge, each read at its own depth (a
+// limb is slanted across the window). The near
 // depth is the map's own to within a fraction of a sample, and at a limb, where the surface turns
 // away and its shading changes from sample to sample, a read that far off costs more than the
 // far side's smooth wall: so the near side counts at its best of its own depth and that depth
@@ -41,7 +42,8 @@ struct SilhouetteVisibilityOptions {
   bool same_side_window = false;   // each depth's cost over its own side of the window only
   // With same_side_window: each of the side's other samples read at its own label (moved as
   // the hypothesis moves the side's), not at the sample's depth: a limb turning away from the
-  // views is slanted across the window.
+  // views is slanted across the window. A side is then every sample on that side of the edge,
+  // not only those within the threshold of the side's label.
   bool side_at_own_depths = true;
   // The near side judged at its best of its own depth and that depth moved by up to
   // near_search_steps steps of near_search_samples (nearest view's shift) each way (at most 3;
