@@ -1,29 +1,15 @@
 #pragma once
-// A plane read bilinearly between its samples (the depth steps that read a view at the
-// point a map says, one sample at a time).
+// A view's colour planes read bilinearly between their samples (the depth steps that read a view
+// at the point a map says, one sample at a time).
 #include <algorithm>
 #include <array>
 #include <opencv2/core.hpp>
 
 namespace lfcam {
 
-// Plane `m` (of T: float, or a fixed point such as std::int16_t) at (x, y), each sample times
-// `scale`, into `out`; false, and nothing written, outside the plane.
-template <typename T>
-inline bool BilinearAt(const cv::Mat& m, double x, double y, float scale, float* out) {
-  if (!(x >= 0 && y >= 0 && x <= m.cols - 1 && y <= m.rows - 1)) return false;
-  const int x0 = std::min(int(x), m.cols - 2), y0 = std::min(int(y), m.rows - 2);
-  const float fx = float(x - x0), fy = float(y - y0);
-  const T* a = m.ptr<T>(y0) + x0;
-  const T* b = m.ptr<T>(y0 + 1) + x0;
-  const float a0 = float(a[0]) * scale, a1 = float(a[1]) * scale, b0 = float(b[0]) * scale,
-              b1 = float(b[1]) * scale;
-  *out = (a0 * (1 - fx) + a1 * fx) * (1 - fy) + (b0 * (1 - fx) + b1 * fx) * fy;
-  return true;
-}
-
-// Three planes of one size (a view's colours) at (x, y), the place and its weights found once:
-// each the same as BilinearAt gives it.
+// Three planes of one size (a view's colours: T float, or a fixed point such as std::int16_t) at
+// (x, y), each sample times `scale`, into out[0..2], the place and its weights found once; false,
+// and nothing written, outside the planes.
 template <typename T>
 inline bool BilinearAt3(const std::array<cv::Mat, 3>& m, double x, double y, float scale,
                         float* out) {
@@ -39,11 +25,6 @@ inline bool BilinearAt3(const std::array<cv::Mat, 3>& m, double x, double y, flo
     out[c] = (a0 * (1 - fx) + a1 * fx) * (1 - fy) + (b0 * (1 - fx) + b1 * fx) * fy;
   }
   return true;
-}
-
-// A float plane (CV_32FC1) as it is.
-inline bool BilinearAt(const cv::Mat& m, double x, double y, float* out) {
-  return BilinearAt<float>(m, x, y, 1.0f, out);
 }
 
 }  // namespace lfcam

@@ -283,23 +283,24 @@ TEST(CostVolumeColour, TheViewsPackedColourReadsAsTheirFloatColour) {
   double spread = 0;
   for (int i = 0; i < views.view_count(); ++i) {
     const std::array<cv::Mat, 3> colour = views.Colour(i), packed = views.PackedColour(i);
-    for (int c = 0; c < 3; ++c) {
-      const cv::Mat& f = colour[std::size_t(c)];
-      const cv::Mat& p = packed[std::size_t(c)];
-      ASSERT_EQ(p.type(), CV_16SC1);
-      ASSERT_EQ(p.size(), f.size());
+    for (std::size_t c = 0; c < 3; ++c) {
+      ASSERT_EQ(packed[c].type(), CV_16SC1);
+      ASSERT_EQ(packed[c].size(), colour[c].size());
       double lo = 0, hi = 0;
-      cv::minMaxLoc(f, &lo, &hi);
+      cv::minMaxLoc(colour[c], &lo, &hi);
       spread = std::max(spread, hi - lo);
-      for (int k = 0; k < 200; ++k) {
-        // Anywhere on the plane, its last row and column too, and a little beyond (refused).
-        const double x = rng.uniform(-0.5, f.cols - 0.5), y = rng.uniform(-0.5, f.rows - 0.5);
-        float from_float = -1, from_packed = -1;
-        const bool inside = BilinearAt(f, x, y, &from_float);
-        ASSERT_EQ(BilinearAt<std::int16_t>(p, x, y, scale, &from_packed), inside);
-        if (!inside) continue;
+    }
+    const int cols = colour[0].cols, rows = colour[0].rows;
+    for (int k = 0; k < 600; ++k) {
+      // Anywhere on the planes, their last row and column too, and a little beyond (refused).
+      const double x = rng.uniform(-0.5, cols - 0.5), y = rng.uniform(-0.5, rows - 0.5);
+      float from_float[3] = {-1, -1, -1}, from_packed[3] = {-1, -1, -1};
+      const bool inside = BilinearAt3<float>(colour, x, y, 1.0f, from_float);
+      ASSERT_EQ(BilinearAt3<std::int16_t>(packed, x, y, scale, from_packed), inside);
+      if (!inside) continue;
+      for (std::size_t c = 0; c < 3; ++c) {
         ++reads;
-        differing += from_float != from_packed;
+        differing += from_float[c] != from_packed[c];
       }
     }
   }

@@ -174,12 +174,10 @@ OcclusionOrder MeasureOcclusionOrder(const LightField& full) {
       if (!std::isfinite(q)) return false;
       const cv::Point2d at = s.At(p.x, p.y, q);
       const double vx = at.x, vy = at.y;
+      float v[3];
+      if (!BilinearAt3<float>(colour, vx, vy, 1.0f, v)) return false;
       double sum = 0;
-      for (int c = 0; c < 3; ++c) {
-        float v = 0;
-        if (!BilinearAt(colour[std::size_t(c)], vx, vy, &v)) return false;
-        sum += std::abs(double(v) - reference[std::size_t(c)].at<float>(p));
-      }
+      for (std::size_t c = 0; c < 3; ++c) sum += std::abs(double(v[c]) - reference[c].at<float>(p));
       *cost = sum / 3;
       return true;
     };
