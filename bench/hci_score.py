@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Scores a disparity map the way the HCI 4D Light Field Benchmark's evaluation toolkit does.
 
-    bench/hci_score.py ESTIMATE.pfm GT.pfm [--border 15] [--silhouettes] [--json]
+    bench/hci_score.py ESTIMATE.pfm GT.pfm [--border 15] [--silhouettes] [--bands] [--json]
     bench/hci_score.py --registration-cost GT.pfm [--border 15] [--json]
     bench/hci_score.py ESTIMATE.pfm GT.pfm --picture OUT.png [--view CENTRE.png]
 
@@ -19,6 +19,15 @@ of MSE x 100 (the three add up to the whole) and its big errors (over 0.3 px), c
 that make the near side smaller than the truth has it (thinned: the estimate farther there) and
 the far side's that make it larger (fattened: the estimate nearer). Most of a good map's MSE lies
 in the first two (docs/depth.md, "Where `hci-antinous`' silhouette error is now").
+
+--bands says where BadPix(0.07)'s pixels lie: on the truth's depth edges (the pixels either side
+of a jump, as above), on the near or the far side 1-3 and 4-9 pixels from them (the side of the
+nearest edge pixel, counted in steps to any of the 8 neighbours; a pixel as near to both sides
+counts for the near one), and 10 pixels or more from any; for each, its pixels, those more than
+0.07 px off (and their share of all such), and the median error, signed (negative: the estimate
+farther than the truth). A map that is right away from the edges and thins or fattens them has
+its bad pixels in the first rows; one biased on a whole surface shows it in the median
+(docs/depth.md, "Where BadPix0.07's pixels lie").
 
 --picture OUT.png also draws the truth, the estimate (the same colours for the same disparity:
 turbo over the truth's 1st to 99th percentile, widened by a tenth, 0.1 px at least) and the error |estimate -
@@ -111,6 +120,60 @@ def silhouettes(estimate, truth, border=15, jump=0.3, big=0.3):
     return out
 
 
+def steps_to(mask, most):
+    """Each pixel's distance from `mask` in steps to one of its 8 neighbours, up to `most` (most
+    + 1 beyond)."""
+    steps = np.full(mask.shape, most + 1)
+    reached = mask.copy()
+    steps[reached] = 0
+    for k in range(1, most + 1):
+        reached = neighbourhood(reached, np.max)
+        steps[reached & (steps > most)] = k
+    return steps
+
+
+BANDS = (("on an edge", "edge"), ("near side, 1-3 px", "near_1_3"),
+         ("near side, 4-9 px", "near_4_9"), ("far side, 1-3 px", "far_1_3"),
+         ("far side, 4-9 px", "far_4_9"), ("10 px or more from an edge", "beyond"))
+
+
+def bands(estimate, truth, border=15, jump=0.3, threshold=0.07):
+    """BadPix(threshold)'s pixels by side of, and distance from, the truth's depth edges."""
+    near_edge = truth - neighbourhood(truth, np.min) > jump
+    far_edge = (neighbourhood(truth, np.max) - truth > jump) & ~near_edge
+    to_near, to_far = steps_to(near_edge, 9), steps_to(far_edge, 9)
+    distance = np.minimum(to_near, to_far)
+    near = to_near <= to_far
+    masks = {"edge": distance == 0,
+             "near_1_3": near & (distance >= 1) & (distance <= 3),
+             "near_4_9": near & (distance >= 4) & (distance <= 9),
+             "far_1_3": ~near & (distance >= 1) & (distance <= 3),
+             "far_4_9": ~near & (distance >= 4) & (distance <= 9),
+             "beyond": distance >= 10}
+    inner = (slice(border, -border), slice(border, -border)) if border > 0 else np.s_[:, :]
+    error = (estimate - truth)[inner]
+    bad = ~(np.abs(error) <= threshold)  # an unknown pixel is a bad one
+    out = {"jump_px": jump, "threshold_px": threshold, "bad": int(bad.sum())}
+    for _, key in BANDS:
+        m = masks[key][inner]
+        e = error[m]
+        e = e[np.isfinite(e)]
+        out[key] = {"pixels": int(m.sum()), "bad": int(bad[m].sum()),
+                    "median_error": float(np.median(e)) if e.size else 0.0}
+    return out
+
+
+def band_lines(b):
+    lines = [f"  where BadPix{b['threshold_px']:.2f}'s {b['bad']} pixels lie (the truth's depth "
+             f"edges: jumps over {b['jump_px']} px; the median error signed, negative farther):"]
+    for label, key in BANDS:
+        r = b[key]
+        share = 100.0 * r["bad"] / b["bad"] if b["bad"] else 0.0
+        lines.append(f"    {label + ':':<28}{r['pixels']:>8} pixels {r['bad']:>7} bad "
+                     f"({share:4.1f}% of them), median error {r['median_error']:+.4f}")
+    return lines
+
+
 def moved(truth, rows, cols):
     """The map moved by whole rows (down) and columns (right), its edge repeated."""
     h, w = truth.shape
@@ -178,6 +241,8 @@ def main():
                         help="score the truth against itself moved one row and one column")
     parser.add_argument("--silhouettes", action="store_true",
                         help="also split the error by the side of the truth's depth edges")
+    parser.add_argument("--bands", action="store_true",
+                        help="also say where BadPix0.07's pixels lie against the truth's edges")
     parser.add_argument("--border", type=int, default=15)
     parser.add_argument("--json", action="store_true")
     parser.add_argument("--picture", metavar="OUT.png",
@@ -189,8 +254,9 @@ def main():
     if len(args.maps) != wanted:
         parser.error(f"expected {'GT.pfm' if wanted == 1 else 'ESTIMATE.pfm GT.pfm'}, "
                      f"got {len(args.maps)} files")
-    if (args.silhouettes or args.picture) and args.registration_cost:
-        parser.error("--silhouettes and --picture take an estimate: not with --registration-cost")
+    if (args.silhouettes or args.bands or args.picture) and args.registration_cost:
+        parser.error("--silhouettes, --bands and --picture take an estimate: not with "
+                     "--registration-cost")
     if args.view and not args.picture:
         parser.error("--view is drawn in --picture's file: give --picture too")
     try:
@@ -203,6 +269,8 @@ def main():
             result = score(estimate, truth, args.border)
             if args.silhouettes:
                 result["silhouettes"] = silhouettes(estimate, truth, args.border)
+            if args.bands:
+                result["bands"] = bands(estimate, truth, args.border)
             if args.picture:
                 picture(estimate, truth, args.border, args.picture, args.view)
     except (OSError, ValueError) as e:
@@ -217,6 +285,8 @@ def main():
         print(f"{line(result)}  ({result['pixels']} pixels, {args.border}-pixel border left out)")
         if args.silhouettes:
             print("\n".join(silhouette_lines(result["silhouettes"])))
+        if args.bands:
+            print("\n".join(band_lines(result["bands"])))
     return 0
 
 

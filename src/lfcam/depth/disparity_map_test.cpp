@@ -212,6 +212,47 @@ TEST(DisparityMap, TheScoringScriptSaysOnWhichSideOfTheSilhouettesTheErrorLies) 
   fs::remove_all(t.parent_path());
 }
 
+// --bands: a wall (0.5 px) and, from column 60 on, a nearer surface (1.5 px). Inside the border
+// (columns 15-104, 70 rows): the edge's columns 59 and 60; the near side 1-3 px from it, columns
+// 61-63, 0.1 px too far, and 4-9 px, columns 64-69, 0.08 px too far; the far side 1-3 px,
+// columns 56-58, 0.2 px too near, and 4-9 px, columns 50-55, right; and 50 pixels off by 1 px
+// among the 70 columns farther from the edge.
+TEST(DisparityMap, TheScoringScriptSaysWhereTheBadPixelsLie) {
+  const std::string python = testing::PythonWith("numpy");
+  if (python.empty())
+    GTEST_SKIP() << "python3 with numpy is not here (scripts/install-deps.sh installs it)";
+  cv::Mat truth(100, 120, CV_32FC1, cv::Scalar(0.5f));
+  truth(cv::Rect(60, 0, 60, 100)) = 1.5f;
+  cv::Mat estimate = truth.clone();
+  estimate(cv::Rect(61, 0, 3, 100)) -= 0.1f;
+  estimate(cv::Rect(64, 0, 6, 100)) -= 0.08f;
+  estimate(cv::Rect(56, 0, 3, 100)) += 0.2f;
+  estimate(cv::Rect(20, 40, 5, 10)) += 1.0f;
+  estimate.row(0) += 5.0f;  // in the border: not counted
+  auto run = RunScoringScript(python, "bands", estimate, truth, "--bands --json");
+  ASSERT_EQ(run.status, 0) << run.output;
+  const auto b = nlohmann::json::parse(run.output)["bands"];
+  EXPECT_EQ(b["bad"], 890);
+  const struct {
+    const char* key;
+    int pixels, bad;
+    double median;
+  } expected[] = {{"edge", 140, 0, 0.0},         {"near_1_3", 210, 210, -0.1},
+                  {"near_4_9", 420, 420, -0.08}, {"far_1_3", 210, 210, 0.2},
+                  {"far_4_9", 420, 0, 0.0},      {"beyond", 4900, 50, 0.0}};
+  for (const auto& e : expected) {
+    EXPECT_EQ(b[e.key]["pixels"], e.pixels) << e.key;
+    EXPECT_EQ(b[e.key]["bad"], e.bad) << e.key;
+    EXPECT_NEAR(b[e.key]["median_error"].get<double>(), e.median, 1e-6) << e.key;
+  }
+  // The text says the same.
+  run = RunScoringScript(python, "bands", estimate, truth, "--bands");
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("where BadPix0.07's 890 pixels lie"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("210 bad (23.6% of them), median error -0.1000"), std::string::npos)
+      << run.output;
+}
+
 // --picture: the truth, the estimate and the error side by side (the photograph first with
 // --view), read back by OpenCV here. The estimate is the truth but for a block 0.5 px off inside
 // the border and a row 5 px off in it.
