@@ -48,6 +48,8 @@ double HciParameters::DisparityOfDepth(double depth_mm) const {
 HciParameters ParseHciParameters(std::string_view text, const std::string& where) {
   if (text.size() > (std::size_t(1) << 20))
     throw Error(fmt::format("{}: {} bytes is too large for a parameters.cfg", where, text.size()));
+  // A file saved by an editor that marks UTF-8 (a byte order mark) reads as one without.
+  if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);
   HciParameters p;
   p.source = where;
   std::map<std::string, int> line_of;

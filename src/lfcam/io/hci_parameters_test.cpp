@@ -55,6 +55,56 @@ TEST(HciParameters, ReadsTheRigAndItsDisparityLaw) {
   EXPECT_LT(p.DepthOfDisparity(1.0), 4250.0);  // positive disparity is nearer
 }
 
+// As the benchmark's own files are written (every key of its scenes', Windows line ends), and
+// saved again by an editor that marks UTF-8 with a byte order mark.
+TEST(HciParameters, ReadsTheBenchmarksOwnFilesWithWindowsLineEndsAndAByteOrderMark) {
+  std::string text;
+  for (const char* line :
+       {"[intrinsics]",
+        "focal_length_mm = 100",
+        "image_resolution_x_px = 512",
+        "image_resolution_y_px = 512",
+        "sensor_size_mm = 35",
+        "fstop = 100",
+        "",
+        "[extrinsics]",
+        "num_cams_x = 9",
+        "num_cams_y = 9",
+        "baseline_mm = 50.0",
+        "focus_distance_m = 4.25",
+        "center_cam_x_m = 0.0",
+        "center_cam_y_m = -4.5",
+        "center_cam_z_m = 0.8",
+        "center_cam_rx_rad = 1.5707963",
+        "center_cam_ry_rad = 0.0",
+        "center_cam_rz_rad = 0.0",
+        "offset = 0",
+        "",
+        "[meta]",
+        "disp_min = -2.0",
+        "disp_max = 2.3",
+        "frustum_disp_min = -2.5",
+        "frustum_disp_max = 2.5",
+        "depth_map_scale = 100.0",
+        "scene = antinous",
+        "category = additional",
+        "date = 12/08/2016",
+        "version = v1.0",
+        "authors = Katrin Honauer, Ole Johannsen, Daniel Kondermann, Bastian Goldluecke",
+        "contact = contact@lightfield-analysis.net",
+        "cc = CC BY-NC-SA 4.0"})
+    text += std::string(line) + "\r\n";
+  for (const std::string& file : {text, "\xEF\xBB\xBF" + text}) {
+    const HciParameters p = ParseHciParameters(file, "parameters.cfg");
+    EXPECT_EQ(p.width_px, 512);
+    EXPECT_EQ(p.cams_x, 9);
+    EXPECT_DOUBLE_EQ(*p.focus_distance_mm, 4250.0);
+    EXPECT_EQ(*p.disp_max, 2.3);
+    EXPECT_EQ(p.values.at("meta.authors"),
+              "Katrin Honauer, Ole Johannsen, Daniel Kondermann, Bastian Goldluecke");
+  }
+}
+
 TEST(HciParameters, BadFilesAreRefusedNamingTheLineAndTheKey) {
   auto refused = [](const std::string& text, const std::string& what) {
     try {
