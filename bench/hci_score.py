@@ -96,10 +96,16 @@ def neighbourhood(values, reduce):
     return reduce(np.stack(shifts), axis=0)
 
 
+def edge_sides(truth, jump):
+    """The pixels on the near side of the truth's depth edges (a jump of more than `jump` to one
+    of its 8 neighbours, positive disparity nearer), and those on the far side alone."""
+    near = truth - neighbourhood(truth, np.min) > jump
+    return near, (neighbourhood(truth, np.max) - truth > jump) & ~near
+
+
 def silhouettes(estimate, truth, border=15, jump=0.3, big=0.3):
     """The error split by the side of the truth's depth edges (positive disparity is nearer)."""
-    near = truth - neighbourhood(truth, np.min) > jump
-    far = (neighbourhood(truth, np.max) - truth > jump) & ~near
+    near, far = edge_sides(truth, jump)
     inner = (slice(border, -border), slice(border, -border)) if border > 0 else np.s_[:, :]
     error = (estimate - truth)[inner]
     error = np.where(np.isfinite(error), error, np.inf)
@@ -139,8 +145,7 @@ BANDS = (("on an edge", "edge"), ("near side, 1-3 px", "near_1_3"),
 
 def bands(estimate, truth, border=15, jump=0.3, threshold=0.07):
     """BadPix(threshold)'s pixels by side of, and distance from, the truth's depth edges."""
-    near_edge = truth - neighbourhood(truth, np.min) > jump
-    far_edge = (neighbourhood(truth, np.max) - truth > jump) & ~near_edge
+    near_edge, far_edge = edge_sides(truth, jump)
     to_near, to_far = steps_to(near_edge, 9), steps_to(far_edge, 9)
     distance = np.minimum(to_near, to_far)
     near = to_near <= to_far
