@@ -110,6 +110,30 @@ std::vector<double> Planes(double q_near, double q_far, double step, int samples
   return q;
 }
 
+// The same, each plane half a spacing and a whole number of spacings from `anchor` (the
+// st-plane's inverse depth, where no view moves), within the range, `step` apart (a whole
+// multiple of it where the label budget asks). So that the same views swept over ranges a little
+// apart (a range found in other units: an imported rig's zero-disparity plane in metres or in
+// assumed units) are swept at the same planes and give the same map; and no plane lies where
+// every view is read at its own samples, which sharply sampled views match better than a plane
+// read between samples by that alone. A range of fewer than kMinLabels natural planes is swept as
+// before, its planes closer together (docs/depth.md, "The planes on one lattice").
+std::vector<double> AnchoredPlanes(double q_near, double q_far, double step, int samples,
+                                   double anchor) {
+  const int most = std::clamp(int(kVolumeBytes / (4.0 * samples)), kMinLabels, kMaxLabels);
+  double spacing = step, k_near = 0;
+  const auto count = [&] {
+    k_near = std::floor((q_near - anchor) / spacing - 0.5 + 1e-9);
+    return int(k_near - std::ceil((q_far - anchor) / spacing - 0.5 - 1e-9)) + 1;
+  };
+  for (int m = 2; count() > most; ++m) spacing = step * m;
+  const int n = count();
+  if (n < kMinLabels) return Planes(q_near, q_far, step, samples);
+  std::vector<double> q(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) q[std::size_t(i)] = anchor + (k_near - i + 0.5) * spacing;
+  return q;
+}
+
 struct Choice {
   cv::Mat label;       // CV_32FC1, continuous plane index
   cv::Mat confidence;  // CV_32FC1
@@ -376,15 +400,15 @@ DepthMap EstimateDepth(const LightField& lf, int row, int col, const PlaneSweepO
   volume_options.equalise_brightness = narrow;
   const SweepViews views(lf, row, col, volume_options);
   const std::vector<double> q =
-      Planes(q_near, q_far, options.step_samples / views.farthest_shift_per_q(),
-             views.width() * views.height());
+      AnchoredPlanes(q_near, q_far, options.step_samples / views.farthest_shift_per_q(),
+                     views.width() * views.height(), 1.0 / views.st_depth());
   const int labels = int(q.size());
   const CostVolume volume =
       views.Sweep(q, GradientShare(scene_q * views.nearest_shift_per_q()), options.engine);
   cv::Mat grey;
   cv::cvtColor(views.reference_rgb8(), grey, cv::COLOR_RGB2GRAY);
   // The nearest view's shift a plane, in samples.
-  const double per_plane = (q_near - q_far) / (labels - 1) * views.nearest_shift_per_q();
+  const double per_plane = (q.front() - q.back()) / (labels - 1) * views.nearest_shift_per_q();
   cv::Mat slopes;
   const double dark_limb_levels = std::max(kDarkLimbLevels, kDarkLimbNoises * views.noise_level());
   // `kept`: where the caller keeps the labels (CV_8UC1, or empty: everywhere); the wide plane fit
@@ -473,7 +497,8 @@ DepthMap EstimateDepth(const LightField& lf, int row, int col, const PlaneSweepO
   map.depth.create(choice.label.size(), CV_32FC1);
   for (int y = 0; y < choice.label.rows; ++y)
     for (int x = 0; x < choice.label.cols; ++x) {
-      const double qq = q_near + (q_far - q_near) * choice.label.at<float>(y, x) / (labels - 1);
+      const double qq =
+          q.front() + (q.back() - q.front()) * choice.label.at<float>(y, x) / (labels - 1);
       map.depth.at<float>(y, x) = float(1.0 / qq);
     }
   return map;
