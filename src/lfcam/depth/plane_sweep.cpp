@@ -120,6 +120,7 @@ std::vector<double> Planes(double q_near, double q_far, double step, int samples
 // before, its planes closer together (docs/depth.md, "The planes on one lattice").
 std::vector<double> AnchoredPlanes(double q_near, double q_far, double step, int samples,
                                    double anchor) {
+  if (!std::isfinite(anchor) || !(step > 0)) return Planes(q_near, q_far, step, samples);
   const int most = std::clamp(int(kVolumeBytes / (4.0 * samples)), kMinLabels, kMaxLabels);
   double spacing = step, k_near = 0;
   const auto count = [&] {
