@@ -99,11 +99,16 @@ CostVolumeOptions VolumeOptions(const PlaneSweepOptions& options, double scale) 
   return o;
 }
 
+// The most planes a sweep of `samples` samples may have: the label and memory budgets.
+int MostLabels(int samples, int fewest) {
+  return std::clamp(int(kVolumeBytes / (4.0 * samples)), fewest, kMaxLabels);
+}
+
 // Planes from q_near to q_far (inverse depths), `step` apart or closer, within the label and
 // memory budgets.
 std::vector<double> Planes(double q_near, double q_far, double step, int samples,
                            int fewest = kMinLabels) {
-  const int most = std::clamp(int(kVolumeBytes / (4.0 * samples)), fewest, kMaxLabels);
+  const int most = MostLabels(samples, fewest);
   const int n = std::clamp(int(std::ceil((q_near - q_far) / step)) + 1, fewest, most);
   std::vector<double> q(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i) q[std::size_t(i)] = q_near + (q_far - q_near) * i / (n - 1);
@@ -121,7 +126,7 @@ std::vector<double> Planes(double q_near, double q_far, double step, int samples
 std::vector<double> AnchoredPlanes(double q_near, double q_far, double step, int samples,
                                    double anchor) {
   if (!std::isfinite(anchor) || !(step > 0)) return Planes(q_near, q_far, step, samples);
-  const int most = std::clamp(int(kVolumeBytes / (4.0 * samples)), kMinLabels, kMaxLabels);
+  const int most = MostLabels(samples, kMinLabels);
   double spacing = step, k_near = 0;
   const auto count = [&] {
     k_near = std::floor((q_near - anchor) / spacing - 0.5 + 1e-9);
